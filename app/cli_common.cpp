@@ -1,0 +1,86 @@
+#include "app/cli_common.h"
+
+#include <tbb/global_control.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+#include "core/default_scene.h"
+#include "core/error.h"
+#include "core/scene_file.h"
+
+namespace tyndall::app {
+
+void addSceneAndOutputOptions(CLI::App* cmd, CommonOptions& o, const std::string& defaultOutput) {
+    o.output = defaultOutput;
+    cmd->add_option("scene", o.scene, "Scene file (.json, .gltf, .glb); omitted = the built-in default scene");
+    cmd->add_option("-o,--output", o.output, "Output image: .exr (linear, settings in metadata) or .png (tone-mapped)")
+        ->capture_default_str();
+    cmd->add_option("--size", o.size, "Image size WxH in pixels")->capture_default_str();
+    cmd->add_option("--seed", o.settings.seed, "Random seed: the same seed gives the same passes")->capture_default_str();
+    cmd->add_option("--threads", o.settings.threads, "Worker threads (0 = all cores)")->capture_default_str();
+    cmd->add_option("--exposure", o.exposure, "Exposure multiplier for PNG output")->capture_default_str();
+}
+
+void addPpbOptions(CLI::App* cmd, CommonOptions& o) {
+    auto* passes = cmd->add_option("--passes", o.settings.passes, "Number of passes")->capture_default_str();
+    auto* time = cmd->add_option("--time", o.settings.timeBudget, "Time budget in seconds (instead of --passes)");
+    passes->excludes(time);
+    cmd->add_option("--photons", o.settings.photonsPerPass, "Photon paths per pass")->capture_default_str();
+    cmd->add_option("--alpha", o.settings.alpha, "Radius reduction alpha in (0,1): lower = less noise, more bias")
+        ->capture_default_str();
+    cmd->add_option("--radius", o.settings.radius,
+                    "Beam radius of the first photon path, scene units (0 = 0.5% of the scene diagonal)")
+        ->capture_default_str();
+    cmd->add_option("--surface-radius", o.settings.surfaceRadius,
+                    "Surface photon radius of the first photon path (0 = 2% of the scene diagonal)")
+        ->capture_default_str();
+    cmd->add_option("--radius-offset", o.settings.radiusOffset,
+                    "Photon paths the radius schedule treats as already traced (see docs/algorithm.md)")
+        ->capture_default_str();
+    cmd->add_option("--free-flights", o.settings.freeFlightSamples,
+                    "Stored free-flight distances per beam and pixel (heterogeneous media)")
+        ->capture_default_str();
+}
+
+void finishOptions(CommonOptions& o) {
+    std::smatch m;
+    static const std::regex kSize(R"(^\s*(\d{1,6})\s*[xX]\s*(\d{1,6})\s*$)");
+    if (!std::regex_match(o.size, m, kSize))
+        throw Error("--size: expected WxH such as 512x512, got '" + o.size + "'");
+    o.settings.width = std::stoi(m[1]);
+    o.settings.height = std::stoi(m[2]);
+    if (!(o.exposure > 0) || !std::isfinite(o.exposure)) throw Error("--exposure must be a positive number");
+    o.settings.validate();
+}
+
+Scene loadScene(const std::string& path) {
+    Scene scene = path.empty() ? makeDefaultScene() : loadSceneFile(path);
+    scene.validate();
+    return scene;
+}
+
+void checkOutputWritable(const std::string& path) {
+    checkImageExtension(path);
+    namespace fs = std::filesystem;
+    fs::path p(path);
+    fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) throw Error("output '" + path + "': directory '" + dir.string() + "' does not exist");
+    bool existed = fs::exists(p, ec);
+    {
+        std::ofstream probe(path, std::ios::app);
+        if (!probe) throw Error("output '" + path + "': cannot be written (permissions?)");
+    }
+    if (!existed) fs::remove(p, ec);
+}
+
+ThreadLimit::ThreadLimit(int threads) {
+    if (threads > 0)
+        m_control = new tbb::global_control(tbb::global_control::max_allowed_parallelism, size_t(threads));
+}
+ThreadLimit::~ThreadLimit() { delete static_cast<tbb::global_control*>(m_control); }
+
+}  // namespace tyndall::app

@@ -1,0 +1,43 @@
+#pragma once
+// Options shared by the commands that render (render, reference, bench, compare), registered on a
+// CLI11 subcommand, and the helpers every command uses to load the scene and write results.
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+#include "core/image_io.h"
+#include "core/scene.h"
+#include "core/settings.h"
+
+namespace tyndall::app {
+
+struct CommonOptions {
+    std::string scene;          ///< empty = built-in default scene
+    std::string output;
+    std::string size = "512x512";
+    float exposure = 1.0f;
+    RenderSettings settings;
+};
+
+/// Adds [SCENE] --size --seed --threads -o --exposure.
+void addSceneAndOutputOptions(CLI::App* cmd, CommonOptions& o, const std::string& defaultOutput);
+/// Adds the PPB options: --passes --time --photons --alpha --radius --surface-radius.
+void addPpbOptions(CLI::App* cmd, CommonOptions& o);
+
+/// Parses --size into the settings and validates them; throws Error naming the bad option.
+void finishOptions(CommonOptions& o);
+/// The scene named on the command line, or the built-in default; finalized and validated.
+Scene loadScene(const std::string& path);
+/// Throws Error (naming the file) when `path` cannot be written, before anything is rendered.
+void checkOutputWritable(const std::string& path);
+/// Caps TBB (and Embree through it) at `threads` workers for the life of the returned object.
+class ThreadLimit {
+public:
+    explicit ThreadLimit(int threads);
+    ~ThreadLimit();
+
+private:
+    void* m_control = nullptr;
+};
+
+}  // namespace tyndall::app

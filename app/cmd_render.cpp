@@ -1,0 +1,62 @@
+#include "app/cmd_render.h"
+
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include "app/cli_common.h"
+#include "app/interrupt.h"
+#include "core/accumulator.h"
+#include "cpu/progressive_render.h"
+
+namespace tyndall::app {
+
+namespace {
+ImageMetadata renderMetadata(const Scene& scene, const RenderSettings& s, const RadiusSetup& radii, uint64_t passes) {
+    nlohmann::json j = s.toJson();
+    j["resolved_radius"] = radii.beamRadius;
+    j["resolved_surface_radius"] = radii.surfaceRadius;
+    return {{"Software", "tyndall"},
+            {"tyndall:scene", scene.source},
+            {"tyndall:settings", j.dump()},
+            {"tyndall:passes", std::to_string(passes)},
+            {"tyndall:photon_paths", std::to_string(passes * s.photonsPerPass)}};
+}
+}  // namespace
+
+void addRenderCommand(CLI::App& app, int& exitCode) {
+    auto o = std::make_shared<CommonOptions>();
+    CLI::App* cmd = app.add_subcommand("render", "Render a scene with progressive photon beams");
+    addSceneAndOutputOptions(cmd, *o, "tyndall.png");
+    addPpbOptions(cmd, *o);
+    cmd->callback([o, &exitCode]() {
+        finishOptions(*o);
+        checkOutputWritable(o->output);
+        Scene scene = loadScene(o->scene);
+        ThreadLimit threads(o->settings.threads);
+        PassRenderer renderer(scene, o->settings);
+        Accumulator acc(o->settings.width, o->settings.height);
+        installInterruptHandler();
+        bool tty = isatty(fileno(stderr));
+        RenderProgress p = renderProgressive(renderer, acc, 0, [&](const RenderProgress& pr) {
+            if (tty) {
+                double rate = pr.passesDone / std::max(pr.elapsedSeconds, 1e-9);
+                std::fprintf(stderr, "\rpass %llu  %.1f s  %.2f passes/s ", (unsigned long long)pr.passesDone,
+                             pr.elapsedSeconds, rate);
+            }
+            return !interruptRequested();
+        });
+        if (tty) std::fprintf(stderr, "\n");
+        writeImage(o->output, acc.mean(), renderMetadata(scene, o->settings, renderer.radii(), acc.passCount()), o->exposure);
+        std::printf("rendered %s: %llu passes, %llu photon paths, %llu beams, %.2f s (%.2f passes/s)%s -> %s\n",
+                    scene.name.c_str(), (unsigned long long)acc.passCount(), (unsigned long long)p.totals.photonPaths,
+                    (unsigned long long)p.totals.beams, p.elapsedSeconds,
+                    acc.passCount() / std::max(p.elapsedSeconds, 1e-9), interruptRequested() ? " [interrupted]" : "",
+                    o->output.c_str());
+        exitCode = interruptRequested() ? 130 : 0;
+    });
+}
+
+}  // namespace tyndall::app

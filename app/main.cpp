@@ -1,0 +1,34 @@
+// tyndall: the command-line front end. Library code throws tyndall::Error; this is the only place
+// that turns errors into a one-line message and a non-zero exit.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <exception>
+
+#include "app/cmd_render.h"
+#include "core/error.h"
+
+int main(int argc, char** argv) {
+    CLI::App app{"Tyndall: progressive photon beams for fog, smoke, water and glass", "tyndall"};
+    app.require_subcommand(1);
+    app.set_help_all_flag("--help-all", "Help for every command");
+    int exitCode = 0;
+    tyndall::app::addRenderCommand(app, exitCode);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::fprintf(stderr, "tyndall: %s (see tyndall --help)\n", e.what());
+        return 2;
+    } catch (const tyndall::Error& e) {
+        std::fprintf(stderr, "tyndall: %s\n", e.what());
+        return 1;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "tyndall: unexpected error: %s\n", e.what());
+        return 1;
+    }
+    return exitCode;
+}

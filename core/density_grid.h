@@ -1,0 +1,25 @@
+#pragma once
+// A scalar density field in world space for heterogeneous media (OpenVDB grids implement it in
+// core/vdb_grid.*; tests use analytic fields). Density is dimensionless and multiplies the
+// medium's coefficients. Implementations must be safe to call from many threads at once.
+#include "core/math.h"
+
+namespace tyndall {
+
+class DensityGrid {
+public:
+    virtual ~DensityGrid() = default;
+    /// Density at world position `p`; 0 outside bounds().
+    virtual float density(const Vec3& p) const = 0;
+    /// World-space box outside which the density is zero.
+    virtual Bounds3 bounds() const = 0;
+    /// An upper bound on density(p) over the ray segment ray.o + t ray.d, t in [tMin, tMax]
+    /// (a majorant for delta tracking). The default is the global maximum.
+    virtual float majorant(const Ray& ray) const { return maxDensity(); }
+    /// Upper bound on density over the whole grid.
+    virtual float maxDensity() const = 0;
+    /// Mean density over the active region (for the homogeneous twin of `tyndall compare`).
+    virtual float meanDensity() const = 0;
+};
+
+}  // namespace tyndall

@@ -1,0 +1,85 @@
+#include "core/image_io.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "core/error.h"
+
+namespace tyndall {
+
+namespace {
+std::string extensionOf(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
+bool isLinearFormat(const std::string& ext) { return ext == ".exr" || ext == ".hdr"; }
+bool isDisplayFormat(const std::string& ext) {
+    return ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".tif" || ext == ".tiff";
+}
+float srgbEncode(float c) { return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f; }
+float srgbDecode(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
+}  // namespace
+
+float toneMapChannel(float linear, float exposure) {
+    float x = std::max(0.0f, linear * exposure);
+    if (!std::isfinite(x)) x = 0.0f;
+    // Narkowicz's fit of the ACES filmic curve: gentle toe, soft shoulder for bright caustics.
+    float mapped = (x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f);
+    return srgbEncode(clampValue(mapped, 0.0f, 1.0f));
+}
+
+void checkImageExtension(const std::string& path) {
+    std::string ext = extensionOf(path);
+    if (!isLinearFormat(ext) && !isDisplayFormat(ext))
+        throw Error("output '" + path + "': unknown image type '" + ext + "' (use .exr, .hdr, .png, .jpg or .tif)");
+}
+
+void writeImage(const std::string& path, const Image& image, const ImageMetadata& metadata, float exposure) {
+    checkImageExtension(path);
+    std::string ext = extensionOf(path);
+    std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(path);
+    if (!out) throw Error("output '" + path + "': " + OIIO::geterror());
+    const bool linear = isLinearFormat(ext);
+    OIIO::ImageSpec spec(image.width, image.height, 3, linear ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+    for (const auto& [k, v] : metadata) spec.attribute(k, v);
+    if (linear) spec.attribute("compression", "zip");
+    if (!out->open(path, spec)) throw Error("cannot write '" + path + "': " + out->geterror());
+    bool ok;
+    if (linear) {
+        ok = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data());
+    } else {
+        std::vector<uint8_t> bytes(image.pixels.size() * 3);
+        for (size_t i = 0; i < image.pixels.size(); ++i)
+            for (int c = 0; c < 3; ++c)
+                bytes[3 * i + c] = uint8_t(std::lround(255.0f * toneMapChannel(image.pixels[i][c], exposure)));
+        ok = out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
+    }
+    if (!ok || !out->close()) throw Error("failed writing '" + path + "': " + out->geterror());
+}
+
+Image readImage(const std::string& path) {
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) throw Error("cannot read image '" + path + "': " + OIIO::geterror());
+    const OIIO::ImageSpec& spec = in->spec();
+    std::vector<float> data(size_t(spec.width) * spec.height * spec.nchannels);
+    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, data.data()))
+        throw Error("cannot read image '" + path + "': " + in->geterror());
+    Image img(spec.width, spec.height);
+    bool decode = !isLinearFormat(extensionOf(path));
+    for (size_t i = 0; i < img.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            float v = data[i * spec.nchannels + std::min(c, spec.nchannels - 1)];
+            img.pixels[i][c] = decode ? srgbDecode(v) : v;
+        }
+    in->close();
+    return img;
+}
+
+}  // namespace tyndall

@@ -1,0 +1,99 @@
+#include "core/light_sampler.h"
+
+#include <algorithm>
+
+#include "core/error.h"
+#include "core/sampling.h"
+
+namespace tyndall {
+
+namespace {
+float boundingRadius(const Bounds3& b) { return b.empty() ? 1.0f : std::max(0.5f * length(b.diagonal()), 1e-3f); }
+}  // namespace
+
+Rgb LightSampler::lightPower(const Light& light, const Bounds3& sceneBounds) {
+    switch (light.type) {
+        case LightType::Point:
+            return light.intensity * (4.0f * kPi);
+        case LightType::Spot: {
+            // Integral of the smoothstep falloff over the cone: full inside the inner cone, half the
+            // inner-outer band (the smoothstep integrates to 1/2 in cos(theta)).
+            float band = std::max(light.cosInnerAngle - light.cosOuterAngle, 0.0f);
+            return light.intensity * (2.0f * kPi * ((1.0f - light.cosInnerAngle) + 0.5f * band));
+        }
+        case LightType::Directional: {
+            float r = boundingRadius(sceneBounds);
+            return light.intensity * (kPi * r * r);
+        }
+    }
+    return Rgb(0.0f);
+}
+
+LightSampler::LightSampler(const Scene& scene) : m_scene(scene) {
+    m_sceneCenter = scene.bounds.empty() ? Vec3(0.0f) : scene.bounds.center();
+    m_sceneRadius = boundingRadius(scene.bounds);
+    for (const Light& l : scene.lights) m_power.push_back(lightPower(l, scene.bounds));
+    for (const EmissiveTriangle& e : scene.emitters) m_power.push_back(e.radiance * (kPi * e.area));
+    double sum = 0.0;
+    for (const Rgb& p : m_power) {
+        sum += std::max(0.0f, p.luminance());
+        m_cdf.push_back(sum);
+        m_totalPower += p;
+    }
+    if (sum <= 0.0) throw Error("scene '" + scene.name + "' emits no light (every light has zero power)");
+    for (double& c : m_cdf) c /= sum;
+}
+
+EmittedPhoton LightSampler::sample(Rng& rng) const {
+    float uPick = rng.uniform();
+    size_t i = size_t(std::lower_bound(m_cdf.begin(), m_cdf.end(), double(uPick)) - m_cdf.begin());
+    i = std::min(i, m_cdf.size() - 1);
+    while (i > 0 && m_cdf[i] == m_cdf[i - 1]) --i;  // never pick a zero-power source
+    double pick = m_cdf[i] - (i > 0 ? m_cdf[i - 1] : 0.0);
+    float u1 = rng.uniform(), u2 = rng.uniform();
+
+    EmittedPhoton ph;
+    Rgb power;  // power sample / pdf of the direction (and point) given the source
+    if (i < m_scene.lights.size()) {
+        const Light& l = m_scene.lights[i];
+        ph.light = int(i);
+        switch (l.type) {
+            case LightType::Point:
+                ph.ray.o = l.position;
+                ph.ray.d = sampleUniformSphere(u1, u2);
+                power = l.intensity / uniformSpherePdf();
+                break;
+            case LightType::Spot: {
+                Vec3 local = sampleUniformCone(u1, u2, l.cosOuterAngle);
+                ph.ray.o = l.position;
+                ph.ray.d = Frame(l.direction).toWorld(local);
+                power = l.intensity * (l.spotFalloff(local.z) / uniformConePdf(l.cosOuterAngle));
+                break;
+            }
+            case LightType::Directional: {
+                Vec2 disk = sampleConcentricDisk(u1, u2);
+                Frame f(l.direction);
+                ph.ray.o = m_sceneCenter - l.direction * (1.01f * m_sceneRadius) +
+                           (f.s * disk.x + f.t * disk.y) * m_sceneRadius;
+                ph.ray.d = l.direction;
+                power = l.intensity * (kPi * m_sceneRadius * m_sceneRadius);
+                break;
+            }
+        }
+    } else {
+        const EmissiveTriangle& e = m_scene.emitters[i - m_scene.lights.size()];
+        const TriangleMesh& mesh = m_scene.meshes[e.mesh];
+        Vec2 b = sampleUniformTriangle(u1, u2);
+        Vec3 p0 = mesh.vertex(e.triangle, 0), p1 = mesh.vertex(e.triangle, 1), p2 = mesh.vertex(e.triangle, 2);
+        Vec3 n = normalize(mesh.geometricNormal(e.triangle));
+        ph.ray.o = p0 * (1.0f - b.x - b.y) + p1 * b.x + p2 * b.y;
+        ph.ray.d = Frame(n).toWorld(sampleCosineHemisphere(rng.uniform(), rng.uniform()));
+        ph.emitterMesh = e.mesh;
+        // Le cos / (cos/pi * 1/area) = Le * pi * area.
+        power = e.radiance * (kPi * e.area);
+    }
+    ph.power = power / float(pick);
+    return ph;
+}
+
+}  // namespace tyndall

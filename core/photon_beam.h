@@ -1,0 +1,50 @@
+#pragma once
+// What photon tracing stores for one pass: photon beams (every path segment through a medium)
+// and surface photons (every diffuse hit), plus the bookkeeping the radius schedule needs.
+#include <cstdint>
+#include <vector>
+
+#include "core/math.h"
+#include "core/medium.h"
+
+namespace tyndall {
+
+/// One photon beam: the segment x_b + t w_b, t in [0, tMax], of a photon path inside one medium.
+/// `power` is Phi_b: the path's throughput at x_b times the emitted power, divided by the number of
+/// photon paths of the pass. Layout is three 16-byte rows so the GL side can upload the array
+/// as-is (std430: vec4 originTMax, vec4 dirRadius, vec4 powerMedium); gpu/ static_asserts it.
+struct PhotonBeam {
+    Vec3 origin;
+    float tMax = 0;
+    Vec3 dir;
+    float radius = 0;
+    Rgb power;
+    MediumId medium = kVacuum;
+};
+static_assert(sizeof(PhotonBeam) == 48, "PhotonBeam must stay three vec4 rows for the GL upload");
+
+/// A photon stored on a diffuse surface. `wi` points from the surface toward where the photon came
+/// from; `power` as for beams.
+struct SurfacePhoton {
+    Vec3 position;
+    float radius = 0;
+    Vec3 wi;
+    Vec3 normal;  ///< geometric normal on the side the photon arrived from
+    Rgb power;
+};
+
+/// Everything photon tracing produced for one pass.
+struct PhotonMap {
+    uint64_t pass = 0;
+    uint64_t firstPath = 0;   ///< global index of the pass's first photon path (radius schedule)
+    uint32_t pathCount = 0;   ///< photon paths emitted (the divisor in the beam power)
+    std::vector<PhotonBeam> beams;
+    /// Heterogeneous media: `freeFlightsPerBeam` distances per beam (beam i uses
+    /// freeFlights[i*n .. i*n+n)), distances along the beam from its origin; a distance >= tMax
+    /// means the sample passed the whole beam. Empty when no beam is in a heterogeneous medium.
+    std::vector<float> freeFlights;
+    int freeFlightsPerBeam = 0;
+    std::vector<SurfacePhoton> surfacePhotons;
+};
+
+}  // namespace tyndall

@@ -1,0 +1,98 @@
+#include "core/settings.h"
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+
+namespace tyndall {
+
+void RenderSettings::validate() const {
+    auto fail = [](const std::string& m) { throw Error(m); };
+    if (width <= 0 || height <= 0 || width > 16384 || height > 16384)
+        fail("--size: width and height must be in 1..16384 (got " + std::to_string(width) + "x" + std::to_string(height) + ")");
+    if (!(alpha > 0.0 && alpha < 1.0)) fail("--alpha must lie strictly between 0 and 1 (got " + std::to_string(alpha) + ")");
+    if (passes == 0 && timeBudget <= 0) fail("--passes must be positive");
+    if (!(timeBudget >= 0) || !std::isfinite(timeBudget)) fail("--time must be a non-negative number of seconds");
+    if (photonsPerPass == 0) fail("--photons must be positive");
+    if (!(radius >= 0) || !std::isfinite(radius)) fail("--radius must be >= 0 (0 = automatic)");
+    if (!(surfaceRadius >= 0) || !std::isfinite(surfaceRadius)) fail("--surface-radius must be >= 0 (0 = automatic)");
+    if (threads < 0) fail("--threads must be >= 0 (0 = all cores)");
+    if (maxPhotonBounces <= 0 || maxCameraBounces <= 0) fail("bounce limits must be positive");
+    if (freeFlightSamples < 1 || freeFlightSamples > 64) fail("--free-flights must be in 1..64");
+    if (gpu != "auto" && gpu != "on" && gpu != "off") fail("--gpu must be auto, on or off (got '" + gpu + "')");
+}
+
+nlohmann::json RenderSettings::toJson() const {
+    return {{"width", width},
+            {"height", height},
+            {"passes", passes},
+            {"time", timeBudget},
+            {"photons", photonsPerPass},
+            {"alpha", alpha},
+            {"radius", radius},
+            {"surface_radius", surfaceRadius},
+            {"radius_offset", radiusOffset},
+            {"seed", seed},
+            {"threads", threads},
+            {"max_photon_bounces", maxPhotonBounces},
+            {"max_camera_bounces", maxCameraBounces},
+            {"free_flights", freeFlightSamples},
+            {"gpu", gpu}};
+}
+
+namespace {
+template <typename T>
+void read(const nlohmann::json& j, const char* key, T& out, const std::string& where) {
+    auto it = j.find(key);
+    if (it == j.end()) return;
+    try {
+        if constexpr (std::is_same_v<T, std::string>) {
+            if (!it->is_string()) throw Error("expected a string");
+        } else if constexpr (std::is_floating_point_v<T>) {
+            if (!it->is_number()) throw Error("expected a number");
+        } else {
+            if (!it->is_number_integer()) throw Error("expected an integer");
+            if constexpr (std::is_unsigned_v<T>)
+                if (it->template get<int64_t>() < 0) throw Error("expected a non-negative integer");
+        }
+        out = it->template get<T>();
+    } catch (const std::exception& e) {
+        throw Error(where + "/" + key + ": " + e.what());
+    }
+}
+}  // namespace
+
+RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::string& where) {
+    return fromJson(j, where, RenderSettings());
+}
+
+RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::string& where, RenderSettings s) {
+    if (!j.is_object()) throw Error(where + ": expected an object of render settings");
+    static const char* kKeys[] = {"width", "height", "passes", "time", "photons", "alpha", "radius",
+                                  "surface_radius", "radius_offset", "seed", "threads",
+                                  "max_photon_bounces", "max_camera_bounces", "free_flights", "gpu"};
+    for (auto it = j.begin(); it != j.end(); ++it) {
+        bool known = false;
+        for (const char* k : kKeys) known |= it.key() == k;
+        if (!known) throw Error(where + "/" + it.key() + ": unknown render setting");
+    }
+    read(j, "width", s.width, where);
+    read(j, "height", s.height, where);
+    read(j, "passes", s.passes, where);
+    read(j, "time", s.timeBudget, where);
+    read(j, "photons", s.photonsPerPass, where);
+    read(j, "alpha", s.alpha, where);
+    read(j, "radius", s.radius, where);
+    read(j, "surface_radius", s.surfaceRadius, where);
+    read(j, "radius_offset", s.radiusOffset, where);
+    read(j, "seed", s.seed, where);
+    read(j, "threads", s.threads, where);
+    read(j, "max_photon_bounces", s.maxPhotonBounces, where);
+    read(j, "max_camera_bounces", s.maxCameraBounces, where);
+    read(j, "free_flights", s.freeFlightSamples, where);
+    read(j, "gpu", s.gpu, where);
+    return s;
+}
+
+}  // namespace tyndall

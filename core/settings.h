@@ -1,0 +1,40 @@
+#pragma once
+// Render settings: a plain struct that reads and writes the same JSON (the scene file's
+// "render" block, the EXR metadata). Every field has the default listed by `tyndall --help`.
+#include <cstdint>
+#include <string>
+
+#include <nlohmann/json_fwd.hpp>
+
+namespace tyndall {
+
+struct RenderSettings {
+    int width = 512;
+    int height = 512;
+    uint64_t passes = 64;            ///< stop after this many passes (when timeBudget == 0)
+    double timeBudget = 0.0;         ///< seconds; > 0 renders passes until the budget is spent
+    uint32_t photonsPerPass = 1000;  ///< photon paths emitted per pass
+    double alpha = 0.5;              ///< radius reduction, in (0, 1): low = less noise, more bias
+    /// Beam radius of the first photon path, scene units; 0 = 0.5% of the scene's bounding-box
+    /// diagonal. Later paths shrink by RadiusSchedule::beamFactor.
+    float radius = 0.0f;
+    /// Surface-photon radius of the first photon path; 0 = 2% of the scene diagonal.
+    float surfaceRadius = 0.0f;
+    uint64_t radiusOffset = 1000;    ///< RadiusSchedule offset n0 - 1 (see radius_schedule.h)
+    uint64_t seed = 1;
+    int threads = 0;                 ///< 0 = all hardware threads
+    int maxPhotonBounces = 32;       ///< photon path vertices before termination
+    int maxCameraBounces = 16;       ///< specular camera-path vertices before termination
+    int freeFlightSamples = 4;       ///< stored free-flight distances per beam/ray (heterogeneous)
+    std::string gpu = "auto";        ///< auto | on | off
+
+    /// Throws Error naming the option when a value is out of range.
+    void validate() const;
+    nlohmann::json toJson() const;
+    /// Reads the keys present in `j` over the defaults; unknown keys and wrong types throw Error
+    /// naming `where` (a file and JSON path) and the key.
+    static RenderSettings fromJson(const nlohmann::json& j, const std::string& where, RenderSettings base);
+    static RenderSettings fromJson(const nlohmann::json& j, const std::string& where);
+};
+
+}  // namespace tyndall

@@ -1,0 +1,165 @@
+#include "cpu/embree_scene.h"
+
+#include <cstdio>
+#include <string>
+
+#include "core/error.h"
+
+namespace tyndall {
+
+namespace {
+const char* errorName(RTCError e) {
+    switch (e) {
+        case RTC_ERROR_NONE: return "no error";
+        case RTC_ERROR_INVALID_ARGUMENT: return "invalid argument";
+        case RTC_ERROR_INVALID_OPERATION: return "invalid operation";
+        case RTC_ERROR_OUT_OF_MEMORY: return "out of memory";
+        case RTC_ERROR_UNSUPPORTED_CPU: return "unsupported CPU";
+        case RTC_ERROR_CANCELLED: return "cancelled";
+        default: return "unknown error";
+    }
+}
+void errorCallback(void*, RTCError code, const char* str) {
+    std::fprintf(stderr, "tyndall: Embree error (%s): %s\n", errorName(code), str ? str : "");
+}
+}  // namespace
+
+EmbreeDevice::EmbreeDevice() {
+    m_device = rtcNewDevice(nullptr);
+    if (!m_device) throw Error(std::string("cannot create an Embree device: ") + errorName(rtcGetDeviceError(nullptr)));
+    rtcSetDeviceErrorFunction(m_device, errorCallback, nullptr);
+}
+
+EmbreeDevice::~EmbreeDevice() { rtcReleaseDevice(m_device); }
+
+void EmbreeDevice::check(const char* what) const {
+    RTCError e = rtcGetDeviceError(m_device);
+    if (e != RTC_ERROR_NONE) throw Error(std::string("Embree failed while ") + what + ": " + errorName(e));
+}
+
+EmbreeScene::EmbreeScene(const Scene& scene, std::shared_ptr<EmbreeDevice> device)
+    : m_scene(scene), m_device(device ? std::move(device) : std::make_shared<EmbreeDevice>()) {
+    RTCDevice dev = m_device->get();
+    m_rtcScene = rtcNewScene(dev);
+    rtcSetSceneBuildQuality(m_rtcScene, RTC_BUILD_QUALITY_HIGH);
+    for (size_t m = 0; m < scene.meshes.size(); ++m) {
+        const TriangleMesh& mesh = scene.meshes[m];
+        RTCGeometry geom = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
+        auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                              3 * sizeof(float), std::max<size_t>(mesh.positions.size(), 1)));
+        for (size_t i = 0; i < mesh.positions.size(); ++i) {
+            v[3 * i] = mesh.positions[i].x;
+            v[3 * i + 1] = mesh.positions[i].y;
+            v[3 * i + 2] = mesh.positions[i].z;
+        }
+        auto* idx = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                   3 * sizeof(uint32_t), mesh.triangleCount()));
+        std::copy(mesh.indices.begin(), mesh.indices.end(), idx);
+        rtcCommitGeometry(geom);
+        rtcAttachGeometryByID(m_rtcScene, geom, unsigned(m));
+        rtcReleaseGeometry(geom);
+    }
+    rtcCommitScene(m_rtcScene);
+    m_device->check("building the scene BVH");
+    Bounds3 b = scene.bounds;
+    if (!b.empty()) m_epsilon = 2e-6f * std::max(1.0f, length(b.diagonal()));
+    m_mediumBounds = b;
+}
+
+EmbreeScene::~EmbreeScene() { rtcReleaseScene(m_rtcScene); }
+
+bool EmbreeScene::intersect(const Ray& ray, SurfaceHit* hit) const {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRayHit rh;
+    rh.ray.org_x = ray.o.x;
+    rh.ray.org_y = ray.o.y;
+    rh.ray.org_z = ray.o.z;
+    rh.ray.dir_x = ray.d.x;
+    rh.ray.dir_y = ray.d.y;
+    rh.ray.dir_z = ray.d.z;
+    rh.ray.tnear = ray.tMin;
+    rh.ray.tfar = ray.tMax;
+    rh.ray.mask = 0xFFFFFFFFu;
+    rh.ray.flags = 0;
+    rh.ray.time = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(m_rtcScene, &ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+    const TriangleMesh& mesh = m_scene.meshes[rh.hit.geomID];
+    hit->t = rh.ray.tfar;
+    hit->mesh = int(rh.hit.geomID);
+    hit->triangle = rh.hit.primID;
+    hit->b1 = rh.hit.u;
+    hit->b2 = rh.hit.v;
+    hit->p = ray.at(hit->t);
+    hit->ng = normalize(mesh.geometricNormal(rh.hit.primID));
+    hit->ns = hit->ng;
+    if (!mesh.normals.empty()) {
+        const uint32_t* tri = &mesh.indices[3 * size_t(rh.hit.primID)];
+        Vec3 n = mesh.normals[tri[0]] * (1.0f - hit->b1 - hit->b2) + mesh.normals[tri[1]] * hit->b1 +
+                 mesh.normals[tri[2]] * hit->b2;
+        float len = length(n);
+        if (len > 0 && std::isfinite(len)) {
+            n = n / len;
+            hit->ns = dot(n, hit->ng) < 0 ? -n : n;
+        }
+    }
+    return true;
+}
+
+bool EmbreeScene::occluded(const Ray& ray) const {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRay r;
+    r.org_x = ray.o.x;
+    r.org_y = ray.o.y;
+    r.org_z = ray.o.z;
+    r.dir_x = ray.d.x;
+    r.dir_y = ray.d.y;
+    r.dir_z = ray.d.z;
+    r.tnear = ray.tMin;
+    r.tfar = ray.tMax;
+    r.mask = 0xFFFFFFFFu;
+    r.flags = 0;
+    r.time = 0;
+    rtcOccluded1(m_rtcScene, &ctx, &r);
+    return r.tfar < 0.0f;
+}
+
+MediumId EmbreeScene::mediumAt(const Vec3& p) const {
+    // An irrational-looking direction avoids grazing axis-aligned walls and edges.
+    Ray ray{p, normalize(Vec3(0.3187f, 0.8413f, 0.4367f))};
+    SurfaceHit hit;
+    for (int guard = 0; guard < 1024 && intersect(ray, &hit); ++guard) {
+        const TriangleMesh& mesh = m_scene.meshes[hit.mesh];
+        if (mesh.interiorMedium != mesh.exteriorMedium)
+            return dot(ray.d, hit.ng) > 0 ? mesh.interiorMedium : mesh.exteriorMedium;
+        ray.o = offsetOrigin(hit.p, hit.ng, ray.d);
+    }
+    return m_scene.globalMedium;
+}
+
+bool EmbreeScene::globalMediumInterval(const Ray& ray, float* t0, float* t1) const {
+    if (m_mediumBounds.empty()) return false;
+    float lo = ray.tMin, hi = ray.tMax;
+    for (int a = 0; a < 3; ++a) {
+        float inv = 1.0f / ray.d[a];
+        float tn = (m_mediumBounds.lo[a] - ray.o[a]) * inv;
+        float tf = (m_mediumBounds.hi[a] - ray.o[a]) * inv;
+        if (tn > tf) std::swap(tn, tf);
+        if (std::isnan(tn) || std::isnan(tf)) {  // ray parallel to and inside the slab plane
+            if (ray.o[a] < m_mediumBounds.lo[a] || ray.o[a] > m_mediumBounds.hi[a]) return false;
+            continue;
+        }
+        lo = std::max(lo, tn);
+        hi = std::min(hi, tf * 1.0000001f);
+        if (lo > hi) return false;
+    }
+    *t0 = lo;
+    *t1 = hi;
+    return true;
+}
+
+}  // namespace tyndall

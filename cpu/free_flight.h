@@ -1,0 +1,31 @@
+#pragma once
+// Free-flight sampling in a medium, for photon paths, the reference path tracer and the stored
+// transmittance distances. Homogeneous media sample analytically with spectral MIS over the
+// three channels; density-grid media use delta (Woodcock) tracking against the grid's majorant.
+// No ray marching anywhere: every estimate here is unbiased.
+#include "core/medium.h"
+#include "core/rng.h"
+
+namespace tyndall {
+
+/// Outcome of sampling a free flight along [0, tEnd] of `ray`.
+struct FreeFlight {
+    bool scattered = false;  ///< a real scattering event at distance t < tEnd
+    float t = 0;
+    /// Throughput factor for the sampled event: scattering -> sigma_s Tr / pdf;
+    /// passing -> Tr(tEnd) / P(pass). For delta tracking both are the albedo / 1.
+    Rgb weight{1.0f};
+};
+
+FreeFlight sampleFreeFlight(const Medium& medium, const Ray& ray, float tEnd, Rng& rng);
+
+/// Distance to the first real collision (absorption or scattering) along `ray`, or +infinity when
+/// it passes tEnd: one sample of the stored step transmittance, Tr(t) = P(distance > t). Needs grey
+/// extinction for grid media (channel 0 is used for homogeneous ones).
+float sampleCollisionDistance(const Medium& medium, const Ray& ray, float tEnd, Rng& rng);
+
+/// Transmittance estimate over [0, tEnd]: analytic for homogeneous media, a ratio-tracking
+/// estimate (unbiased) for grid media.
+Rgb estimateTransmittance(const Medium& medium, const Ray& ray, float tEnd, Rng& rng);
+
+}  // namespace tyndall

@@ -1,0 +1,73 @@
+#include "cpu/pass_renderer.h"
+
+#include <chrono>
+
+namespace tyndall {
+
+namespace {
+double secondsSince(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+}  // namespace
+
+PassStats& PassStats::operator+=(const PassStats& o) {
+    photonPaths += o.photonPaths;
+    beams += o.beams;
+    surfacePhotons += o.surfacePhotons;
+    cameraRays += o.cameraRays;
+    beamQueries += o.beamQueries;
+    beamHits += o.beamHits;
+    rasterTests += o.rasterTests;
+    photonSeconds += o.photonSeconds;
+    cameraSeconds += o.cameraSeconds;
+    splatSeconds += o.splatSeconds;
+    return *this;
+}
+
+PassRenderer::PassRenderer(const Scene& scene, const RenderSettings& settings, BeamBvh::Kind beamBvh)
+    : m_scene(scene),
+      m_settings(settings),
+      m_radii(RadiusSetup::resolve(settings, scene)),
+      m_bvhKind(beamBvh),
+      m_rt(std::make_unique<EmbreeScene>(scene)),
+      m_photons(std::make_unique<PhotonTracer>(*m_rt, settings, m_radii)),
+      m_camera(std::make_unique<CameraTracer>(*m_rt, settings)),
+      m_rasterizer(scene) {}
+
+PhotonMap PassRenderer::tracePhotons(uint64_t pass) const { return m_photons->trace(pass); }
+
+CameraPassResult PassRenderer::traceCamera(uint64_t pass, const PhotonMap& photons) const {
+    BeamBvh bvh(*m_rt->device(), photons.beams, m_bvhKind);
+    SurfacePhotonGrid grid(photons.surfacePhotons);
+    return m_camera->trace(pass, photons, bvh, grid);
+}
+
+Image PassRenderer::splatPrimary(const CameraPassResult& camera, const PhotonMap& photons, RasterStats* stats) const {
+    return m_rasterizer.rasterize(camera.primary, photons, stats);
+}
+
+Image PassRenderer::renderPass(uint64_t pass, PassStats* stats) const {
+    auto t0 = std::chrono::steady_clock::now();
+    PhotonMap photons = tracePhotons(pass);
+    auto t1 = std::chrono::steady_clock::now();
+    CameraPassResult camera = traceCamera(pass, photons);
+    auto t2 = std::chrono::steady_clock::now();
+    RasterStats raster;
+    Image image = splatPrimary(camera, photons, &raster);
+    image += camera.radiance;
+    if (stats) {
+        stats->photonPaths += photons.pathCount;
+        stats->beams += photons.beams.size();
+        stats->surfacePhotons += photons.surfacePhotons.size();
+        stats->cameraRays += camera.stats.rays;
+        stats->beamQueries += camera.stats.beamQueries;
+        stats->beamHits += camera.stats.beamHits;
+        stats->rasterTests += raster.pixelTests;
+        stats->photonSeconds += std::chrono::duration<double>(t1 - t0).count();
+        stats->cameraSeconds += std::chrono::duration<double>(t2 - t1).count();
+        stats->splatSeconds += secondsSince(t2);
+    }
+    return image;
+}
+
+}  // namespace tyndall

@@ -1,0 +1,54 @@
+#pragma once
+// Photon tracing (PPB step 1): emits the pass's photon paths from the lights and follows them
+// through specular and diffuse surfaces and through media, storing a photon beam for every
+// medium segment (long beams: each reaches the next surface, with analytic or stored-distance
+// transmittance) and a surface photon at every diffuse hit. Radii follow the per-path schedule.
+//
+// Deterministic: path k of pass i draws from Rng::forKey(seed, i, k, PhotonPath) and the output
+// is in path order, whatever the thread count.
+#include <vector>
+
+#include "core/light_sampler.h"
+#include "core/photon_beam.h"
+#include "core/radius_schedule.h"
+#include "core/settings.h"
+#include "cpu/embree_scene.h"
+
+namespace tyndall {
+
+/// Settings resolved against a scene: absolute radii and the schedule.
+struct RadiusSetup {
+    float beamRadius = 0;     ///< radius of photon path 0
+    float surfaceRadius = 0;  ///< surface-photon radius of photon path 0
+    RadiusSchedule schedule{0.5, 1000};
+
+    static RadiusSetup resolve(const RenderSettings& settings, const Scene& scene);
+    float beamRadiusOf(uint64_t path) const { return float(beamRadius * schedule.beamFactor(path)); }
+    float surfaceRadiusOf(uint64_t path) const { return float(surfaceRadius * schedule.surfaceFactor(path)); }
+};
+
+class PhotonTracer {
+public:
+    PhotonTracer(const EmbreeScene& rt, const RenderSettings& settings, const RadiusSetup& radii);
+
+    /// Traces `settings.photonsPerPass` paths for pass `pass` (global path indices start at
+    /// pass * photonsPerPass).
+    PhotonMap trace(uint64_t pass) const;
+
+    /// Traces `count` paths starting at global path index `firstPath` with streams keyed by
+    /// (seed, pass, k); the power divisor is `count`.
+    PhotonMap trace(uint64_t pass, uint64_t firstPath, uint32_t count) const;
+
+private:
+    void tracePath(uint64_t pass, uint64_t pathInPass, uint64_t globalPath, uint32_t count, PhotonMap& out) const;
+
+    const EmbreeScene& m_rt;
+    const Scene& m_scene;
+    RenderSettings m_settings;
+    RadiusSetup m_radii;
+    LightSampler m_lights;
+    std::vector<MediumId> m_lightMedium;  // per Scene::lights entry
+    bool m_anyHeterogeneous = false;
+};
+
+}  // namespace tyndall

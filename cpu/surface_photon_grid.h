@@ -1,0 +1,41 @@
+#pragma once
+// Fixed-radius lookup of surface photons (progressive surface photon mapping): a hashed uniform
+// grid with cells as wide as the largest photon diameter, photons sorted by cell.
+// The density estimate at a diffuse point x with normal n and albedo rho is
+//   L = rho/pi * sum_p Phi_p K_2D(|x - x_p|, r_p)
+// over photons on the same side of the surface (normal agreement) and near its plane, with the
+// normalised 2D Epanechnikov kernel K(d, r) = 2/(pi r^2) (1 - d^2/r^2), each photon with its own
+// (scheduled) radius.
+#include <vector>
+
+#include "core/photon_beam.h"
+
+namespace tyndall {
+
+class SurfacePhotonGrid {
+public:
+    /// Keeps a reference to `photons`: they must outlive the grid.
+    explicit SurfacePhotonGrid(const std::vector<SurfacePhoton>& photons);
+
+    /// sum_p Phi_p K_2D(|x - x_p|, r_p) for photons whose normal agrees with `n` (the side the
+    /// query looks from); multiply by the BRDF (rho/pi) to get outgoing radiance.
+    Rgb density(const Vec3& x, const Vec3& n) const;
+
+    static float kernel(float d2, float r) {
+        float r2 = r * r;
+        return d2 < r2 ? 2.0f / (kPi * r2) * (1.0f - d2 / r2) : 0.0f;
+    }
+
+private:
+    uint32_t cellHash(int x, int y, int z) const;
+
+    const std::vector<SurfacePhoton>& m_photons;
+    std::vector<uint32_t> m_order;       // photon indices sorted by cell hash
+    std::vector<uint32_t> m_cellStart;   // per hash bucket: start in m_order (size buckets + 1)
+    float m_cellSize = 1;
+    float m_maxRadius = 0;
+    Vec3 m_origin;
+    uint32_t m_buckets = 1;
+};
+
+}  // namespace tyndall
