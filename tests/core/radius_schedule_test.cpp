@@ -13,7 +13,7 @@ TEST(RadiusSchedule, ClosedFormMatchesProduct) {
         double product = 1.0;  // R(1) = 1
         for (int n = 1; n <= 200000; ++n) {
             if (n > 1) product *= (n - 1 + alpha) / double(n);
-            if (n == 1 || n == 2 || n == 10 || n == 1000 || n == 99999 || n == 100000 || n == 100001 || n == 200000) {
+            if (n == 1 || n == 2 || n == 10 || n == 999 || n == 1000 || n == 1001 || n == 100000 || n == 200000) {
                 double closed = std::exp(RadiusSchedule::logR(alpha, n));
                 EXPECT_NEAR(closed / product, 1.0, 1e-9) << "alpha " << alpha << " n " << n;
             }
@@ -29,7 +29,7 @@ TEST(RadiusSchedule, StartsAtOneAndShrinksPerPath) {
         double f = s.beamFactor(j);
         ASSERT_LT(f, prev);
         // Each step is the PPB ratio (n + alpha)/(n + 1) at n = j + offset.
-        ASSERT_NEAR(f / prev, (j + 1000 + 0.5) / (j + 1000 + 1.0), 1e-12);
+        ASSERT_NEAR(f / prev, (j + 1000 + 0.5) / (j + 1000 + 1.0), 1e-11);
         prev = f;
     }
     EXPECT_NEAR(s.surfaceFactor(12345), std::sqrt(s.beamFactor(12345)), 1e-15);
@@ -50,9 +50,11 @@ TEST(RadiusSchedule, StableAtHugePathCounts) {
     double f = s.beamFactor(uint64_t(1) << 50);
     EXPECT_TRUE(std::isfinite(f));
     EXPECT_GT(f, 0.0);
-    // Continuity across the switch from lgamma to the asymptotic series at n = 1e5.
-    double below = std::exp(RadiusSchedule::logR(0.5, 99999.0)), above = std::exp(RadiusSchedule::logR(0.5, 100000.0));
-    EXPECT_NEAR(above / below, (99999.0 + 0.5) / 100000.0, 1e-10);
+    // Continuity across the switch from lgamma to the asymptotic series at n = 1000.
+    for (double alpha : {0.1, 0.5, 0.9}) {
+        double below = std::exp(RadiusSchedule::logR(alpha, 999.0)), above = std::exp(RadiusSchedule::logR(alpha, 1000.0));
+        EXPECT_NEAR(above / below, (999.0 + alpha) / 1000.0, 1e-12) << alpha;
+    }
 }
 
 TEST(RadiusSchedule, RejectsAlphaOutsideUnitInterval) {
