@@ -34,7 +34,7 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
     cmd->callback([o, &exitCode]() {
         finishOptions(*o);
         checkOutputWritable(o->output);
-        Scene scene = loadScene(o->scene);
+        Scene scene = loadScene(*o);
         ThreadLimit threads(o->settings.threads);
         PassRenderer renderer(scene, o->settings);
         Accumulator acc(o->settings.width, o->settings.height);
