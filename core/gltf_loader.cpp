@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "core/gltf_accessor.h"
 #include "core/gltf_material_mapping.h"
+#include "core/json_reader.h"
 #include "core/photometry.h"
 #include "core/transform.h"
 
@@ -502,9 +503,11 @@ SceneDraft importGltf(const std::string& bytes, bool binary, const std::string& 
                                             access.baseDir);
         }
     } catch (const std::exception& e) {
-        throw Error(file + ": not valid glTF: " + oneLine(e.what()));
+        throw Error(file + ": not valid glTF: " + jsonErrorText(oneLine(e.what()), binary ? std::string() : bytes));
     }
-    if (!ok) throw Error(file + ": not valid glTF: " + oneLine(err.empty() ? warnings : err));
+    if (!ok)
+        throw Error(file + ": not valid glTF: " +
+                    jsonErrorText(oneLine(err.empty() ? warnings : err), binary ? std::string() : bytes));
 
     for (size_t i = 0; i < model.images.size(); ++i) {
         if (imagesFound.count(int(i))) continue;

@@ -1,5 +1,6 @@
 #include "core/json_reader.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -7,19 +8,36 @@
 
 namespace tyndall {
 
+std::string jsonErrorText(const std::string& what, const std::string& text) {
+    // nlohmann's messages look like "[json.exception.parse_error.101] parse error at line 3,
+    // column 14: syntax error ..." or "[json.exception.out_of_range.406] number overflow parsing '1e999'".
+    std::string msg = what;
+    if (msg.rfind("[json.exception", 0) == 0 && msg.find("] ") != std::string::npos) msg = msg.substr(msg.find("] ") + 2);
+    auto at = msg.find("parse error at line ");
+    if (at != std::string::npos) msg = msg.substr(at + 15);
+    const std::string overflow = "number overflow parsing '";
+    if (msg.rfind(overflow, 0) == 0 && msg.back() == '\'') {
+        // No position in this one: find the literal in the text.
+        std::string literal = msg.substr(overflow.size(), msg.size() - overflow.size() - 1);
+        size_t pos = literal.empty() ? std::string::npos : text.find(literal);
+        if (pos != std::string::npos) {
+            size_t line = 1 + size_t(std::count(text.begin(), text.begin() + long(pos), '\n'));
+            size_t newline = pos == 0 ? std::string::npos : text.rfind('\n', pos - 1);
+            size_t column = pos - (newline == std::string::npos ? 0 : newline + 1) + 1;
+            msg = "line " + std::to_string(line) + ", column " + std::to_string(column) + ": number overflow: '" +
+                  literal + "' is not a finite number";
+        }
+    }
+    for (char& c : msg)
+        if (c == '\n' || c == '\r') c = ' ';
+    return msg;
+}
+
 nlohmann::json parseJsonText(const std::string& text, const std::string& file) {
     try {
         return nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);
-    } catch (const nlohmann::json::parse_error& e) {
-        // what() is "[json.exception.parse_error.101] parse error at line 3, column 14: syntax error ...".
-        std::string msg = e.what();
-        auto at = msg.find(" at line ");
-        if (at != std::string::npos) msg = msg.substr(at + 4);
-        else if (msg.rfind("[json.exception", 0) == 0 && msg.find("] ") != std::string::npos)
-            msg = msg.substr(msg.find("] ") + 2);
-        for (char& c : msg)
-            if (c == '\n' || c == '\r') c = ' ';
-        throw Error(file + ": " + msg);
+    } catch (const nlohmann::json::exception& e) {
+        throw Error(file + ": " + jsonErrorText(e.what(), text));
     }
 }
 

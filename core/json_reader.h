@@ -21,6 +21,8 @@ class JsonObject;
 
 /// Parses `text` (comments allowed); syntax errors throw Error "<file>: line L, column C: ...".
 nlohmann::json parseJsonText(const std::string& text, const std::string& file);
+/// One line from a nlohmann::json exception message about `text`, position first when known.
+std::string jsonErrorText(const std::string& what, const std::string& text);
 
 /// One value in a document plus where it is, for messages.
 class JsonValue {
