@@ -505,6 +505,16 @@ SceneDraft importGltf(const std::string& bytes, bool binary, const std::string& 
     } catch (const std::exception& e) {
         throw Error(file + ": not valid glTF: " + jsonErrorText(oneLine(e.what()), binary ? std::string() : bytes));
     }
+    // tinygltf treats only buffers as required external files: a missing one is an error there.
+    for (const std::string prefix : {"File not found : ", "File read error : "}) {
+        auto at = err.find(prefix);
+        if (ok || at == std::string::npos) continue;
+        std::string what = err.substr(at + prefix.size());
+        what = what.substr(0, what.find('\n'));
+        bool missing = prefix.rfind("File not found", 0) == 0;
+        throw Error(file + ": buffer file " +
+                    (missing ? "'" + what + "' not found next to the glTF file" : "cannot be read: " + what));
+    }
     if (!ok)
         throw Error(file + ": not valid glTF: " +
                     jsonErrorText(oneLine(err.empty() ? warnings : err), binary ? std::string() : bytes));

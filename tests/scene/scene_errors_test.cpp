@@ -171,7 +171,7 @@ TEST(SceneErrors, GltfMissingBufferAndImage) {
     GltfBuilder b = validGltf();
     json j = b.json();
     j["buffers"][0]["uri"] = "missing.bin";
-    expectError("missing-buffer.gltf", j.dump(), "buffer", "missing.bin");
+    expectError("missing-buffer.gltf", j.dump(), "buffer file 'missing.bin'", "not found");
     j = b.json();
     j["images"] = {{{"name", "label"}, {"uri", "missing.png"}}};
     expectError("missing-image.gltf", j.dump(), "image 'label' (index 0)", "file 'missing.png' not found");
