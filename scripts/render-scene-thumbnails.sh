@@ -13,6 +13,6 @@ fi
 mkdir -p docs/scenes
 for n in "${names[@]}"; do
   extra=()
-  if [ "$n" = caustic-box ]; then extra=(--photons 4000 --passes 64); fi
+  if [ "$n" = caustic-box ]; then extra=(--photons 12000 --passes 64); fi
   "$tyndall" render "scenes/$n.json" --size 256x256 "${extra[@]}" -o "docs/scenes/$n.png"
 done
