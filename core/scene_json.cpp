@@ -79,6 +79,7 @@ Medium readMedium(JsonObject& obj) {
     if (auto density = obj.get("density"))
         density->fail("heterogeneous media (\"density\": {file, grid, scale, transform}) are not supported yet; "
                       "see the heterogeneous-media issue");
+    obj.finish();
     if (m.sigmaT().maxComponent() <= 0.0f)
         obj.fail("medium '" + m.name + "' has sigma_s + sigma_a = 0: it would be vacuum");
     return m;
@@ -144,10 +145,15 @@ SceneDraft readSceneJson(const std::string& text, const std::string& file, const
                          const SceneLoadOptions& options, WarnOnce& warn, SceneFile* out) {
     nlohmann::json doc = parseJsonText(text, file);
     JsonObject top = JsonValue(doc, file, "").object();
+    // Every top-level key first, so that a misspelt key is reported before its consequences.
+    auto gltfKey = top.get("gltf"), nameKey = top.get("name"), renderKey = top.get("render");
+    auto materialsKey = top.get("materials"), mediaKey = top.get("media"), globalKey = top.get("global_medium");
+    auto shapesKey = top.get("shapes"), lightsKey = top.get("lights"), camerasKey = top.get("cameras");
+    top.finish();
 
     // Order: glTF contents first (meshes, materials, lights, cameras), then this file's additions.
     SceneDraft draft;
-    if (auto gltf = top.get("gltf")) {
+    if (const auto& gltf = gltfKey) {
         std::string rel = gltf->string();
         if (!options.allowExternalFiles) gltf->fail("references to other files are disabled");
         std::filesystem::path path = std::filesystem::path(baseDir.empty() ? "." : baseDir) / rel;
@@ -158,16 +164,16 @@ SceneDraft readSceneJson(const std::string& text, const std::string& file, const
         draft = importGltf(bytes, ext == ".glb", path.string(), path.parent_path().string(), options, warn);
     }
     Scene& scene = draft.scene;
-    scene.name = top.string("name", std::filesystem::path(file).stem().string());
+    scene.name = nameKey ? nameKey->string() : std::filesystem::path(file).stem().string();
 
-    if (auto render = top.get("render")) {
+    if (const auto& render = renderKey) {
         out->renderWhere = render->where();
         RenderSettings::fromJson(render->raw(), out->renderWhere);  // reject bad keys now
         out->render = render->raw();
     }
 
     const size_t gltfMaterials = scene.materials.size();
-    if (auto list = top.get("materials")) {
+    if (const auto& list = materialsKey) {
         std::map<std::string, std::string> seen;  // name -> where first defined in this file
         for (const JsonValue& v : list->elements()) {
             JsonObject obj = v.object();
@@ -190,12 +196,11 @@ SceneDraft readSceneJson(const std::string& text, const std::string& file, const
     std::vector<bool> placed;
     const size_t gltfMedia = scene.media.size();
     placed.assign(gltfMedia, true);
-    if (auto list = top.get("media")) {
+    if (const auto& list = mediaKey) {
         for (const JsonValue& v : list->elements()) {
             JsonObject obj = v.object();
             auto inside = obj.get("inside");
             Medium m = readMedium(obj);
-            obj.finish();
             for (const Medium& other : scene.media)
                 if (other.name == m.name) v.fail("medium '" + m.name + "' is defined twice");
             scene.media.push_back(m);
@@ -203,7 +208,7 @@ SceneDraft readSceneJson(const std::string& text, const std::string& file, const
             if (inside) placements.push_back({MediumId(scene.media.size() - 1), *inside});
         }
     }
-    if (auto global = top.get("global_medium")) {
+    if (const auto& global = globalKey) {
         scene.globalMedium = resolve(*global, scene.media, "medium");
         placed[size_t(scene.globalMedium)] = true;
     }
@@ -212,7 +217,7 @@ SceneDraft readSceneJson(const std::string& text, const std::string& file, const
             throw Error(file + ": medium '" + scene.media[i].name +
                         "' is not used: give it \"inside\" or name it in \"global_medium\"");
 
-    if (auto list = top.get("shapes")) {
+    if (const auto& list = shapesKey) {
         std::vector<JsonValue> shapes = list->elements();
         for (size_t i = 0; i < shapes.size(); ++i) {
             JsonObject obj = shapes[i].object();
@@ -225,7 +230,7 @@ SceneDraft readSceneJson(const std::string& text, const std::string& file, const
         }
     }
 
-    if (auto list = top.get("lights")) {
+    if (const auto& list = lightsKey) {
         std::vector<JsonValue> lights = list->elements();
         for (size_t i = 0; i < lights.size(); ++i) {
             JsonObject obj = lights[i].object();
@@ -233,7 +238,7 @@ SceneDraft readSceneJson(const std::string& text, const std::string& file, const
         }
     }
 
-    if (auto list = top.get("cameras")) {
+    if (const auto& list = camerasKey) {
         std::vector<NamedCamera> own;
         std::vector<JsonValue> cams = list->elements();
         for (size_t i = 0; i < cams.size(); ++i) {
@@ -274,7 +279,6 @@ SceneDraft readSceneJson(const std::string& text, const std::string& file, const
         }
     }
 
-    top.finish();
     return draft;
 }
 

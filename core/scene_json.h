@@ -15,8 +15,9 @@ SceneDraft readSceneJson(const std::string& text, const std::string& file, const
 
 /// One entry of "materials". Keys: name, type, albedo, ior, emission.
 Material readMaterial(JsonObject& obj);
-/// One entry of "media" without its placement ("inside" is read by the caller). Keys: name,
-/// sigma_s, sigma_a, g; "density" is reserved for heterogeneous media.
+/// One entry of "media"; the caller reads the placement ("inside") first, this reads the rest and
+/// finishes the object. Keys: name, sigma_s, sigma_a, g; "density" is reserved for heterogeneous
+/// media (the OpenVDB issue adds it here).
 Medium readMedium(JsonObject& obj);
 /// One entry of "lights". Keys depend on "type" (point, spot, directional).
 Light readLight(JsonObject& obj, const std::string& defaultName);

@@ -59,6 +59,15 @@ TEST(SceneErrors, UnknownKeys) {
     j = validScene();
     j["shapes"][1]["radios"] = 1;
     expectError("unknown-shape-key.json", j.dump(), "/shapes/1/radios", "unknown key");
+    // A misspelt key is reported as such, not through its consequence (an unused medium, a
+    // medium with no coefficients).
+    j = validScene();
+    j["global_meduim"] = j["global_medium"];
+    j.erase("global_medium");
+    expectError("unknown-before-unused.json", j.dump(), "/global_meduim", "unknown key");
+    j = validScene();
+    j["media"][0] = {{"name", "fog"}, {"sigma_S", 0.1}};
+    expectError("unknown-before-vacuum.json", j.dump(), "/media/0/sigma_S", "unknown key");
     j = validScene();
     j["render"] = {{"passez", 3}};
     expectError("unknown-render-key.json", j.dump(), "/render/passez", "unknown render setting");
