@@ -83,6 +83,45 @@ TEST(MeshBuilders, ParaboloidReflectsAxialRaysThroughTheFocus) {
     }
 }
 
+/// Closest hit of o + t d (t > 1e-6) with the mesh; the interpolated shading normal in *n.
+bool intersectMesh(const TriangleMesh& m, const Vec3& o, const Vec3& d, Vec3* p, Vec3* n) {
+    float best = kInfinity;
+    for (size_t t = 0; t < m.triangleCount(); ++t) {  // Moller-Trumbore
+        Vec3 a = m.vertex(t, 0), e1 = m.vertex(t, 1) - a, e2 = m.vertex(t, 2) - a;
+        Vec3 q = cross(d, e2);
+        float det = dot(e1, q);
+        if (std::abs(det) < 1e-12f) continue;
+        Vec3 s = o - a;
+        float u = dot(s, q) / det;
+        Vec3 r = cross(s, e1);
+        float v = dot(d, r) / det, dist = dot(e2, r) / det;
+        if (u < 0 || v < 0 || u + v > 1 || dist <= 1e-6f || dist >= best) continue;
+        best = dist;
+        const uint32_t* i = &m.indices[3 * t];
+        *n = normalize(m.normals[i[0]] * (1 - u - v) + m.normals[i[1]] * u + m.normals[i[2]] * v);
+    }
+    *p = o + d * best;
+    return best < kInfinity;
+}
+
+TEST(MeshBuilders, LensFocusesWhereTheThickLensFormulaSays) {
+    const float n = 1.5f, R = 2.0f, thickness = 0.1f;
+    TriangleMesh lens = makeLens("l", {0, 0, 0}, {0, 0, 1}, 0.5f, thickness, R, 32, 96, 0);
+    // Thick biconvex lens, R1 = R, R2 = -R: 1/f = (n-1) (2/R - (n-1) d / (n R^2)); the back focal
+    // distance is f (1 - (n-1) d / (n R)) from the back vertex.
+    float f = 1.0f / ((n - 1) * (2 / R - (n - 1) * thickness / (n * R * R)));
+    float backFocus = 0.5f * thickness + f * (1 - (n - 1) * thickness / (n * R));
+    for (float h : {0.02f, 0.05f}) {
+        Vec3 o{h, 0, -1}, d{0, 0, 1}, p, nrm, t;
+        ASSERT_TRUE(intersectMesh(lens, o, d, &p, &nrm));
+        ASSERT_TRUE(refract(-d, nrm, n, &t));  // into the glass (the normal points out)
+        ASSERT_TRUE(intersectMesh(lens, p, t, &p, &nrm));
+        ASSERT_TRUE(refract(-t, nrm, n, &d));  // out again
+        float crossing = p.z + (-p.x / d.x) * d.z;  // where the ray meets the axis
+        EXPECT_NEAR(crossing, backFocus, 0.02f * f) << "ray height " << h;
+    }
+}
+
 TEST(MeshBuilders, PerforatedSphereHasItsHoles) {
     TriangleMesh whole = makePerforatedSphere("w", {0, 0, 0}, 1.0f, 3, 0, 0.1f, 0);
     TriangleMesh holed = makePerforatedSphere("h", {0, 0, 0}, 1.0f, 3, 12, 0.15f, 0);
