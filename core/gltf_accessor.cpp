@@ -12,22 +12,31 @@ namespace {
 int componentSize(int componentType) {
     switch (componentType) {
         case TINYGLTF_COMPONENT_TYPE_BYTE:
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+            return 1;
         case TINYGLTF_COMPONENT_TYPE_SHORT:
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+            return 2;
         case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
-        default: return 0;
+        case TINYGLTF_COMPONENT_TYPE_FLOAT:
+            return 4;
+        default:
+            return 0;
     }
 }
 
 int componentCount(int type) {
     switch (type) {
-        case TINYGLTF_TYPE_SCALAR: return 1;
-        case TINYGLTF_TYPE_VEC2: return 2;
-        case TINYGLTF_TYPE_VEC3: return 3;
-        case TINYGLTF_TYPE_VEC4: return 4;
-        default: return 0;
+        case TINYGLTF_TYPE_SCALAR:
+            return 1;
+        case TINYGLTF_TYPE_VEC2:
+            return 2;
+        case TINYGLTF_TYPE_VEC3:
+            return 3;
+        case TINYGLTF_TYPE_VEC4:
+            return 4;
+        default:
+            return 0;
     }
 }
 
@@ -38,7 +47,8 @@ double readComponent(const unsigned char* p, int componentType, bool normalized)
             std::memcpy(&v, p, 1);
             return normalized ? std::max(v / 127.0, -1.0) : v;
         }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? p[0] / 255.0 : p[0];
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+            return normalized ? p[0] / 255.0 : p[0];
         case TINYGLTF_COMPONENT_TYPE_SHORT: {
             int16_t v;
             std::memcpy(&v, p, 2);
@@ -59,7 +69,8 @@ double readComponent(const unsigned char* p, int componentType, bool normalized)
             std::memcpy(&v, p, 4);
             return v;
         }
-        default: return 0.0;
+        default:
+            return 0.0;
     }
 }
 
@@ -127,7 +138,8 @@ std::vector<double> readAccessor(const tinygltf::Model& model, int index, const 
         View v = checkedView(model, acc.bufferView, acc.byteOffset, acc.count, elementSize, true, at);
         for (size_t i = 0; i < acc.count; ++i)
             for (int c = 0; c < nc; ++c)
-                out[i * nc + c] = readComponent(v.data + i * v.stride + size_t(c) * cs, acc.componentType, acc.normalized);
+                out[i * nc + c] =
+                    readComponent(v.data + i * v.stride + size_t(c) * cs, acc.componentType, acc.normalized);
     }
     if (acc.sparse.isSparse) {
         std::string sat = at + ": sparse";
@@ -142,8 +154,8 @@ std::vector<double> readAccessor(const tinygltf::Model& model, int index, const 
         size_t n = size_t(acc.sparse.count);
         View iv = checkedView(model, acc.sparse.indices.bufferView, size_t(acc.sparse.indices.byteOffset), n,
                               size_t(componentSize(ict)), false, sat + " indices");
-        View vv = checkedView(model, acc.sparse.values.bufferView, size_t(acc.sparse.values.byteOffset), n,
-                              elementSize, false, sat + " values");
+        View vv = checkedView(model, acc.sparse.values.bufferView, size_t(acc.sparse.values.byteOffset), n, elementSize,
+                              false, sat + " values");
         for (size_t k = 0; k < n; ++k) {
             double target = readComponent(iv.data + k * iv.stride, ict, false);
             if (target >= double(acc.count))

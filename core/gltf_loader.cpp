@@ -37,7 +37,9 @@ bool fileExists(const std::string& path, void* user) {
     return fs::is_regular_file(path, ec);
 }
 
-std::string expandPath(const std::string& path, void*) { return path; }  // no shell expansion
+std::string expandPath(const std::string& path, void*) {
+    return path;
+}  // no shell expansion
 
 bool readFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
     auto* access = static_cast<FileAccess*>(user);
@@ -71,8 +73,10 @@ std::string oneLine(std::string s) {
     while (!s.empty() && (s.back() == '\n' || s.back() == '\r' || s.back() == ' ')) s.pop_back();
     std::string out;
     for (char c : s) {
-        if (c == '\n') out += "; ";
-        else if (c != '\r') out += c;
+        if (c == '\n')
+            out += "; ";
+        else if (c != '\r')
+            out += c;
     }
     return out;
 }
@@ -118,8 +122,8 @@ Rgb rgbOf(const std::vector<double>& v, Rgb fallback, size_t expectedSize, const
 
 // Extensions Tyndall reads (others are reported once as ignored).
 const std::set<std::string> kHandledExtensions = {
-    "KHR_lights_punctual",  "KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_volume",
-    "KHR_materials_emissive_strength", "KHR_mesh_quantization"};
+    "KHR_lights_punctual",  "KHR_materials_transmission",      "KHR_materials_ior",
+    "KHR_materials_volume", "KHR_materials_emissive_strength", "KHR_mesh_quantization"};
 // Required extensions without which the geometry cannot be read.
 const std::set<std::string> kUnreadableExtensions = {"KHR_draco_mesh_compression", "EXT_meshopt_compression",
                                                      "KHR_meshopt_compression"};
@@ -139,7 +143,8 @@ private:
     std::string nodeName(size_t i) const {
         const tinygltf::Node& node = m_model.nodes[i];
         if (!node.name.empty()) return node.name;
-        if (node.mesh >= 0 && size_t(node.mesh) < m_model.meshes.size() && !m_model.meshes[size_t(node.mesh)].name.empty())
+        if (node.mesh >= 0 && size_t(node.mesh) < m_model.meshes.size() &&
+            !m_model.meshes[size_t(node.mesh)].name.empty())
             return m_model.meshes[size_t(node.mesh)].name;
         return "node " + std::to_string(i);
     }
@@ -160,8 +165,8 @@ private:
     WarnOnce& m_warn;
     SceneDraft m_draft;
     std::vector<char> m_visited;
-    std::map<int, int> m_materials;         // glTF material (-1 = default) -> Scene material
-    std::map<int, MediumId> m_volumes;      // glTF material -> its KHR_materials_volume medium
+    std::map<int, int> m_materials;     // glTF material (-1 = default) -> Scene material
+    std::map<int, MediumId> m_volumes;  // glTF material -> its KHR_materials_volume medium
     size_t m_triangles = 0;
 };
 
@@ -299,8 +304,10 @@ void GltfImporter::addPrimitive(size_t node, const tinygltf::Primitive& prim, co
     } else {
         for (size_t k = 2; k < idx.size(); ++k) {
             if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
-                if (k % 2 == 0) m.indices.insert(m.indices.end(), {idx[k - 2], idx[k - 1], idx[k]});
-                else m.indices.insert(m.indices.end(), {idx[k - 1], idx[k - 2], idx[k]});
+                if (k % 2 == 0)
+                    m.indices.insert(m.indices.end(), {idx[k - 2], idx[k - 1], idx[k]});
+                else
+                    m.indices.insert(m.indices.end(), {idx[k - 1], idx[k - 2], idx[k]});
             } else {
                 m.indices.insert(m.indices.end(), {idx[0], idx[k - 1], idx[k]});
             }
@@ -378,7 +385,8 @@ int GltfImporter::material(int index, const std::string& primWhere) {
     if (gm.occlusionTexture.index >= 0) in.textures.push_back("occlusionTexture");
     if (gm.emissiveTexture.index >= 0) in.textures.push_back("emissiveTexture");
     if (const auto* e = extension(gm.extensions, "KHR_materials_emissive_strength"))
-        in.emissiveStrength = float(extNumber(*e, "emissiveStrength", 1.0, in.where + ": KHR_materials_emissive_strength"));
+        in.emissiveStrength =
+            float(extNumber(*e, "emissiveStrength", 1.0, in.where + ": KHR_materials_emissive_strength"));
     if (const auto* e = extension(gm.extensions, "KHR_materials_transmission")) {
         in.transmission = float(extNumber(*e, "transmissionFactor", 0.0, in.where + ": KHR_materials_transmission"));
         if (e->IsObject() && e->Has("transmissionTexture")) in.textures.push_back("transmissionTexture");
@@ -460,8 +468,8 @@ void GltfImporter::addCamera(size_t node, const Affine& world) {
                     std::to_string(m_model.cameras.size()) + " cameras)");
     const tinygltf::Camera& gc = m_model.cameras[size_t(ci)];
     std::string name = !m_model.nodes[node].name.empty() ? m_model.nodes[node].name
-                       : !gc.name.empty()                 ? gc.name
-                                                          : "camera " + std::to_string(ci);
+                       : !gc.name.empty()                ? gc.name
+                                                         : "camera " + std::to_string(ci);
     std::string where = nodeWhere(node) + ": camera " + (gc.name.empty() ? "" : "'" + gc.name + "' ") + "(index " +
                         std::to_string(ci) + ")";
     if (gc.type != "perspective") {
@@ -496,7 +504,8 @@ SceneDraft importGltf(const std::string& bytes, bool binary, const std::string& 
     bool ok = false;
     try {
         if (binary) {
-            ok = loader.LoadBinaryFromMemory(&model, &err, &warnings, reinterpret_cast<const unsigned char*>(bytes.data()),
+            ok = loader.LoadBinaryFromMemory(&model, &err, &warnings,
+                                             reinterpret_cast<const unsigned char*>(bytes.data()),
                                              unsigned(bytes.size()), access.baseDir);
         } else {
             ok = loader.LoadASCIIFromString(&model, &err, &warnings, bytes.data(), unsigned(bytes.size()),
@@ -527,8 +536,8 @@ SceneDraft importGltf(const std::string& bytes, bool binary, const std::string& 
     }
     for (size_t i = 0; i < model.buffers.size(); ++i)
         if (model.buffers[i].data.empty())
-            throw Error(file + ": buffer " + std::to_string(i) + (model.buffers[i].uri.empty() ? "" : " ('" + model.buffers[i].uri + "')") +
-                        ": no data");
+            throw Error(file + ": buffer " + std::to_string(i) +
+                        (model.buffers[i].uri.empty() ? "" : " ('" + model.buffers[i].uri + "')") + ": no data");
     return GltfImporter(model, file, options, warn).run();
 }
 

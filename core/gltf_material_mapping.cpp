@@ -43,7 +43,9 @@ GltfMaterialMapping mapGltfMaterial(const GltfMaterialInput& in) {
     GltfMaterialMapping out;
     Material& m = out.material;
     m.name = in.name;
-    auto note = [&](const std::string& kind, const std::string& what) { out.notes.push_back({kind, at + ": " + what}); };
+    auto note = [&](const std::string& kind, const std::string& what) {
+        out.notes.push_back({kind, at + ": " + what});
+    };
 
     if (in.transmission > 0.0f && in.transmission < 0.5f) {
         note("partial transmission", "transmissionFactor < 0.5 rendered as opaque");
@@ -52,7 +54,8 @@ GltfMaterialMapping mapGltfMaterial(const GltfMaterialInput& in) {
         m.type = MaterialType::Dielectric;
         m.albedo = in.baseColor;
         m.ior = in.ior;
-        if (in.transmission < 1.0f) note("partial transmission", "transmissionFactor >= 0.5 rendered as fully transmissive");
+        if (in.transmission < 1.0f)
+            note("partial transmission", "transmissionFactor >= 0.5 rendered as fully transmissive");
         if (in.roughness > 0.05f) note("rough transmission", "rough transmission rendered as smooth glass");
     } else if (in.metallic >= 0.5f && in.roughness <= 0.5f) {
         m.type = MaterialType::Mirror;

@@ -29,10 +29,10 @@ struct GltfMaterialInput {
     float metallic = 1.0f;
     float roughness = 1.0f;
     Rgb emissive{0.0f};
-    float emissiveStrength = 1.0f;   ///< KHR_materials_emissive_strength
-    float transmission = 0.0f;       ///< KHR_materials_transmission
-    float ior = 1.5f;                ///< KHR_materials_ior
-    bool hasVolume = false;          ///< KHR_materials_volume present
+    float emissiveStrength = 1.0f;  ///< KHR_materials_emissive_strength
+    float transmission = 0.0f;      ///< KHR_materials_transmission
+    float ior = 1.5f;               ///< KHR_materials_ior
+    bool hasVolume = false;         ///< KHR_materials_volume present
     float attenuationDistance = std::numeric_limits<float>::infinity();
     Rgb attenuationColor{1.0f};
     float thickness = 0.0f;

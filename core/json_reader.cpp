@@ -12,7 +12,8 @@ std::string jsonErrorText(const std::string& what, const std::string& text) {
     // nlohmann's messages look like "[json.exception.parse_error.101] parse error at line 3,
     // column 14: syntax error ..." or "[json.exception.out_of_range.406] number overflow parsing '1e999'".
     std::string msg = what;
-    if (msg.rfind("[json.exception", 0) == 0 && msg.find("] ") != std::string::npos) msg = msg.substr(msg.find("] ") + 2);
+    if (msg.rfind("[json.exception", 0) == 0 && msg.find("] ") != std::string::npos)
+        msg = msg.substr(msg.find("] ") + 2);
     auto at = msg.find("parse error at line ");
     if (at != std::string::npos) msg = msg.substr(at + 15);
     const std::string overflow = "number overflow parsing '";
@@ -44,9 +45,12 @@ nlohmann::json parseJsonText(const std::string& text, const std::string& file) {
 std::string jsonPointerAppend(const std::string& pointer, const std::string& key) {
     std::string out = pointer + "/";
     for (char c : key) {
-        if (c == '~') out += "~0";
-        else if (c == '/') out += "~1";
-        else out += c;
+        if (c == '~')
+            out += "~0";
+        else if (c == '/')
+            out += "~1";
+        else
+            out += c;
     }
     return out;
 }
@@ -54,15 +58,21 @@ std::string jsonPointerAppend(const std::string& pointer, const std::string& key
 JsonValue::JsonValue(const nlohmann::json& value, std::string file, std::string pointer)
     : m_value(&value), m_file(std::move(file)), m_pointer(std::move(pointer)) {}
 
-std::string JsonValue::where() const { return m_file + ": " + (m_pointer.empty() ? "top level" : m_pointer); }
+std::string JsonValue::where() const {
+    return m_file + ": " + (m_pointer.empty() ? "top level" : m_pointer);
+}
 
-void JsonValue::fail(const std::string& message) const { throw Error(where() + ": " + message); }
+void JsonValue::fail(const std::string& message) const {
+    throw Error(where() + ": " + message);
+}
 
 std::string JsonValue::describe() const {
     const nlohmann::json& j = *m_value;
     switch (j.type()) {
-        case nlohmann::json::value_t::null: return "null";
-        case nlohmann::json::value_t::boolean: return j.get<bool>() ? "true" : "false";
+        case nlohmann::json::value_t::null:
+            return "null";
+        case nlohmann::json::value_t::boolean:
+            return j.get<bool>() ? "true" : "false";
         case nlohmann::json::value_t::string: {
             std::string s = j.get<std::string>();
             if (s.size() > 40) s = s.substr(0, 40) + "...";
@@ -77,21 +87,29 @@ std::string JsonValue::describe() const {
             s << j.get<double>();
             return s.str();
         }
-        case nlohmann::json::value_t::array: return "an array of " + std::to_string(j.size());
-        case nlohmann::json::value_t::object: return "an object";
-        default: return "an unsupported value";
+        case nlohmann::json::value_t::array:
+            return "an array of " + std::to_string(j.size());
+        case nlohmann::json::value_t::object:
+            return "an object";
+        default:
+            return "an unsupported value";
     }
 }
 
-void JsonValue::expected(const std::string& what) const { fail("expected " + what + ", got " + describe()); }
+void JsonValue::expected(const std::string& what) const {
+    fail("expected " + what + ", got " + describe());
+}
 
 namespace {
 std::string rangeText(double lo, double hi) {
     std::ostringstream s;
     if (lo <= -1e30 && hi >= 1e30) return "";
-    if (hi >= 1e30) s << " >= " << lo;
-    else if (lo <= -1e30) s << " <= " << hi;
-    else s << " in [" << lo << ", " << hi << "]";
+    if (hi >= 1e30)
+        s << " >= " << lo;
+    else if (lo <= -1e30)
+        s << " <= " << hi;
+    else
+        s << " in [" << lo << ", " << hi << "]";
     return s.str();
 }
 }  // namespace
@@ -160,7 +178,9 @@ Rgb JsonValue::rgb(float lo) const {
     return c;
 }
 
-JsonObject JsonValue::object() const { return JsonObject(*this); }
+JsonObject JsonValue::object() const {
+    return JsonObject(*this);
+}
 
 std::vector<JsonValue> JsonValue::elements() const {
     if (!m_value->is_array()) expected("an array");

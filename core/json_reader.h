@@ -7,7 +7,6 @@
 // e.g. "scenes/fog.json: /media/0/sigma_s: expected a finite number >= 0 or [r, g, b], got -0.5".
 // Not thread-safe (JsonObject mutates its key record); documents are read on one thread.
 #include <nlohmann/json.hpp>
-
 #include <optional>
 #include <set>
 #include <string>

@@ -39,12 +39,12 @@ namespace {
 /// Unit directions and faces of an icosahedron subdivided `subdivisions` times (outward CCW).
 void geodesic(int subdivisions, std::vector<Vec3>* dirs, std::vector<uint32_t>* faces) {
     const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
-    std::vector<Vec3> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                           {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+    std::vector<Vec3> v = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                           {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
     for (Vec3& p : v) p = normalize(p);
-    std::vector<uint32_t> f = {0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4,
-                               11, 10, 2, 10, 7, 6, 7, 1, 8, 3, 9, 4, 3, 4, 2, 3, 2, 6, 3, 6, 8,
-                               3, 8, 9, 4, 9, 5, 2, 4, 11, 6, 2, 10, 8, 6, 7, 9, 8, 1};
+    std::vector<uint32_t> f = {0, 11, 5,  0, 5,  1, 0, 1, 7, 0, 7,  10, 0, 10, 11, 1, 5, 9, 5, 11,
+                               4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3,  9,  4, 3,  4,  2, 3, 2, 6, 3,
+                               6, 8,  3,  8, 9,  4, 9, 5, 2, 4, 11, 6,  2, 10, 8,  6, 7, 9, 8, 1};
     for (int s = 0; s < subdivisions; ++s) {
         std::map<std::pair<uint32_t, uint32_t>, uint32_t> mid;
         auto midpoint = [&](uint32_t a, uint32_t b) {
@@ -69,8 +69,10 @@ void geodesic(int subdivisions, std::vector<Vec3>* dirs, std::vector<uint32_t>* 
 /// Appends triangle (a, b, c), reversed if needed so its normal has a positive component along `want`.
 void pushFacing(TriangleMesh& m, uint32_t a, uint32_t b, uint32_t c, const Vec3& want) {
     Vec3 n = cross(m.positions[b] - m.positions[a], m.positions[c] - m.positions[a]);
-    if (dot(n, want) >= 0) m.indices.insert(m.indices.end(), {a, b, c});
-    else m.indices.insert(m.indices.end(), {a, c, b});
+    if (dot(n, want) >= 0)
+        m.indices.insert(m.indices.end(), {a, b, c});
+    else
+        m.indices.insert(m.indices.end(), {a, c, b});
 }
 
 }  // namespace
@@ -88,7 +90,8 @@ TriangleMesh makeSphere(const std::string& name, const Vec3& center, float radiu
     return m;
 }
 
-TriangleMesh makeCylinder(const std::string& name, const Vec3& a, const Vec3& b, float radius, int segments, int material) {
+TriangleMesh makeCylinder(const std::string& name, const Vec3& a, const Vec3& b, float radius, int segments,
+                          int material) {
     TriangleMesh m;
     m.name = name;
     m.material = material;
@@ -143,8 +146,8 @@ TriangleMesh makeBumpySphere(const std::string& name, const Vec3& center, float 
     return m;
 }
 
-TriangleMesh makeWaterVolume(const std::string& name, const Vec3& top, float sizeX, float sizeZ, float depth,
-                             int resX, int resZ, const std::vector<SurfaceWave>& waves, int material) {
+TriangleMesh makeWaterVolume(const std::string& name, const Vec3& top, float sizeX, float sizeZ, float depth, int resX,
+                             int resZ, const std::vector<SurfaceWave>& waves, int material) {
     struct Wave {
         float a, k, dx, dz, phase;
     };

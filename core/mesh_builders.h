@@ -16,7 +16,8 @@ TriangleMesh makeBox(const std::string& name, const Vec3& lo, const Vec3& hi, in
 /// outward, with exact per-vertex normals for smooth shading.
 TriangleMesh makeSphere(const std::string& name, const Vec3& center, float radius, int subdivisions, int material);
 /// Closed cylinder around the segment a -> b with `segments` sides, outward, flat-capped.
-TriangleMesh makeCylinder(const std::string& name, const Vec3& a, const Vec3& b, float radius, int segments, int material);
+TriangleMesh makeCylinder(const std::string& name, const Vec3& a, const Vec3& b, float radius, int segments,
+                          int material);
 
 /// Geodesic sphere (as makeSphere) whose radius is modulated by a smooth random bump field:
 /// r(n) = radius * (1 + amplitude * sum of `bumps` sinusoidal plane waves of angular frequency
@@ -27,17 +28,17 @@ TriangleMesh makeBumpySphere(const std::string& name, const Vec3& center, float 
 
 /// One sinusoidal surface wave: height amplitude * sin(2 pi / wavelength * dot(direction, (x, z)) + phase).
 struct SurfaceWave {
-    float amplitude = 0;   ///< scene units
-    float wavelength = 1;  ///< scene units, > 0
+    float amplitude = 0;       ///< scene units
+    float wavelength = 1;      ///< scene units, > 0
     float dirX = 1, dirZ = 0;  ///< horizontal travel direction (normalised by the builder)
-    float phase = 0;       ///< radians
+    float phase = 0;           ///< radians
 };
 /// A closed water volume: the top is the height field y = top.y + sum of `waves` over the
 /// rectangle centred on `top` with extents sizeX x sizeZ, sampled on a resX x resZ grid of quads;
 /// sides and a flat bottom at top.y - depth close it. Outward; smooth analytic normals on the
 /// top, flat elsewhere.
-TriangleMesh makeWaterVolume(const std::string& name, const Vec3& top, float sizeX, float sizeZ, float depth,
-                             int resX, int resZ, const std::vector<SurfaceWave>& waves, int material);
+TriangleMesh makeWaterVolume(const std::string& name, const Vec3& top, float sizeX, float sizeZ, float depth, int resX,
+                             int resZ, const std::vector<SurfaceWave>& waves, int material);
 
 /// Open paraboloid reflector around `axis` (opening direction) with its apex at `apex`:
 /// height along the axis h(r) = r^2 / (4 focalLength) for innerRadius <= r <= outerRadius

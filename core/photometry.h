@@ -15,8 +15,12 @@ namespace tyndall {
 constexpr float kLumensPerWatt = 683.0f;
 
 /// glTF point/spot light: colour (linear RGB) x intensity (cd) -> radiant intensity (W/sr).
-inline Rgb radiantIntensityFromCandela(const Rgb& color, float candela) { return color * (candela / kLumensPerWatt); }
+inline Rgb radiantIntensityFromCandela(const Rgb& color, float candela) {
+    return color * (candela / kLumensPerWatt);
+}
 /// glTF directional light: colour x illuminance (lux) -> irradiance (W/m^2).
-inline Rgb irradianceFromLux(const Rgb& color, float lux) { return color * (lux / kLumensPerWatt); }
+inline Rgb irradianceFromLux(const Rgb& color, float lux) {
+    return color * (lux / kLumensPerWatt);
+}
 
 }  // namespace tyndall

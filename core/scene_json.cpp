@@ -38,7 +38,8 @@ int resolve(const JsonValue& v, const std::vector<T>& items, const char* what) {
 
 std::string readFileText(const std::string& path, const std::string& where) {
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) throw Error(where + ": '" + path + "' does not exist or is not a file");
+    if (!std::filesystem::is_regular_file(path, ec))
+        throw Error(where + ": '" + path + "' does not exist or is not a file");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(where + ": '" + path + "' cannot be read");
     return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
@@ -51,11 +52,16 @@ Material readMaterial(JsonObject& obj) {
     m.name = obj.require("name").string();
     std::string type = obj.string("type", "diffuse");
     auto typeValue = obj.get("type");
-    if (type == "diffuse") m.type = MaterialType::Diffuse;
-    else if (type == "mirror") m.type = MaterialType::Mirror;
-    else if (type == "dielectric") m.type = MaterialType::Dielectric;
-    else if (type == "interface") m.type = MaterialType::Interface;
-    else typeValue->fail("expected one of diffuse, mirror, dielectric, interface, got " + typeValue->describe());
+    if (type == "diffuse")
+        m.type = MaterialType::Diffuse;
+    else if (type == "mirror")
+        m.type = MaterialType::Mirror;
+    else if (type == "dielectric")
+        m.type = MaterialType::Dielectric;
+    else if (type == "interface")
+        m.type = MaterialType::Interface;
+    else
+        typeValue->fail("expected one of diffuse, mirror, dielectric, interface, got " + typeValue->describe());
     m.albedo = obj.rgb("albedo", Rgb(m.type == MaterialType::Diffuse ? 0.8f : 1.0f));
     if (m.type == MaterialType::Diffuse || m.type == MaterialType::Mirror) {
         auto a = obj.get("albedo");
@@ -77,8 +83,9 @@ Medium readMedium(JsonObject& obj) {
     m.sigmaA = obj.rgb("sigma_a", Rgb(0.0f));
     m.g = float(obj.number("g", 0.0, -0.999, 0.999));
     if (auto density = obj.get("density"))
-        density->fail("heterogeneous media (\"density\": {file, grid, scale, transform}) are not supported yet; "
-                      "see the heterogeneous-media issue");
+        density->fail(
+            "heterogeneous media (\"density\": {file, grid, scale, transform}) are not supported yet; "
+            "see the heterogeneous-media issue");
     obj.finish();
     if (m.sigmaT().maxComponent() <= 0.0f)
         obj.fail("medium '" + m.name + "' has sigma_s + sigma_a = 0: it would be vacuum");
@@ -131,8 +138,7 @@ NamedCamera readCamera(JsonObject& obj, const std::string& defaultName) {
     Vec3 d = target ? target->vec3() - eye : direction->direction();
     if (!(length(d) > 0)) target->fail("target coincides with the camera position");
     Vec3 up = obj.get("up") ? obj.get("up")->direction() : Vec3(0, 1, 0);
-    if (!(length(cross(normalize(d), normalize(up))) > 1e-4f))
-        obj.fail("'up' is parallel to the view direction");
+    if (!(length(cross(normalize(d), normalize(up))) > 1e-4f)) obj.fail("'up' is parallel to the view direction");
     double fov = obj.number("fov", 40.0, 1e-3, 179.0);
     c.camera = Camera::lookAt(eye, target ? target->vec3() : eye + normalize(d), up, float(fov * kDegrees));
     c.camera.focusDistance = float(obj.number("focus_distance", target ? length(d) : 1.0, 1e-6));
@@ -225,7 +231,8 @@ SceneDraft readSceneJson(const std::string& text, const std::string& file, const
             std::string type = obj.has("type") && obj.value().raw()["type"].is_string()
                                    ? obj.value().raw()["type"].get<std::string>()
                                    : "shape";
-            TriangleMesh mesh = readShape(obj, type + " " + std::to_string(i), material, scene.triangleCount(), options);
+            TriangleMesh mesh =
+                readShape(obj, type + " " + std::to_string(i), material, scene.triangleCount(), options);
             scene.meshes.push_back(std::move(mesh));
         }
     }

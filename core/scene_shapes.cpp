@@ -37,8 +37,12 @@ Affine readTransform(JsonObject& obj) {
     return t;
 }
 
-int subdivisions(JsonObject& obj, int fallback) { return int(obj.integer("subdivisions", fallback, 0, 8)); }
-size_t sphereTriangles(int s) { return size_t(20) << (2 * s); }
+int subdivisions(JsonObject& obj, int fallback) {
+    return int(obj.integer("subdivisions", fallback, 0, 8));
+}
+size_t sphereTriangles(int s) {
+    return size_t(20) << (2 * s);
+}
 
 std::vector<SurfaceWave> readWaves(const JsonValue& list, float* totalAmplitude) {
     std::vector<SurfaceWave> waves;
@@ -117,7 +121,8 @@ TriangleMesh readShape(JsonObject& obj, const std::string& defaultName, int mate
     } else if (type == "water") {
         Vec3 top = obj.require("top").vec3();
         JsonValue sizeValue = obj.require("size");
-        if (!sizeValue.isArray() || sizeValue.raw().size() != 2) sizeValue.fail("expected [sx, sz], got " + sizeValue.describe());
+        if (!sizeValue.isArray() || sizeValue.raw().size() != 2)
+            sizeValue.fail("expected [sx, sz], got " + sizeValue.describe());
         std::vector<JsonValue> size = sizeValue.elements();
         float sx = float(size[0].number(1e-6)), sz = float(size[1].number(1e-6));
         float depth = float(obj.require("depth").number(1e-6));
@@ -126,7 +131,8 @@ TriangleMesh readShape(JsonObject& obj, const std::string& defaultName, int mate
         float amplitude = 0;
         std::vector<SurfaceWave> waves;
         if (auto w = obj.get("waves")) waves = readWaves(*w, &amplitude);
-        if (amplitude >= depth) obj.fail("the waves' amplitudes add up to more than 'depth': the surface would cross the bottom");
+        if (amplitude >= depth)
+            obj.fail("the waves' amplitudes add up to more than 'depth': the surface would cross the bottom");
         budget(size_t(4) * size_t(rx) * size_t(rz) + size_t(4) * size_t(rx + rz));
         m = makeWaterVolume(name, top, sx, sz, depth, rx, rz, waves, material);
     } else if (type == "paraboloid") {
@@ -147,7 +153,9 @@ TriangleMesh readShape(JsonObject& obj, const std::string& defaultName, int mate
         float rc = float(obj.require("curvature_radius").number(1e-6));
         if (rc < r) obj.fail("curvature_radius must be at least the aperture radius");
         float sag = rc - std::sqrt(rc * rc - r * r);
-        if (t < 2.0f * sag) obj.fail("thickness is less than the two caps' sagitta (" + std::to_string(2.0f * sag) + "): the caps would cross");
+        if (t < 2.0f * sag)
+            obj.fail("thickness is less than the two caps' sagitta (" + std::to_string(2.0f * sag) +
+                     "): the caps would cross");
         int rings = int(obj.integer("rings", 8, 1, 1024)), segments = int(obj.integer("segments", 48, 3, 4096));
         budget(size_t(6) * size_t(rings) * size_t(segments));
         m = makeLens(name, c, axis, r, t, rc, rings, segments, material);
@@ -177,8 +185,10 @@ TriangleMesh readShape(JsonObject& obj, const std::string& defaultName, int mate
             for (const JsonValue& v : n) m.normals.push_back(normalize(v.direction()));
         }
     } else {
-        typeValue.fail("expected a shape type (quad, box, sphere, cylinder, bumpy_sphere, water, paraboloid, lens, "
-                       "perforated_sphere, mesh), got " + typeValue.describe());
+        typeValue.fail(
+            "expected a shape type (quad, box, sphere, cylinder, bumpy_sphere, water, paraboloid, lens, "
+            "perforated_sphere, mesh), got " +
+            typeValue.describe());
     }
     if (auto t = obj.get("transform")) {
         JsonObject tobj = t->object();

@@ -12,8 +12,10 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     std::string bytes(reinterpret_cast<const char*>(data), size);
     tyndall::SceneFormat format = tyndall::SceneFormat::Json;
-    if (bytes.compare(0, 4, "glTF") == 0) format = tyndall::SceneFormat::Glb;
-    else if (bytes.find("\"asset\"") != std::string::npos) format = tyndall::SceneFormat::Gltf;
+    if (bytes.compare(0, 4, "glTF") == 0)
+        format = tyndall::SceneFormat::Glb;
+    else if (bytes.find("\"asset\"") != std::string::npos)
+        format = tyndall::SceneFormat::Gltf;
 
     tyndall::SceneLoadOptions options;
     options.warn = [](const std::string&) {};

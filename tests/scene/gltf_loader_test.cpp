@@ -25,15 +25,16 @@ const float kSqrtHalf = std::sqrt(0.5f);
 /// One light so that scenes validate without the headlight.
 void addSomeLight(GltfBuilder& b) {
     int l = b.addLight({{"type", "point"}, {"intensity", 683.0}});
-    b.addNode({{"name", "lamp"}, {"translation", {0, 10, 0}}, {"extensions", {{"KHR_lights_punctual", {{"light", l}}}}}});
+    b.addNode(
+        {{"name", "lamp"}, {"translation", {0, 10, 0}}, {"extensions", {{"KHR_lights_punctual", {{"light", l}}}}}});
 }
 
 TEST(GltfLoader, NodeHierarchyComposesTranslationRotationScale) {
     GltfBuilder b;
     int mesh = b.addMesh("tri", {1, 0, 0, 0, 1, 0, 0, 0, 1}, {0, 1, 2});
     // child: scale 2, then 90 degrees about +y, then the parent's translation (1, 2, 3).
-    int child = b.addNode({{"name", "child"}, {"mesh", mesh}, {"scale", {2, 2, 2}}, {"rotation", {0, kSqrtHalf, 0, kSqrtHalf}}},
-                          false);
+    int child = b.addNode(
+        {{"name", "child"}, {"mesh", mesh}, {"scale", {2, 2, 2}}, {"rotation", {0, kSqrtHalf, 0, kSqrtHalf}}}, false);
     b.addNode({{"name", "parent"}, {"translation", {1, 2, 3}}, {"children", {child}}});
     // The same through a column-major matrix: translation (5, 0, 0), uniform scale 3.
     b.addNode({{"name", "matrix node"}, {"mesh", mesh}, {"matrix", {3, 0, 0, 0, 0, 3, 0, 0, 0, 0, 3, 0, 5, 0, 0, 1}}});
@@ -69,7 +70,8 @@ TEST(GltfLoader, CamerasFollowTheirNodesAndAreSelectable) {
                         {{"name", "tele"}, {"type", "perspective"}, {"perspective", {{"yfov", 0.25}, {"znear", 0.1}}}}};
     b.addNode({{"name", "front"}, {"camera", 0}, {"translation", {0, 1, 5}}});
     // Rotated 90 degrees about +y: looks along R(0, 0, -1) = (-1, 0, 0).
-    b.addNode({{"name", "side"}, {"camera", 1}, {"translation", {4, 1, 0}}, {"rotation", {0, kSqrtHalf, 0, kSqrtHalf}}});
+    b.addNode(
+        {{"name", "side"}, {"camera", 1}, {"translation", {4, 1, 0}}, {"rotation", {0, kSqrtHalf, 0, kSqrtHalf}}});
     int cube = b.addCube("cube");
     b.addNode({{"mesh", cube}});
     addSomeLight(b);
@@ -109,14 +111,19 @@ TEST(GltfLoader, NoCameraFramesTheScene) {
 
 TEST(GltfLoader, PunctualLightsConvertCandelaAndLuxAt683LumensPerWatt) {
     GltfBuilder b;
-    int point = b.addLight({{"name", "bulb"}, {"type", "point"}, {"color", {1.0, 0.5, 0.25}}, {"intensity", 683.0 * 4}});
+    int point =
+        b.addLight({{"name", "bulb"}, {"type", "point"}, {"color", {1.0, 0.5, 0.25}}, {"intensity", 683.0 * 4}});
     int sun = b.addLight({{"name", "sun"}, {"type", "directional"}, {"intensity", 1366.0}});
-    int spot = b.addLight({{"name", "spot"}, {"type", "spot"}, {"intensity", 68.3},
+    int spot = b.addLight({{"name", "spot"},
+                           {"type", "spot"},
+                           {"intensity", 68.3},
                            {"spot", {{"innerConeAngle", 0.2}, {"outerConeAngle", 0.5}}}});
     b.addNode({{"translation", {1, 2, 3}}, {"extensions", {{"KHR_lights_punctual", {{"light", point}}}}}});
     // Rotated -90 degrees about x: -z turns to -y (straight down).
-    b.addNode({{"rotation", {-kSqrtHalf, 0, 0, kSqrtHalf}}, {"extensions", {{"KHR_lights_punctual", {{"light", sun}}}}}});
-    b.addNode({{"translation", {0, 3, 0}}, {"rotation", {-kSqrtHalf, 0, 0, kSqrtHalf}},
+    b.addNode(
+        {{"rotation", {-kSqrtHalf, 0, 0, kSqrtHalf}}, {"extensions", {{"KHR_lights_punctual", {{"light", sun}}}}}});
+    b.addNode({{"translation", {0, 3, 0}},
+               {"rotation", {-kSqrtHalf, 0, 0, kSqrtHalf}},
                {"extensions", {{"KHR_lights_punctual", {{"light", spot}}}}}});
     int cube = b.addCube("cube");
     b.addNode({{"mesh", cube}});
@@ -157,7 +164,8 @@ TEST(GltfLoader, LightRangeIsWarnedOnce) {
 
 TEST(GltfLoader, EmissiveStrengthMakesAreaLights) {
     GltfBuilder b;
-    int mat = b.addMaterial({{"name", "panel"}, {"emissiveFactor", {1.0, 0.5, 0.25}},
+    int mat = b.addMaterial({{"name", "panel"},
+                             {"emissiveFactor", {1.0, 0.5, 0.25}},
                              {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 8.0}}}}}});
     b.addNode({{"mesh", b.addMesh("panel", {0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, 2}, mat)}});
     Scene s = loadText(b.text(), SceneFormat::Gltf).scene;
@@ -187,11 +195,12 @@ TEST(GltfLoader, StripsAndFansBecomeTriangles) {
 
 TEST(GltfLoader, VolumeBecomesAbsorbingMediumInsideClosedMeshesOnly) {
     GltfBuilder b;
-    int mat = b.addMaterial({{"name", "tinted glass"},
-                             {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
-                                             {"KHR_materials_ior", {{"ior", 1.33}}},
-                                             {"KHR_materials_volume", {{"attenuationColor", {0.5, 0.25, 1.0}},
-                                                                       {"attenuationDistance", 2.0}}}}}});
+    int mat = b.addMaterial(
+        {{"name", "tinted glass"},
+         {"extensions",
+          {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
+           {"KHR_materials_ior", {{"ior", 1.33}}},
+           {"KHR_materials_volume", {{"attenuationColor", {0.5, 0.25, 1.0}}, {"attenuationDistance", 2.0}}}}}});
     b.addNode({{"name", "block"}, {"mesh", b.addCube("block", mat)}});
     b.addNode({{"name", "sheet"}, {"mesh", b.addMesh("sheet", {0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, 2}, mat)}});
     addSomeLight(b);
@@ -208,7 +217,8 @@ TEST(GltfLoader, VolumeBecomesAbsorbingMediumInsideClosedMeshesOnly) {
     EXPECT_NEAR(s.materials[size_t(s.meshes[0].material)].ior, 1.33f, 1e-6f);
     EXPECT_EQ(s.meshes[1].interiorMedium, kVacuum);  // open: thin-walled, warned
     bool warned = false;
-    for (const std::string& w : warnings) warned |= w.find("'sheet'") != std::string::npos && w.find("open mesh") != std::string::npos;
+    for (const std::string& w : warnings)
+        warned |= w.find("'sheet'") != std::string::npos && w.find("open mesh") != std::string::npos;
     EXPECT_TRUE(warned);
 }
 
@@ -305,8 +315,13 @@ TEST(GltfMaterialMapping, OutOfRangeValuesAreErrorsNamingTheMaterial) {
     EXPECT_EQ(err([](auto& in) { in.metallic = NAN; }).rfind(at + "metallicFactor", 0), 0u);
     EXPECT_EQ(err([](auto& in) { in.emissiveStrength = -1.0f; }).rfind(at + "KHR_materials_emissive_strength", 0), 0u);
     EXPECT_EQ(err([](auto& in) { in.ior = 0.5f; }).rfind(at + "KHR_materials_ior", 0), 0u);
-    EXPECT_EQ(err([](auto& in) { in.hasVolume = true, in.attenuationDistance = -2.0f; }).rfind(at + "KHR_materials_volume", 0), 0u);
-    EXPECT_EQ(err([](auto& in) { in.hasVolume = true, in.attenuationColor.r = 1.5f; }).rfind(at + "KHR_materials_volume", 0), 0u);
+    EXPECT_EQ(err([](auto& in) {
+                  in.hasVolume = true, in.attenuationDistance = -2.0f;
+              }).rfind(at + "KHR_materials_volume", 0),
+              0u);
+    EXPECT_EQ(
+        err([](auto& in) { in.hasVolume = true, in.attenuationColor.r = 1.5f; }).rfind(at + "KHR_materials_volume", 0),
+        0u);
     EXPECT_EQ(err([](auto&) {}), "");
 }
 

@@ -116,7 +116,7 @@ TEST(MeshBuilders, LensFocusesWhereTheThickLensFormulaSays) {
         ASSERT_TRUE(intersectMesh(lens, o, d, &p, &nrm));
         ASSERT_TRUE(refract(-d, nrm, n, &t));  // into the glass (the normal points out)
         ASSERT_TRUE(intersectMesh(lens, p, t, &p, &nrm));
-        ASSERT_TRUE(refract(-t, nrm, n, &d));  // out again
+        ASSERT_TRUE(refract(-t, nrm, n, &d));       // out again
         float crossing = p.z + (-p.x / d.x) * d.z;  // where the ray meets the axis
         EXPECT_NEAR(crossing, backFocus, 0.02f * f) << "ray height " << h;
     }

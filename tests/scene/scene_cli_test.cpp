@@ -1,7 +1,6 @@
 // The command line with scene files: a bad file prints exactly one "tyndall: ..." line naming the
 // file and place and exits non-zero; --camera and the file's render block reach the renderer.
 #include <gtest/gtest.h>
-
 #include <sys/wait.h>
 
 #include <cstdio>
@@ -44,12 +43,15 @@ TEST(SceneCli, BadSceneFilePrintsOneLineAndFails) {
     std::string path = test::writeTestFile("cli-bad.json", R"({"materials": [{"name": "m", "albedo": "grey"}]})");
     CliRun r = runTyndall("render " + path + " -o " + test::outputDir() + "/cli-bad.png");
     EXPECT_EQ(r.exitCode, 1);
-    EXPECT_EQ(r.output, "tyndall: " + path + ": /materials/0/albedo: expected a finite number >= 0 or [r, g, b], got the string \"grey\"\n");
+    EXPECT_EQ(r.output,
+              "tyndall: " + path +
+                  ": /materials/0/albedo: expected a finite number >= 0 or [r, g, b], got the string \"grey\"\n");
 }
 
 TEST(SceneCli, BadGltfPrintsOneLineAndFails) {
-    std::string path = test::writeTestFile("cli-bad.gltf", "{\"asset\": {\"version\": \"2.0\"}, \"nodes\": [{\"mesh\": 3}], "
-                                                           "\"scenes\": [{\"nodes\": [0]}]}");
+    std::string path = test::writeTestFile("cli-bad.gltf",
+                                           "{\"asset\": {\"version\": \"2.0\"}, \"nodes\": [{\"mesh\": 3}], "
+                                           "\"scenes\": [{\"nodes\": [0]}]}");
     CliRun r = runTyndall("render " + path + " -o " + test::outputDir() + "/cli-bad.png");
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_EQ(r.output, "tyndall: " + path + ": node (index 0): mesh index 3 out of range (the file has 0 meshes)\n");

@@ -43,7 +43,8 @@ TEST(SceneErrors, ValidBaseSceneLoads) {
 }
 
 TEST(SceneErrors, JsonSyntax) {
-    expectError("syntax.json", "{\n  \"materials\": [\n    {\"name\": \"a\",}\n  ]\n}", "line 3, column", "syntax error");
+    expectError("syntax.json", "{\n  \"materials\": [\n    {\"name\": \"a\",}\n  ]\n}", "line 3, column",
+                "syntax error");
     expectError("nan.json", "{\"media\": [{\"name\": \"f\", \"sigma_s\": NaN}]}", "line 1, column", "syntax error");
     expectError("empty.json", "", "line 1, column 1", "");
     expectError("top.json", "[1, 2]", "top level", "expected an object");
@@ -55,7 +56,8 @@ TEST(SceneErrors, UnknownKeys) {
     expectError("unknown-top.json", j.dump(), "/materialz", "unknown key 'materialz'");
     j = validScene();
     j["materials"][0]["albdo"] = 0.5;
-    expectError("unknown-material-key.json", j.dump(), "/materials/0/albdo", "expected one of: albedo, emission, ior, name, type");
+    expectError("unknown-material-key.json", j.dump(), "/materials/0/albdo",
+                "expected one of: albedo, emission, ior, name, type");
     j = validScene();
     j["shapes"][1]["radios"] = 1;
     expectError("unknown-shape-key.json", j.dump(), "/shapes/1/radios", "unknown key");
@@ -115,7 +117,8 @@ TEST(SceneErrors, IndexAndNameReferences) {
     expectError("material-index.json", j.dump(), "/shapes/0/material", "expected an integer in [0, 1], got 7");
     j = validScene();
     j["shapes"][0]["material"] = "whit";
-    expectError("material-name.json", j.dump(), "/shapes/0/material", "no material named 'whit' (there are: 'white', 'glass')");
+    expectError("material-name.json", j.dump(), "/shapes/0/material",
+                "no material named 'whit' (there are: 'white', 'glass')");
     j = validScene();
     j["global_medium"] = "smog";
     expectError("medium-name.json", j.dump(), "/global_medium", "no medium named 'smog'");
@@ -168,7 +171,8 @@ GltfBuilder validGltf() {
     int mat = b.addMaterial({{"name", "paint"}, {"pbrMetallicRoughness", {{"metallicFactor", 0.0}}}});
     b.addNode({{"name", "box"}, {"mesh", b.addCube("box mesh", mat)}});
     int l = b.addLight({{"name", "bulb"}, {"type", "point"}, {"intensity", 100.0}});
-    b.addNode({{"name", "lamp"}, {"translation", {0, 3, 0}}, {"extensions", {{"KHR_lights_punctual", {{"light", l}}}}}});
+    b.addNode(
+        {{"name", "lamp"}, {"translation", {0, 3, 0}}, {"extensions", {{"KHR_lights_punctual", {{"light", l}}}}}});
     return b;
 }
 
@@ -193,7 +197,8 @@ TEST(SceneErrors, GltfIndicesOutOfRange) {
     expectError("node-mesh.gltf", j.dump(), "node 'box' (index 0)", "mesh index 5 out of range");
     j = b.json();
     j["meshes"][0]["primitives"][0]["material"] = 9;
-    expectError("prim-material.gltf", j.dump(), "mesh 'box mesh' (index 0) primitive 0", "material index 9 out of range");
+    expectError("prim-material.gltf", j.dump(), "mesh 'box mesh' (index 0) primitive 0",
+                "material index 9 out of range");
     j = b.json();
     j["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 42;
     expectError("accessor.gltf", j.dump(), "primitive 0: POSITION", "accessor index 42 out of range");
@@ -228,9 +233,10 @@ TEST(SceneErrors, GltfBadData) {
     uint32_t bad[] = {99};
     uint32_t where[] = {0};
     int vi = c.addView(where, 4), vv = c.addView(bad, 4);
-    c.doc["accessors"][1]["sparse"] = {{"count", 1}, {"indices", {{"bufferView", vi}, {"componentType", 5125}}},
-                                       {"values", {{"bufferView", vv}}}};
-    expectError("vertex-index.gltf", c.text(), "mesh 'box mesh' (index 0) primitive 0", "vertex index 99 out of range (8 vertices)");
+    c.doc["accessors"][1]["sparse"] = {
+        {"count", 1}, {"indices", {{"bufferView", vi}, {"componentType", 5125}}}, {"values", {{"bufferView", vv}}}};
+    expectError("vertex-index.gltf", c.text(), "mesh 'box mesh' (index 0) primitive 0",
+                "vertex index 99 out of range (8 vertices)");
     j = b.json();
     j["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = {1, -1, 1, 1};
     expectError("base-color.gltf", j.dump(), "material 'paint' (index 0)", "baseColorFactor must lie in [0, 1]");
@@ -240,7 +246,8 @@ TEST(SceneErrors, GltfBadData) {
     expectError("attenuation.gltf", j.dump(), "material 'paint' (index 0)", "attenuationDistance must be > 0");
     j = b.json();
     j["extensions"]["KHR_lights_punctual"]["lights"][0]["intensity"] = -5;
-    expectError("light-intensity.gltf", j.dump(), "light 'bulb' (index 0, node 1)", "intensity must be a finite number >= 0");
+    expectError("light-intensity.gltf", j.dump(), "light 'bulb' (index 0, node 1)",
+                "intensity must be a finite number >= 0");
     std::string text = b.text();
     text.replace(text.find("\"translation\":[0,3,0]"), 21, "\"translation\":[0,1e999,0]");
     expectError("translation.gltf", text, "line 1, column", "'1e999' is not a finite number");

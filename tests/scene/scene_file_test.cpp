@@ -15,7 +15,9 @@ namespace {
 using test::errorOf;
 using test::loadText;
 
-std::string sourceDir() { return TYNDALL_SOURCE_DIR; }
+std::string sourceDir() {
+    return TYNDALL_SOURCE_DIR;
+}
 
 void expectSameScene(const Scene& a, const Scene& b, float tol) {
     auto near3 = [&](const Vec3& x, const Vec3& y, const std::string& what) {
@@ -95,7 +97,8 @@ TEST(SceneFile, ExtensionPicksTheFormat) {
 /// A glTF with a closed "tank" (glass), an open "window" (glass) and a light, written to disk.
 std::string writeTankGltf() {
     test::GltfBuilder b;
-    int glass = b.addMaterial({{"name", "glass"}, {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}}},
+    int glass = b.addMaterial({{"name", "glass"},
+                               {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}}},
                                {"pbrMetallicRoughness", {{"roughnessFactor", 0.0}}}});
     b.addNode({{"name", "tank"}, {"mesh", b.addCube("tank mesh", glass)}, {"translation", {0, 0.5, 0}}});
     b.addNode({{"name", "window"}, {"mesh", b.addMesh("w", {-1, 0, 2, 1, 0, 2, 0, 1, 2}, {0, 1, 2}, glass)}});
@@ -209,9 +212,10 @@ TEST(SceneFile, EveryShapeTypeBuilds) {
 }
 
 TEST(SceneFile, CommentsAreAllowed) {
-    std::string json = "// a comment\n{ /* block */ \"lights\": [{\"type\": \"point\", \"position\": [0, 0, 0], "
-                       "\"intensity\": 1}], \"materials\": [{\"name\": \"m\"}], \"shapes\": [{\"type\": \"sphere\", "
-                       "\"material\": \"m\", \"center\": [0, 0, -3], \"radius\": 1}]}";
+    std::string json =
+        "// a comment\n{ /* block */ \"lights\": [{\"type\": \"point\", \"position\": [0, 0, 0], "
+        "\"intensity\": 1}], \"materials\": [{\"name\": \"m\"}], \"shapes\": [{\"type\": \"sphere\", "
+        "\"material\": \"m\", \"center\": [0, 0, -3], \"radius\": 1}]}";
     EXPECT_EQ(loadText(json, SceneFormat::Json, nullptr, "", "c.json").scene.meshes.size(), 1u);
 }
 

@@ -36,9 +36,10 @@ inline std::string base64(const std::string& bytes) {
 
 /// Builds a glTF 2.0 JSON document with one embedded buffer.
 struct GltfBuilder {
-    nlohmann::json doc = {{"asset", {{"version", "2.0"}}},
-                          {"scenes", nlohmann::json::array({nlohmann::json::object({{"nodes", nlohmann::json::array()}})})},
-                          {"scene", 0}};
+    nlohmann::json doc = {
+        {"asset", {{"version", "2.0"}}},
+        {"scenes", nlohmann::json::array({nlohmann::json::object({{"nodes", nlohmann::json::array()}})})},
+        {"scene", 0}};
     std::string bin;
 
     int addView(const void* data, size_t size) {
@@ -51,18 +52,21 @@ struct GltfBuilder {
     int addFloats(const std::vector<float>& v, const char* type) {
         int view = addView(v.data(), v.size() * 4);
         int n = std::strcmp(type, "SCALAR") == 0 ? 1 : type[3] - '0';
-        doc["accessors"].push_back({{"bufferView", view}, {"componentType", 5126}, {"count", v.size() / size_t(n)}, {"type", type}});
+        doc["accessors"].push_back(
+            {{"bufferView", view}, {"componentType", 5126}, {"count", v.size() / size_t(n)}, {"type", type}});
         return int(doc["accessors"].size() - 1);
     }
     int addIndices(const std::vector<uint32_t>& v) {
         int view = addView(v.data(), v.size() * 4);
-        doc["accessors"].push_back({{"bufferView", view}, {"componentType", 5125}, {"count", v.size()}, {"type", "SCALAR"}});
+        doc["accessors"].push_back(
+            {{"bufferView", view}, {"componentType", 5125}, {"count", v.size()}, {"type", "SCALAR"}});
         return int(doc["accessors"].size() - 1);
     }
     /// A mesh with one triangle primitive; returns the mesh index.
     int addMesh(const std::string& name, const std::vector<float>& positions, const std::vector<uint32_t>& indices,
                 int material = -1) {
-        nlohmann::json prim = {{"attributes", {{"POSITION", addFloats(positions, "VEC3")}}}, {"indices", addIndices(indices)}};
+        nlohmann::json prim = {{"attributes", {{"POSITION", addFloats(positions, "VEC3")}}},
+                               {"indices", addIndices(indices)}};
         if (material >= 0) prim["material"] = material;
         doc["meshes"].push_back({{"name", name}, {"primitives", {prim}}});
         return int(doc["meshes"].size() - 1);
@@ -70,7 +74,8 @@ struct GltfBuilder {
     /// The unit cube [-0.5, 0.5]^3, closed, outward.
     int addCube(const std::string& name, int material = -1) {
         std::vector<float> p;
-        for (int i = 0; i < 8; ++i) p.insert(p.end(), {(i & 1) ? 0.5f : -0.5f, (i & 2) ? 0.5f : -0.5f, (i & 4) ? 0.5f : -0.5f});
+        for (int i = 0; i < 8; ++i)
+            p.insert(p.end(), {(i & 1) ? 0.5f : -0.5f, (i & 2) ? 0.5f : -0.5f, (i & 4) ? 0.5f : -0.5f});
         std::vector<uint32_t> idx = {0, 4, 6, 0, 6, 2, 1, 3, 7, 1, 7, 5, 0, 1, 5, 0, 5, 4,
                                      2, 6, 7, 2, 7, 3, 0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6};
         return addMesh(name, p, idx, material);
@@ -94,7 +99,8 @@ struct GltfBuilder {
     nlohmann::json json() const {
         nlohmann::json j = doc;
         if (!bin.empty())
-            j["buffers"] = {{{"byteLength", bin.size()}, {"uri", "data:application/octet-stream;base64," + base64(bin)}}};
+            j["buffers"] = {
+                {{"byteLength", bin.size()}, {"uri", "data:application/octet-stream;base64," + base64(bin)}}};
         return j;
     }
     std::string text() const { return json().dump(); }
