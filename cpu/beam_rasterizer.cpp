@@ -18,19 +18,28 @@ struct CameraSpace {
 };
 }  // namespace
 
+// Which pixels can accept a beam: the estimator pairs a ray point Q = o + s d (s >= 0, so depth
+// z_Q >= 0) with an axis point C at distance u < r. For a thin lens, o is within `lens` of the
+// camera centre and d aims at the focus plane (depth fd), so Q lies in the pinhole frustum widened
+// by lens |1 - z/fd| <= lens (1 + z/fd): tangents tx + lens/fd, ty + lens/fd, planes moved out by
+// lens. C must lie within r of that set: clip the axis to it widened by r (conservative per plane).
+// On the film, Q lands within f r sqrt(1 + |t_C|^2) / (z_C - r) of C's pinhole projection (t_C =
+// C.xy/C.z, largest at an end of the clipped axis), shifted by f |o| |1/fd - 1/z_Q| for the lens,
+// and the pixel centre is within sqrt(1/2) pixel of the jittered film position (margin 1.5).
+// gpu/shaders/beam_footprint.glsl is the GLSL twin.
 BeamFootprint beamFootprint(const Camera& cam, int width, int height, const PhotonBeam& beam) {
     BeamFootprint fp;
     const float tanHalf = std::tan(0.5f * cam.yFov);
     const float tx = tanHalf * float(width) / float(height), ty = tanHalf;
     const float f = 0.5f * float(height) / tanHalf;  // focal length in pixels
-    const float reach = beam.radius + cam.lensRadius;
+    const float r = beam.radius, lens = cam.lensRadius;
     auto toCamera = [&](const Vec3& p) {
         Vec3 v = p - cam.position;
         return CameraSpace{dot(v, cam.right), dot(v, cam.up), dot(v, cam.forward)};
     };
     CameraSpace a = toCamera(beam.origin), b = toCamera(beam.origin + beam.dir * beam.tMax);
 
-    // Clip the axis to the frustum widened by `reach`: each plane is g(p) >= 0, linear in p.
+    // Each plane is g(p) >= 0, linear in p.
     float lo = 0.0f, hi = 1.0f;
     auto clip = [&](float ga, float gb) {
         if (ga < 0 && gb < 0) return false;
@@ -38,19 +47,21 @@ BeamFootprint beamFootprint(const Camera& cam, int width, int height, const Phot
         else if (gb < 0) hi = std::min(hi, ga / (ga - gb));
         return lo <= hi;
     };
-    const float sx = reach * std::sqrt(1.0f + tx * tx), sy = reach * std::sqrt(1.0f + ty * ty);
-    if (!clip(a.z + reach, b.z + reach)) return fp;
-    if (!clip(a.z * tx - a.x + sx, b.z * tx - b.x + sx)) return fp;
-    if (!clip(a.z * tx + a.x + sx, b.z * tx + b.x + sx)) return fp;
-    if (!clip(a.z * ty - a.y + sy, b.z * ty - b.y + sy)) return fp;
-    if (!clip(a.z * ty + a.y + sy, b.z * ty + b.y + sy)) return fp;
+    const float spread = lens > 0 ? lens / cam.focusDistance : 0.0f;
+    const float lx = tx + spread, ly = ty + spread;
+    const float sx = lens + r * std::sqrt(1.0f + lx * lx), sy = lens + r * std::sqrt(1.0f + ly * ly);
+    if (!clip(a.z + r, b.z + r)) return fp;
+    if (!clip(a.z * lx - a.x + sx, b.z * lx - b.x + sx)) return fp;
+    if (!clip(a.z * lx + a.x + sx, b.z * lx + b.x + sx)) return fp;
+    if (!clip(a.z * ly - a.y + sy, b.z * ly - b.y + sy)) return fp;
+    if (!clip(a.z * ly + a.y + sy, b.z * ly + b.y + sy)) return fp;
     fp.visible = true;
     auto lerp = [](const CameraSpace& p, const CameraSpace& q, float t) {
         return CameraSpace{p.x + (q.x - p.x) * t, p.y + (q.y - p.y) * t, p.z + (q.z - p.z) * t};
     };
     CameraSpace c0 = lerp(a, b, lo), c1 = lerp(a, b, hi);
     float zMin = std::min(c0.z, c1.z), zMax = std::max(c0.z, c1.z);
-    if (zMin <= 2.0f * reach) {  // passes right by the camera: every pixel may see it
+    if (zMin <= 2.0f * (r + lens)) {  // passes right by the camera: every pixel may see it
         fp.fullScreen = true;
         return fp;
     }
@@ -58,15 +69,13 @@ BeamFootprint beamFootprint(const Camera& cam, int width, int height, const Phot
     fp.ay = 0.5f * float(height) - f * c0.y / c0.z;
     fp.bx = 0.5f * float(width) + f * c1.x / c1.z;
     fp.by = 0.5f * float(height) - f * c1.y / c1.z;
-    // Projected radius (a sphere of radius r at depth z projects within f r / (z - r), stretched
-    // up to 1/cos^2 off-axis), the lens's circle of confusion, and one pixel for the film jitter.
-    float stretch = 1.0f + tx * tx + ty * ty;
+    float tan2 = std::max((c0.x * c0.x + c0.y * c0.y) / (c0.z * c0.z), (c1.x * c1.x + c1.y * c1.y) / (c1.z * c1.z));
     float coc = 0.0f;
-    if (cam.lensRadius > 0) {
+    if (lens > 0) {
         float invF = 1.0f / cam.focusDistance;
-        coc = f * cam.lensRadius * std::max(std::abs(invF - 1.0f / zMin), std::abs(invF - 1.0f / zMax));
+        coc = f * lens * std::max(std::abs(invF - 1.0f / (zMin - r)), std::abs(invF - 1.0f / (zMax + r)));
     }
-    fp.radius = f * beam.radius / (zMin - beam.radius) * stretch + coc + 1.5f;
+    fp.radius = f * r * std::sqrt(1.0f + tan2) / (zMin - r) + coc + 1.5f;
     return fp;
 }
 
