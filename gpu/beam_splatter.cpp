@@ -66,6 +66,7 @@ GlSplatStats& GlSplatStats::operator+=(const GlSplatStats& o) {
 struct GlBeamSplatter::Buffers {
     const GlFunctions& gl;
     std::unique_ptr<GlProgram> program;
+    bool programHasGridMedia = false;
     GLuint frame = 0, rays = 0, rayFreeFlights = 0, beams = 0, beamFreeFlights = 0, media = 0, volumes = 0, voxels = 0;
     GLuint vertexArray = 0, target = 0, framebuffer = 0, query = 0;
     int width = 0, height = 0;
@@ -93,9 +94,9 @@ struct GlBeamSplatter::Buffers {
         gl.DeleteFramebuffers(1, &framebuffer);
         gl.DeleteTextures(1, &target);
     }
-    /// Uploads `bytes` (an empty array becomes 16 zero bytes: every declared buffer is bound).
+    /// Uploads `bytes` (an empty array becomes 64 zero bytes: every declared buffer is bound).
     void upload(GLuint buffer, const void* data, size_t bytes) {
-        static const float kZeros[4] = {};
+        static const float kZeros[16] = {};
         if (bytes == 0) gl.NamedBufferData(buffer, sizeof(kZeros), kZeros, GL_STREAM_DRAW);
         else gl.NamedBufferData(buffer, GLsizeiptr(bytes), data, GL_STREAM_DRAW);
     }
@@ -107,23 +108,16 @@ GlBeamSplatter::GlBeamSplatter(GlContext& context, const Scene& scene)
     GLint vertexBlocks = 0, fragmentBlocks = 0;
     m_gl.GetIntegerv(GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS, &vertexBlocks);
     m_gl.GetIntegerv(GL_MAX_FRAGMENT_SHADER_STORAGE_BLOCKS, &fragmentBlocks);
-    if (vertexBlocks < 1 || fragmentBlocks < 7)
+    if (vertexBlocks < 2 || fragmentBlocks < 7)
         throw Error("GL splatter: " + m_context.description() + " has " + std::to_string(vertexBlocks) +
                     " vertex / " + std::to_string(fragmentBlocks) +
-                    " fragment shader storage blocks, needs 1 / 7");
+                    " fragment shader storage blocks, needs 2 / 7");
     GLint64 blockSize = 0;
     m_gl.GetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &blockSize);
     m_maxVoxels = size_t(blockSize) / sizeof(float);
     m_canCountFragments = hasExtension(m_gl, "GL_ARB_pipeline_statistics_query");
 
     m_buffers = std::make_unique<Buffers>(m_gl);
-    m_buffers->program = std::make_unique<GlProgram>(
-        m_gl, "beam splat",
-        std::vector<GlShaderStage>{
-            {GL_VERTEX_SHADER, {glsl("layout.glsl"), glsl("beam_footprint.glsl"), glsl("beam_splat.vert")}},
-            {GL_FRAGMENT_SHADER,
-             {glsl("layout.glsl"), glsl("beam_estimator.glsl"), glsl("media.glsl"), glsl("pixel_radiance.glsl"),
-              glsl("beam_splat.frag")}}});
     reloadMedia();
 }
 
@@ -133,6 +127,18 @@ void GlBeamSplatter::reloadMedia() {
     m_context.requireCurrentThread();
     GlMediaTable table = buildMediaTable(m_scene, m_maxVoxels);
     Buffers& b = *m_buffers;
+    const bool grid = !table.volumes.empty();
+    if (!b.program || b.programHasGridMedia != grid) {
+        std::string define = std::string("#define TYNDALL_GRID_MEDIA ") + (grid ? "1" : "0");
+        b.program = std::make_unique<GlProgram>(
+            m_gl, "beam splat",
+            std::vector<GlShaderStage>{
+                {GL_VERTEX_SHADER, {define, glsl("layout.glsl"), glsl("beam_footprint.glsl"), glsl("beam_splat.vert")}},
+                {GL_FRAGMENT_SHADER,
+                 {define, glsl("layout.glsl"), glsl("beam_estimator.glsl"), glsl("media.glsl"),
+                  glsl("pixel_radiance.glsl"), glsl("beam_splat.frag")}}});
+        b.programHasGridMedia = grid;
+    }
     b.upload(b.media, table.media.data(), table.media.size() * sizeof(GlMedium));
     b.upload(b.volumes, table.volumes.data(), table.volumes.size() * sizeof(GlVolume));
     b.upload(b.voxels, table.voxels.data(), table.voxels.size() * sizeof(float));

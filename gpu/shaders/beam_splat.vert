@@ -3,6 +3,9 @@
 // Beams that cannot be seen get a zero-area quad; beams passing by the camera cover the film.
 
 flat out int vBeam;
+// The beam and its medium: a software rasterizer, which loads per fragment, need not load them.
+flat out vec4 vBeamRows[3];
+flat out vec4 vMediumRows[2];
 
 const int kCorner[6] = int[6](0, 1, 2, 2, 1, 3);  // bit 0: b end, bit 1: +across
 
@@ -11,10 +14,16 @@ void main() {
     int corner = kCorner[gl_VertexID % 6];
     vBeam = b;
     PhotonBeam beam = beams[b];
+    vBeamRows[0] = vec4(beam.origin, beam.tMax);
+    vBeamRows[1] = vec4(beam.dir, beam.radius);
+    vBeamRows[2] = vec4(beam.power, intBitsToFloat(beam.medium));
     if (beam.medium < 0) {
         gl_Position = vec4(2.0, 2.0, 0.0, 1.0);
         return;
     }
+    Medium med = media[beam.medium];
+    vMediumRows[0] = vec4(med.sigmaS, med.g);
+    vMediumRows[1] = vec4(med.sigmaT, intBitsToFloat(med.volume));
     BeamFootprint fp = beamFootprint(beam);
     if (!fp.visible) {
         gl_Position = vec4(2.0, 2.0, 0.0, 1.0);

@@ -1,5 +1,11 @@
 // GLSL twin of gpu/gl_layout.h: the structs and buffers shared with C++ (bindings listed there).
 
+// Grid media compiled in or out: software rasterizers run both sides of every branch, so a
+// scene without grid media gets a shader without their code (GlBeamSplatter defines it).
+#ifndef TYNDALL_GRID_MEDIA
+#define TYNDALL_GRID_MEDIA 1
+#endif
+
 struct PrimaryRay {
     vec3 origin;
     float tMax;

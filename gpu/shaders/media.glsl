@@ -1,6 +1,7 @@
 // GLSL twin of core/transmittance.h and core/density_volume.h: stored-distance transmittance and
 // the dense density volumes of grid media (same trilinear rule as DensityVolume::sample).
 
+#if TYNDALL_GRID_MEDIA
 // Fraction of the pixel's (beam's) stored free-flight distances that lie beyond s (t).
 float rayTransmittance(int pixel, float s) {
     int n = frame.freeFlightsPerRay;
@@ -46,7 +47,13 @@ float volumeDensity(int volume, vec3 p) {
     return lerpDensity(lerpDensity(c00, c10, w.y), lerpDensity(c01, c11, w.y), w.z);
 }
 
+#endif  // TYNDALL_GRID_MEDIA
+
 // Medium::sigmaSAt.
 vec3 sigmaSAt(Medium m, vec3 p) {
+#if TYNDALL_GRID_MEDIA
     return m.volume < 0 ? m.sigmaS : m.sigmaS * volumeDensity(m.volume, p);
+#else
+    return m.sigmaS;
+#endif
 }
