@@ -1,12 +1,13 @@
-// GLSL twin of beamFootprint() in cpu/beam_rasterizer.cpp: a conservative film-space bound of the
-// pixels whose primary ray can accept a beam (the derivation is there). The fragment shader
-// decides exactly, so this only has to cover; both twins use the same bound so that the CPU and
-// GL splatters visit the same pixels.
+// GLSL twin of beamFootprint() in cpu/beam_rasterizer.cpp (the derivation is there): a
+// conservative film-space bound of the pixels whose primary ray can accept a beam, the convex hull
+// of two discs (a, ra) and (b, rb) around the projected ends of the beam's clipped axis, or the
+// whole film. The fragment shader decides exactly, so this only has to cover.
 
 struct BeamFootprint {
     vec2 a;          // projected ends of the clipped axis, film pixels
+    float ra;        // radius around a, film pixels
     vec2 b;
-    float radius;    // capsule radius, film pixels
+    float rb;
     bool fullScreen;
     bool visible;
 };
@@ -25,12 +26,7 @@ bool clipAxis(float ga, float gb, inout float lo, inout float hi) {
 }
 
 BeamFootprint beamFootprint(PhotonBeam beam) {
-    BeamFootprint fp;
-    fp.a = vec2(0.0);
-    fp.b = vec2(0.0);
-    fp.radius = 0.0;
-    fp.fullScreen = false;
-    fp.visible = false;
+    BeamFootprint fp = BeamFootprint(vec2(0.0), 0.0, vec2(0.0), 0.0, false, false);
     float tx = frame.tanHalfX, ty = frame.tanHalfY, f = frame.focalPixels;
     float r = beam.radius, lens = frame.lensRadius;
     vec3 a = toCameraSpace(beam.origin), b = toCameraSpace(beam.origin + beam.dir * beam.tMax);
@@ -54,12 +50,15 @@ BeamFootprint beamFootprint(PhotonBeam beam) {
     vec2 center = 0.5 * vec2(frame.filmSize);
     fp.a = vec2(center.x + f * c0.x / c0.z, center.y - f * c0.y / c0.z);
     fp.b = vec2(center.x + f * c1.x / c1.z, center.y - f * c1.y / c1.z);
-    float tan2 = max(dot(c0.xy, c0.xy) / (c0.z * c0.z), dot(c1.xy, c1.xy) / (c1.z * c1.z));
+    vec2 da = min(abs(fp.a - center), center), db = min(abs(fp.b - center), center);
+    float stretch = max(sqrt(1.0 + dot(da, da) / (f * f)), sqrt(1.0 + dot(db, db) / (f * f)));
     float coc = 0.0;
     if (lens > 0.0) {
         float invF = 1.0 / frame.focusDistance;
         coc = f * lens * max(abs(invF - 1.0 / (zMin - r)), abs(invF - 1.0 / (zMax + r)));
     }
-    fp.radius = f * r * sqrt(1.0 + tan2) / (zMin - r) + coc + 1.5;
+    float margin = coc + 0.75;
+    fp.ra = f * r / (c0.z - r) * stretch + margin;
+    fp.rb = f * r / (c1.z - r) * stretch + margin;
     return fp;
 }

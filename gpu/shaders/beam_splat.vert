@@ -30,20 +30,31 @@ void main() {
         return;
     }
     vec2 size = vec2(frame.filmSize);
-    vec2 lo = min(fp.a, fp.b) - fp.radius, hi = max(fp.a, fp.b) + fp.radius;
+    vec2 lo = min(fp.a - fp.ra, fp.b - fp.rb), hi = max(fp.a + fp.ra, fp.b + fp.rb);
     // Covering far more than the film (or non-finite): the film itself is the same set of pixels.
     bool huge = !(all(greaterThan(lo, -4.0 * size)) && all(lessThan(hi, 5.0 * size)));
-    vec2 ndc;
+    vec2 film;
     if (fp.fullScreen || huge) {
-        ndc = vec2((corner & 1) != 0 ? 1.0 : -1.0, (corner & 2) != 0 ? 1.0 : -1.0);
+        film = vec2((corner & 1) != 0 ? size.x : 0.0, (corner & 2) != 0 ? size.y : 0.0);
     } else {
+        // The hull of the two discs lies between its two outer tangent lines and between the lines
+        // across the axis at -ra and len + rb: the trapezoid they enclose is the billboard. With
+        // sin(phi) = (ra - rb) / len the tangent on side s has outward normal s n cos(phi) + u sin(phi).
         vec2 axis = fp.b - fp.a;
         float len = length(axis);
-        vec2 along = len > 0.0 ? axis / len : vec2(1.0, 0.0);
-        vec2 across = vec2(-along.y, along.x);
-        vec2 film = ((corner & 1) != 0 ? fp.b + along * fp.radius : fp.a - along * fp.radius) +
-                    across * ((corner & 2) != 0 ? fp.radius : -fp.radius);
-        ndc = vec2(2.0 * film.x / size.x - 1.0, 1.0 - 2.0 * film.y / size.y);
+        vec2 u = len > 0.0 ? axis / len : vec2(1.0, 0.0);
+        vec2 n = vec2(-u.y, u.x);
+        float sinPhi = len > 0.0 ? (fp.ra - fp.rb) / len : 1.0;
+        float cosPhi = sqrt(max(0.0, 1.0 - sinPhi * sinPhi));
+        float along = (corner & 1) != 0 ? len + fp.rb : -fp.ra;
+        float across;
+        if (cosPhi > 0.25) {  // the tangent at distance ra from a, met at `along`
+            across = (fp.ra - along * sinPhi) / cosPhi;
+        } else {  // one disc (nearly) holds the other: the rectangle around both
+            along = (corner & 1) != 0 ? max(fp.ra, len + fp.rb) : min(-fp.ra, len - fp.rb);
+            across = max(fp.ra, fp.rb);
+        }
+        film = fp.a + u * along + n * ((corner & 2) != 0 ? across : -across);
     }
-    gl_Position = vec4(ndc, 0.0, 1.0);
+    gl_Position = vec4(2.0 * film.x / size.x - 1.0, 1.0 - 2.0 * film.y / size.y, 0.0, 1.0);
 }
