@@ -13,7 +13,9 @@ namespace tyndall::app {
 
 namespace {
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+double since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
 /// CPU time of the whole process (every thread: TBB's, llvmpipe's, the GL thread).
 double processCpuSeconds() {
     timespec t;
@@ -136,8 +138,7 @@ void printHybridBench(const HybridBench& b) {
         ratio(b.overlappedCpuStageSeconds, b.cpuStageSeconds, "alone"));
     row("GL splat inside the hybrid loop", b.overlappedGlSplatSeconds * 1e3, "ms/pass",
         ratio(b.overlappedGlSplatSeconds, b.glSplatSeconds, "alone"));
-    row("overlap efficiency", b.overlapEfficiency(), "",
-        "hybrid s/pass / max(sides alone) (target <= 1.15)");
+    row("overlap efficiency", b.overlapEfficiency(), "", "hybrid s/pass / max(sides alone) (target <= 1.15)");
     row("GL fragments", b.fragmentsPerPass / 1e6, "M/pass",
         ratio(b.fragmentsPerPass, b.pixelTestsPerPass, "the CPU twin's estimator evaluations"));
     row("GL fragment rate", b.fragmentsPerPass / b.glSplatSeconds / 1e6, "M frags/s");

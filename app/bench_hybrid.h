@@ -12,7 +12,7 @@ namespace tyndall::app {
 
 struct HybridBench {
     int passes = 0;
-    std::string gl;                 ///< the GL context's description
+    std::string gl;  ///< the GL context's description
     double cpuOnlyPassesPerSecond = 0, hybridPassesPerSecond = 0;
     double cpuOnlyCpuSecondsPerPass = 0, hybridCpuSecondsPerPass = 0;  ///< process CPU time (all threads)
     // Alone (nothing else running), seconds per pass.
@@ -23,9 +23,9 @@ struct HybridBench {
     double cpuSplatCpuSeconds = 0;  ///< the CPU twin, process CPU time
     // Inside the hybrid loop, seconds per pass (each side slowed by sharing the cores).
     double overlappedCpuStageSeconds = 0, overlappedGlSplatSeconds = 0;
-    double fragmentsPerPass = 0;    ///< fragment shader invocations (0 when the driver cannot count)
+    double fragmentsPerPass = 0;  ///< fragment shader invocations (0 when the driver cannot count)
     double beamsPerPass = 0;
-    double pixelTestsPerPass = 0;   ///< the CPU twin's estimator evaluations
+    double pixelTestsPerPass = 0;  ///< the CPU twin's estimator evaluations
 
     double overlapEfficiency() const {  ///< hybrid wall per pass / max of the sides alone
         return (1.0 / hybridPassesPerSecond) / std::max(cpuStageSeconds, glSplatSeconds);

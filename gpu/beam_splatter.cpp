@@ -14,7 +14,9 @@ namespace tyndall {
 
 namespace {
 using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+double secondsSince(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
 
 constexpr int kVerticesPerBeam = 6;
 constexpr uint64_t kBeamsPerDraw = 1u << 24;  // keeps the vertex count of one draw in GLsizei
@@ -97,8 +99,10 @@ struct GlBeamSplatter::Buffers {
     /// Uploads `bytes` (an empty array becomes 64 zero bytes: every declared buffer is bound).
     void upload(GLuint buffer, const void* data, size_t bytes) {
         static const float kZeros[16] = {};
-        if (bytes == 0) gl.NamedBufferData(buffer, sizeof(kZeros), kZeros, GL_STREAM_DRAW);
-        else gl.NamedBufferData(buffer, GLsizeiptr(bytes), data, GL_STREAM_DRAW);
+        if (bytes == 0)
+            gl.NamedBufferData(buffer, sizeof(kZeros), kZeros, GL_STREAM_DRAW);
+        else
+            gl.NamedBufferData(buffer, GLsizeiptr(bytes), data, GL_STREAM_DRAW);
     }
 };
 
@@ -109,9 +113,8 @@ GlBeamSplatter::GlBeamSplatter(GlContext& context, const Scene& scene)
     m_gl.GetIntegerv(GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS, &vertexBlocks);
     m_gl.GetIntegerv(GL_MAX_FRAGMENT_SHADER_STORAGE_BLOCKS, &fragmentBlocks);
     if (vertexBlocks < 2 || fragmentBlocks < 7)
-        throw Error("GL splatter: " + m_context.description() + " has " + std::to_string(vertexBlocks) +
-                    " vertex / " + std::to_string(fragmentBlocks) +
-                    " fragment shader storage blocks, needs 2 / 7");
+        throw Error("GL splatter: " + m_context.description() + " has " + std::to_string(vertexBlocks) + " vertex / " +
+                    std::to_string(fragmentBlocks) + " fragment shader storage blocks, needs 2 / 7");
     GLint64 blockSize = 0;
     m_gl.GetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &blockSize);
     m_maxVoxels = size_t(blockSize) / sizeof(float);
@@ -170,7 +173,8 @@ Image GlBeamSplatter::splat(const PrimarySegments& primary, const PhotonMap& pho
     m_context.requireCurrentThread();
     const int w = primary.width, h = primary.height;
     const size_t pixels = size_t(w) * size_t(h);
-    TYNDALL_CHECK(w > 0 && h > 0 && primary.rays.size() == pixels, "GL splatter: primary segments do not match their size");
+    TYNDALL_CHECK(w > 0 && h > 0 && primary.rays.size() == pixels,
+                  "GL splatter: primary segments do not match their size");
     TYNDALL_CHECK(primary.freeFlights.size() == pixels * size_t(primary.freeFlightsPerRay),
                   "GL splatter: per-pixel free flights do not match the image");
     TYNDALL_CHECK(photons.freeFlights.size() == photons.beams.size() * size_t(photons.freeFlightsPerBeam),
@@ -190,8 +194,9 @@ Image GlBeamSplatter::splat(const PrimarySegments& primary, const PhotonMap& pho
     b.upload(b.beamFreeFlights, photons.freeFlights.data(), photons.freeFlights.size() * sizeof(float));
     gl.BindBufferBase(GL_UNIFORM_BUFFER, kBindFrame, b.frame);
     const std::pair<GlBinding, GLuint> storage[] = {
-        {kBindPrimaryRays, b.rays}, {kBindRayFreeFlights, b.rayFreeFlights}, {kBindBeams, b.beams},
-        {kBindBeamFreeFlights, b.beamFreeFlights}, {kBindMedia, b.media}, {kBindVolumes, b.volumes},
+        {kBindPrimaryRays, b.rays}, {kBindRayFreeFlights, b.rayFreeFlights},
+        {kBindBeams, b.beams},      {kBindBeamFreeFlights, b.beamFreeFlights},
+        {kBindMedia, b.media},      {kBindVolumes, b.volumes},
         {kBindVoxels, b.voxels}};
     for (const auto& [binding, buffer] : storage) gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer);
     local.uploadSeconds = secondsSince(t0);
@@ -225,11 +230,13 @@ Image GlBeamSplatter::splat(const PrimarySegments& primary, const PhotonMap& pho
     gl.ReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, b.readback.data());
     GLenum error = gl.GetError();
     if (error != GL_NO_ERROR)
-        throw Error("GL splatter: OpenGL error 0x" + [&] {
-            char hex[16];
-            std::snprintf(hex, sizeof(hex), "%04x", unsigned(error));
-            return std::string(hex);
-        }() + " on " + m_context.description());
+        throw Error("GL splatter: OpenGL error 0x" +
+                    [&] {
+                        char hex[16];
+                        std::snprintf(hex, sizeof(hex), "%04x", unsigned(error));
+                        return std::string(hex);
+                    }() +
+                    " on " + m_context.description());
     Image out(w, h);
     for (int y = 0; y < h; ++y) {  // GL's rows run bottom-up
         const float* row = &b.readback[size_t(h - 1 - y) * w * 4];

@@ -22,22 +22,33 @@ bool hasExtension(const char* list, const char* name) {
 
 std::string eglErrorName(EGLint e) {
     switch (e) {
-        case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
-        case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
-        case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
-        case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
-        case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
-        case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
-        case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
-        case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
-        case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
-        default: return "EGL error " + std::to_string(e);
+        case EGL_NOT_INITIALIZED:
+            return "EGL_NOT_INITIALIZED";
+        case EGL_BAD_ACCESS:
+            return "EGL_BAD_ACCESS";
+        case EGL_BAD_ALLOC:
+            return "EGL_BAD_ALLOC";
+        case EGL_BAD_ATTRIBUTE:
+            return "EGL_BAD_ATTRIBUTE";
+        case EGL_BAD_CONFIG:
+            return "EGL_BAD_CONFIG";
+        case EGL_BAD_CONTEXT:
+            return "EGL_BAD_CONTEXT";
+        case EGL_BAD_DISPLAY:
+            return "EGL_BAD_DISPLAY";
+        case EGL_BAD_MATCH:
+            return "EGL_BAD_MATCH";
+        case EGL_BAD_PARAMETER:
+            return "EGL_BAD_PARAMETER";
+        default:
+            return "EGL error " + std::to_string(e);
     }
 }
 
 class EglContext : public GlContext {
 public:
-    EglContext(EGLDisplay display, EGLContext context, const std::string& name) : m_display(display), m_context(context) {
+    EglContext(EGLDisplay display, EGLContext context, const std::string& name)
+        : m_display(display), m_context(context) {
         try {
             finishSetup([](const char* f) { return reinterpret_cast<void*>(eglGetProcAddress(f)); }, name);
         } catch (...) {
@@ -89,10 +100,15 @@ std::unique_ptr<GlContext> contextOn(EGLDisplay display, const std::string& name
         }
         config = EGL_NO_CONFIG_KHR;
     }
-    const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
-                                     EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+    const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                     4,
+                                     EGL_CONTEXT_MINOR_VERSION,
+                                     5,
+                                     EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                     EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
 #ifndef NDEBUG
-                                     EGL_CONTEXT_OPENGL_DEBUG, EGL_TRUE,
+                                     EGL_CONTEXT_OPENGL_DEBUG,
+                                     EGL_TRUE,
 #endif
                                      EGL_NONE};
     EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, contextAttribs);

@@ -1,8 +1,12 @@
 // OSMesa backend of GlContext, loaded with dlopen so that libOSMesa's gl* exports never meet
 // another GL library's at link time (DEPS.md); every entry point comes from OSMesaGetProcAddress.
-#include "gpu/gl_context.h"  // glcorearb.h before osmesa.h's gl.h, which would hide its 1.x typedefs
+// Order matters: glcorearb.h (through gl_context.h) must come before osmesa.h's gl.h, which
+// would hide the GL 1.x function-pointer typedefs the function table uses.
+// clang-format off
+#include "gpu/gl_context.h"
 
 #include <GL/osmesa.h>
+// clang-format on
 #include <dlfcn.h>
 
 #include "core/error.h"
@@ -80,8 +84,17 @@ namespace detail {
 std::unique_ptr<GlContext> createOSMesaContext(std::string* whyNot) {
     const OSMesaApi* api = osmesaApi(whyNot);
     if (!api) return nullptr;
-    const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 0, OSMESA_PROFILE, OSMESA_CORE_PROFILE,
-                           OSMESA_CONTEXT_MAJOR_VERSION, 4, OSMESA_CONTEXT_MINOR_VERSION, 5, 0};
+    const int attribs[] = {OSMESA_FORMAT,
+                           OSMESA_RGBA,
+                           OSMESA_DEPTH_BITS,
+                           0,
+                           OSMESA_PROFILE,
+                           OSMESA_CORE_PROFILE,
+                           OSMESA_CONTEXT_MAJOR_VERSION,
+                           4,
+                           OSMESA_CONTEXT_MINOR_VERSION,
+                           5,
+                           0};
     OSMesaContext context = api->createContextAttribs(attribs, nullptr);
     if (!context) {
         *whyNot = "OSMesaCreateContextAttribs gave no 4.5 core context";

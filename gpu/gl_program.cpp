@@ -5,15 +5,21 @@
 
 namespace tyndall {
 
-std::string glsl(const char* name) { return shaderSource(name); }
+std::string glsl(const char* name) {
+    return shaderSource(name);
+}
 
 namespace {
 const char* stageName(GLenum type) {
     switch (type) {
-        case GL_VERTEX_SHADER: return "vertex";
-        case GL_FRAGMENT_SHADER: return "fragment";
-        case GL_COMPUTE_SHADER: return "compute";
-        default: return "shader";
+        case GL_VERTEX_SHADER:
+            return "vertex";
+        case GL_FRAGMENT_SHADER:
+            return "fragment";
+        case GL_COMPUTE_SHADER:
+            return "compute";
+        default:
+            return "shader";
     }
 }
 /// Driver logs span lines; Error messages are one line.
@@ -48,7 +54,8 @@ GlProgram::GlProgram(const GlFunctions& gl, const std::string& name, const std::
             gl.GetShaderInfoLog(shader, sizeof(log), nullptr, log);
             cleanup();
             gl.DeleteProgram(m_id);
-            throw Error("GLSL program '" + name + "': " + stageName(stage.type) + " shader does not compile: " + oneLine(log));
+            throw Error("GLSL program '" + name + "': " + stageName(stage.type) +
+                        " shader does not compile: " + oneLine(log));
         }
         gl.AttachShader(m_id, shader);
     }
@@ -64,6 +71,8 @@ GlProgram::GlProgram(const GlFunctions& gl, const std::string& name, const std::
     }
 }
 
-GlProgram::~GlProgram() { m_gl.DeleteProgram(m_id); }
+GlProgram::~GlProgram() {
+    m_gl.DeleteProgram(m_id);
+}
 
 }  // namespace tyndall

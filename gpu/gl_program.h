@@ -10,8 +10,8 @@
 namespace tyndall {
 
 struct GlShaderStage {
-    GLenum type;                        ///< GL_VERTEX_SHADER, GL_FRAGMENT_SHADER, GL_COMPUTE_SHADER
-    std::vector<std::string> sources;   ///< texts, concatenated after the #version line
+    GLenum type;                       ///< GL_VERTEX_SHADER, GL_FRAGMENT_SHADER, GL_COMPUTE_SHADER
+    std::vector<std::string> sources;  ///< texts, concatenated after the #version line
 };
 
 class GlProgram {

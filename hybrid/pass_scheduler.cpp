@@ -12,7 +12,9 @@ namespace tyndall {
 
 namespace {
 using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+double secondsSince(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
 }  // namespace
 
 GpuMode parseGpuMode(const std::string& text) {
@@ -160,7 +162,8 @@ RenderProgress PassScheduler::run(const PassRenderer& renderer, Accumulator& acc
             } else {
                 break;
             }
-            if (m_resetRequested.exchange(false) && command == DisplayCommand::Continue) command = DisplayCommand::Reset;
+            if (m_resetRequested.exchange(false) && command == DisplayCommand::Continue)
+                command = DisplayCommand::Reset;
             if (m_exitRequested) command = DisplayCommand::Exit;
             if (command == DisplayCommand::Exit) break;
             if (command == DisplayCommand::Reset) {

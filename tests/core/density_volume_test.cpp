@@ -22,7 +22,8 @@ DensityVolume affineVolume(int nx, int ny, int nz) {
     v.voxels.resize(v.voxelCount());
     for (int k = 0; k < nz; ++k)
         for (int j = 0; j < ny; ++j)
-            for (int i = 0; i < nx; ++i) v.voxels[(size_t(k) * ny + j) * nx + i] = 1.0f + 0.5f * i - 0.25f * j + 0.125f * k;
+            for (int i = 0; i < nx; ++i)
+                v.voxels[(size_t(k) * ny + j) * nx + i] = 1.0f + 0.5f * i - 0.25f * j + 0.125f * k;
     return v;
 }
 }  // namespace

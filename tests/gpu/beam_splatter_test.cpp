@@ -124,8 +124,10 @@ PhotonMap adversarialBeams(const Camera& cam, int w, int h) {
             for (float frac : {0.1f, 0.4f}) {
                 Vec3 edgeR = viewDir(1.0f, 0.2f), edgeU = viewDir(-0.3f, 1.0f);
                 Vec3 nR = normalize(cross(edgeR, U)), nU = normalize(cross(R, edgeU));  // outward
-                pm.beams.push_back(makeBeam(e + edgeR * (z / dot(edgeR, F)) + nR * (r + frac * spread) - U * 1.0f, U, 2.0f, r, 0, power()));
-                pm.beams.push_back(makeBeam(e + edgeU * (z / dot(edgeU, F)) + nU * (r + frac * spread) - R * 1.0f, R, 2.0f, r, 0, power()));
+                pm.beams.push_back(makeBeam(e + edgeR * (z / dot(edgeR, F)) + nR * (r + frac * spread) - U * 1.0f, U,
+                                            2.0f, r, 0, power()));
+                pm.beams.push_back(makeBeam(e + edgeU * (z / dot(edgeU, F)) + nU * (r + frac * spread) - R * 1.0f, R,
+                                            2.0f, r, 0, power()));
             }
         }
         // Just beyond the full-screen distance 2 (r + lensRadius), where the lens blur is largest.
@@ -136,10 +138,12 @@ PhotonMap adversarialBeams(const Camera& cam, int w, int h) {
         }
     }
     for (int i = 0; i < 60; ++i) {  // random beams around the view
-        Vec3 o = e + F * (6.0f * rng.uniform() - 1.0f) + R * (4.0f * rng.uniform() - 2.0f) + U * (3.0f * rng.uniform() - 1.5f);
+        Vec3 o = e + F * (6.0f * rng.uniform() - 1.0f) + R * (4.0f * rng.uniform() - 2.0f) +
+                 U * (3.0f * rng.uniform() - 1.5f);
         Vec3 d{2.0f * rng.uniform() - 1.0f, 2.0f * rng.uniform() - 1.0f, 2.0f * rng.uniform() - 1.0f};
         if (lengthSquared(d) < 1e-3f) continue;
-        pm.beams.push_back(makeBeam(o, d, 0.2f + 3.0f * rng.uniform(), 0.01f + 0.1f * rng.uniform(), int(i % 7 == 0), power()));
+        pm.beams.push_back(
+            makeBeam(o, d, 0.2f + 3.0f * rng.uniform(), 0.01f + 0.1f * rng.uniform(), int(i % 7 == 0), power()));
     }
     return pm;
 }
@@ -149,7 +153,9 @@ struct SplatCase {
     float lensRadius;
     float focusDistance;
 };
-void PrintTo(const SplatCase& c, std::ostream* os) { *os << c.name; }
+void PrintTo(const SplatCase& c, std::ostream* os) {
+    *os << c.name;
+}
 
 }  // namespace
 
@@ -179,7 +185,8 @@ TEST_P(AdversarialBeams, GlMatchesBruteForceAndCoversEveryPixel) {
         int lit = 0;
         for (const Rgb& p : reference.pixels) lit += !p.isBlack();
         litBeams += lit > 0;
-        EXPECT_EQ(coverageMismatches(gl, reference, 0.0f), 0) << c.name << " beam " << i << " (" << lit << " pixels lit)";
+        EXPECT_EQ(coverageMismatches(gl, reference, 0.0f), 0)
+            << c.name << " beam " << i << " (" << lit << " pixels lit)";
         EXPECT_EQ(coverageMismatches(tiled, reference, 0.0f), 0) << c.name << " beam " << i << ": CPU footprint";
         EXPECT_LT(relativeRms(gl, reference), 1e-4) << c.name << " beam " << i;
     }

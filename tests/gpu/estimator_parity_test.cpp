@@ -50,7 +50,9 @@ struct Cases {
     std::vector<float> rayFreeFlights, beamFreeFlights;
 };
 
-Vec3 randomDir(Rng& rng) { return sampleUniformSphere(rng.uniform(), rng.uniform()); }
+Vec3 randomDir(Rng& rng) {
+    return sampleUniformSphere(rng.uniform(), rng.uniform());
+}
 
 Cases makeCases(int n) {
     Cases c;
@@ -73,7 +75,9 @@ Cases makeCases(int n) {
         // Closest points placed at, inside and just outside the accepting ranges.
         auto edgy = [&](float max) {
             float x = rng.uniform();
-            return x < 0.15f ? -0.001f * max * rng.uniform() : x < 0.3f ? max * (1 + 0.001f * rng.uniform()) : 1.1f * max * rng.uniform();
+            return x < 0.15f  ? -0.001f * max * rng.uniform()
+                   : x < 0.3f ? max * (1 + 0.001f * rng.uniform())
+                              : 1.1f * max * rng.uniform();
         };
         float s0 = edgy(sMax), tMax = 0.3f + 3 * rng.uniform(), t0 = edgy(tMax);
         float u = r * (rng.uniform() < 0.2f ? 1.0f - 1e-4f * rng.uniform() : 1.1f * rng.uniform());
@@ -90,8 +94,9 @@ Cases makeCases(int n) {
         c.beams.push_back(b);
         c.rays.push_back(PrimaryRay{o, sMax, d, 0});
         float g = gs[i % 6];
-        c.params.insert(c.params.end(), {0.1f + rng.uniform(), 0.2f + rng.uniform(), 0.3f + rng.uniform(), g,
-                                         rng.uniform(), rng.uniform(), 1.2f * r * rng.uniform(), 2 * rng.uniform() - 1});
+        c.params.insert(c.params.end(),
+                        {0.1f + rng.uniform(), 0.2f + rng.uniform(), 0.3f + rng.uniform(), g, rng.uniform(),
+                         rng.uniform(), 1.2f * r * rng.uniform(), 2 * rng.uniform() - 1});
         for (int k = 0; k < 4; ++k) {
             c.rayFreeFlights.push_back(sMax * rng.uniform());
             c.beamFreeFlights.push_back(0.3f * rng.uniform());
@@ -116,9 +121,9 @@ TEST(EstimatorParity, GlslTwinMatchesCpp) {
 
     auto ctx = GlContext::create();
     const GlFunctions& gl = ctx->gl();
-    GlProgram program(gl, "estimator parity",
-                      {{GL_COMPUTE_SHADER,
-                        {glsl("layout.glsl"), glsl("beam_estimator.glsl"), glsl("media.glsl"), kParityShader}}});
+    GlProgram program(
+        gl, "estimator parity",
+        {{GL_COMPUTE_SHADER, {glsl("layout.glsl"), glsl("beam_estimator.glsl"), glsl("media.glsl"), kParityShader}}});
     GlSplatFrame frame{};
     frame.freeFlightsPerRay = 4;
     frame.freeFlightsPerBeam = 4;
@@ -135,7 +140,8 @@ TEST(EstimatorParity, GlslTwinMatchesCpp) {
     upload(GL_SHADER_STORAGE_BUFFER, kBindBeams, buffers[3], cases.beams.data(), n * sizeof(PhotonBeam));
     upload(GL_SHADER_STORAGE_BUFFER, kBindBeamFreeFlights, buffers[4], cases.beamFreeFlights.data(), n * 16);
     upload(GL_SHADER_STORAGE_BUFFER, kBindMedia, buffers[5], table.media.data(), table.media.size() * sizeof(GlMedium));
-    upload(GL_SHADER_STORAGE_BUFFER, kBindVolumes, buffers[6], table.volumes.data(), table.volumes.size() * sizeof(GlVolume));
+    upload(GL_SHADER_STORAGE_BUFFER, kBindVolumes, buffers[6], table.volumes.data(),
+           table.volumes.size() * sizeof(GlVolume));
     upload(GL_SHADER_STORAGE_BUFFER, kBindVoxels, buffers[7], table.voxels.data(), table.voxels.size() * sizeof(float));
     upload(GL_SHADER_STORAGE_BUFFER, 7, buffers[8], nullptr, size_t(n) * kOutputs * sizeof(float));
     upload(GL_SHADER_STORAGE_BUFFER, 8, buffers[9], cases.params.data(), cases.params.size() * sizeof(float));
@@ -179,9 +185,10 @@ TEST(EstimatorParity, GlslTwinMatchesCpp) {
         EXPECT_EQ(o[12], storedTransmittance(&cases.rayFreeFlights[size_t(i) * 4], 4, p[6])) << "case " << i;
         EXPECT_EQ(o[13], storedTransmittance(&cases.beamFreeFlights[size_t(i) * 4], 4, p[6])) << "case " << i;
     }
-    std::printf("%d cases, %d hits (%d at the 1/sin clamp), %d accept/reject mismatches; worst relative "
-                "radiance %.2g, kernel*r %.2g, phase %.2g, absolute density %.2g\n",
-                n, hits, clamped, flagMismatch, worstRadiance, worstKernel, worstPhase, worstDensity);
+    std::printf(
+        "%d cases, %d hits (%d at the 1/sin clamp), %d accept/reject mismatches; worst relative "
+        "radiance %.2g, kernel*r %.2g, phase %.2g, absolute density %.2g\n",
+        n, hits, clamped, flagMismatch, worstRadiance, worstKernel, worstPhase, worstDensity);
     EXPECT_GT(hits, n / 4);
     EXPECT_GT(clamped, 10);
     EXPECT_EQ(flagMismatch, 0) << "the GLSL and C++ accept/reject decisions must agree (precise arithmetic)";

@@ -86,6 +86,29 @@ TEST(PassScheduler, HybridAndCpuOnlyGiveTheSameImage) {
     EXPECT_GT(relativeRms(camera.radiance, full), 0.05);
 }
 
+TEST(PassScheduler, HybridAndCpuOnlyAgreeInAGridMedium) {
+    // The default scene's fog made heterogeneous: the GL side samples the dense volume and reads
+    // the stored free flights of every pixel and beam.
+    Scene scene = defaultScene();
+    scene.media[0].density = std::make_shared<tyndall::test::LatticeTestGrid>(scene.bounds, 12);
+    scene.validate();
+    RenderSettings s = smallSettings(16);
+    Rendered cpu = render(GpuMode::Off, scene, s);
+    Rendered hybrid = render(GpuMode::On, scene, s);
+    double rms = relativeRms(hybrid.image, cpu.image);
+    std::printf("grid medium, 16 passes: relative RMS hybrid vs CPU-only %.3g\n", rms);
+    EXPECT_LT(rms, 1e-3);
+    EXPECT_GT(relativeRms(cpu.image, render(GpuMode::Off, defaultScene(), s).image), 0.02)
+        << "the grid should change the image";
+    PassRenderer renderer(scene, s);
+    PhotonMap photons = renderer.tracePhotons(0);
+    CameraPassResult camera = renderer.traceCamera(0, photons);
+    ASSERT_GT(photons.freeFlightsPerBeam, 0);
+    Image full = renderer.splatPrimary(camera, photons);
+    full += camera.radiance;
+    EXPECT_GT(relativeRms(camera.radiance, full), 0.05) << "the primary splat should matter in the grid medium";
+}
+
 TEST(PassScheduler, ResetFromTheDisplayRestartsCleanly) {
     RenderSettings s = smallSettings(12);
     Rendered fresh = render(GpuMode::Off, defaultScene(), s);
