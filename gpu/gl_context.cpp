@@ -8,7 +8,7 @@ namespace tyndall {
 
 namespace {
 #ifndef NDEBUG
-void GLAPIENTRY debugMessage(GLenum source, GLenum type, GLuint id, GLenum severity, GLsizei length,
+void APIENTRY debugMessage(GLenum source, GLenum type, GLuint id, GLenum severity, GLsizei length,
                              const GLchar* message, const void* user) {
     if (severity == GL_DEBUG_SEVERITY_NOTIFICATION) return;
     std::fprintf(stderr, "tyndall: GL debug: %s\n", message);
