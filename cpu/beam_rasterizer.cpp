@@ -84,6 +84,10 @@ BeamFootprint beamFootprint(const Camera& cam, int width, int height, const Phot
     const float margin = coc + 0.75f;  // 0.75 > half the pixel diagonal: any jittered film position
     fp.ra = f * r / (c0.z - r) * stretch + margin;
     fp.rb = f * r / (c1.z - r) * stretch + margin;
+    // Degenerate input (NaN, or coordinates too large to bin as ints): be safe, not fast.
+    const float limit = 1e7f;
+    for (float v : {fp.ax, fp.ay, fp.bx, fp.by, fp.ra, fp.rb})
+        if (!(std::abs(v) < limit)) fp.fullScreen = true;
     return fp;
 }
 
