@@ -34,11 +34,14 @@
 // independent batches of passes. The standard errors must themselves be small (about 1%), so the
 // test can fail: a missing factor 2, pi or 4 pi, or a flipped phase sign is far outside.
 #include <gtest/gtest.h>
+#include <tbb/parallel_for.h>
 
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <vector>
 
+#include "core/density_grid.h"
 #include "cpu/reference_tracer.h"
 #include "tests/cpu/reference_fixtures.h"
 #include "tests/test_util.h"
@@ -65,30 +68,73 @@ double hgDouble(double cosTheta, double g) {
     return (1.0 - g * g) / (4.0 * M_PI * denom * std::sqrt(denom));
 }
 
-/// Single-scattered radiance along o + s d, s in [sIn, sOut], from `light` at the origin.
-Rgb singleScatter(const Vec3& o, const Vec3& d, double sIn, double sOut, const Medium& m, const Light& light) {
-    double sc = -double(dot(o, d));
-    Vec3 p = o + d * float(sc);
-    double h = length(p);
-    double phiA = std::atan2(sIn - sc, h), phiB = std::atan2(sOut - sc, h);
-    const int n = 1000;  // even; the spot's smoothstep edge is only C1
-    double step = (phiB - phiA) / n, sum[3] = {0, 0, 0};
-    for (int k = 0; k <= n; ++k) {
-        double phi = phiA + k * step;
-        double s = sc + h * std::tan(phi), dist = h / std::cos(phi);
-        double x[3] = {o.x + s * d.x, o.y + s * d.y, o.z + s * d.z};
-        double cosTheta = -(x[0] * d.x + x[1] * d.y + x[2] * d.z) / dist;
-        double falloff = 1.0;
-        if (light.type == LightType::Spot) {
-            Vec3 w(float(x[0] / dist), float(x[1] / dist), float(x[2] / dist));
-            falloff = light.spotFalloff(dot(w, light.direction));
-        }
-        double weight = (k == 0 || k == n ? 1 : (k % 2 ? 4 : 2)) * falloff / h * hgDouble(cosTheta, m.g);
-        for (int c = 0; c < 3; ++c)
-            sum[c] += weight * m.sigmaS[c] * light.intensity[c] * std::exp(-m.sigmaT()[c] * (dist + (s - sIn)));
+/// A density field rho(x) = a + b dot(x, axis) over the unit sphere (grid media): linear, so the
+/// optical depth of any segment inside the sphere is its length times rho at its midpoint.
+class LinearRampDensity : public DensityGrid {
+public:
+    LinearRampDensity(float a, float b, Vec3 axis) : m_a(a), m_b(b), m_axis(normalize(axis)) {}
+    float density(const Vec3& p) const override {
+        return bounds().contains(p) ? std::max(0.0f, m_a + m_b * dot(p, m_axis)) : 0.0f;
     }
-    return Rgb(float(sum[0] * step / 3.0), float(sum[1] * step / 3.0), float(sum[2] * step / 3.0));
-}
+    Bounds3 bounds() const override { return {Vec3(-1.01f), Vec3(1.01f)}; }
+    float maxDensity() const override { return m_a + std::abs(m_b) * 1.01f * std::sqrt(3.0f); }
+    float meanDensity() const override { return m_a; }
+
+private:
+    float m_a, m_b;
+    Vec3 m_axis;
+};
+
+/// The single-scattering line integral of the file comment, for a light at the origin (point or
+/// spot) or a directional light, in a homogeneous medium or one with a LinearRampDensity.
+class SingleScatterIntegral {
+public:
+    SingleScatterIntegral(const Medium& medium, const Light& light) : m_medium(medium), m_light(light) {}
+
+    /// Radiance along o + s d, s in [sIn, sOut] (all inside the medium sphere of radius kR).
+    Rgb operator()(const Vec3& o, const Vec3& d, double sIn, double sOut) const {
+        const int n = 1000;  // even; the spot's smoothstep edge is only C1
+        const bool pointLike = m_light.type != LightType::Directional;
+        // Point-like lights: s = s_c + h tan(phi) takes out the 1/|x|^2 peak.
+        double sc = -double(dot(o, d)), h = length(o + d * float(sc));
+        double a = pointLike ? std::atan2(sIn - sc, h) : sIn, b = pointLike ? std::atan2(sOut - sc, h) : sOut;
+        double step = (b - a) / n, sum[3] = {0, 0, 0};
+        const Vec3 entry = o + d * float(sIn);
+        for (int k = 0; k <= n; ++k) {
+            double u = a + k * step, s = pointLike ? sc + h * std::tan(u) : u;
+            double dsdu = pointLike ? h / (std::cos(u) * std::cos(u)) : 1.0;
+            Vec3 x = o + d * float(s);
+            Rgb incident;  // before transmittance
+            Vec3 travel;   // direction the light travels at x
+            Vec3 source;   // where its path enters the medium
+            if (pointLike) {
+                float dist = length(x);
+                travel = x / dist;
+                float falloff = m_light.type == LightType::Spot ? m_light.spotFalloff(dot(travel, m_light.direction)) : 1.0f;
+                incident = m_light.intensity * (falloff / (dist * dist));
+                source = Vec3(0.0f);
+            } else {
+                travel = m_light.direction;
+                incident = m_light.intensity;
+                double xd = dot(x, travel), back = xd + std::sqrt(std::max(0.0, xd * xd - dot(x, x) + kR * kR));
+                source = x - travel * float(back);
+            }
+            double w = (k == 0 || k == n ? 1 : (k % 2 ? 4 : 2)) * dsdu * hgDouble(dot(travel, -d), m_medium.g) *
+                       density(x);
+            double tau = opticalDepth(source, x) + opticalDepth(entry, x);
+            for (int c = 0; c < 3; ++c) sum[c] += w * m_medium.sigmaS[c] * incident[c] * std::exp(-m_medium.sigmaT()[c] * tau);
+        }
+        return Rgb(float(sum[0] * step / 3.0), float(sum[1] * step / 3.0), float(sum[2] * step / 3.0));
+    }
+
+private:
+    double density(const Vec3& x) const { return m_medium.density ? m_medium.density->density(x) : 1.0; }
+    /// Integral of the density along [p, q] (multiply by sigma_t for the optical depth).
+    double opticalDepth(const Vec3& p, const Vec3& q) const { return length(q - p) * density((p + q) * 0.5f); }
+
+    Medium m_medium;
+    Light m_light;
+};
 
 /// Where a ray o + s d runs inside the sphere mesh (exact facets, via Embree): false if it misses.
 bool mediumInterval(const EmbreeScene& rt, const Ray& ray, bool cameraInside, float* sIn, float* sOut) {
@@ -117,7 +163,7 @@ template <typename PerRay>
 Expected expectedImage(const Scene& scene, const EmbreeScene& rt, int size, PerRay perRay) {
     Expected e{Image(size, size), std::vector<float>(size_t(size) * size, -1.0f)};
     const int k = 6;
-    for (int y = 0; y < size; ++y)
+    tbb::parallel_for(0, size, [&](int y) {
         for (int x = 0; x < size; ++x) {
             Rgb sum;
             for (int j = 0; j < k; ++j)
@@ -131,6 +177,7 @@ Expected expectedImage(const Scene& scene, const EmbreeScene& rt, int size, PerR
             if (mediumInterval(rt, centre, rt.mediumAt(scene.camera.position) != kVacuum, &s0, &s1))
                 e.h[size_t(y) * size + x] = length(centre.o + centre.d * -dot(centre.o, centre.d));
         }
+    });
     return e;
 }
 
@@ -206,16 +253,30 @@ Medium scatteringMedium() {
     return m;
 }
 
-/// PPB cut to single scattering, with a beam radius that stays ~constant (a huge schedule
-/// offset), small against the excluded 0.15 R around the light.
-RenderSettings singleScatterPpbSettings(int size) {
+/// A grid medium (grey extinction, coloured albedo) with density 1 +- 0.7 across the sphere.
+Medium rampMedium() {
+    Medium m;
+    m.name = "ramp";
+    m.sigmaS = Rgb(0.6f, 0.5f, 0.4f);
+    m.sigmaA = Rgb(0.4f, 0.5f, 0.6f);
+    m.g = 0.5f;
+    m.density = std::make_shared<LinearRampDensity>(1.0f, 0.7f, Vec3(1.0f, 0.5f, -0.3f));
+    return m;
+}
+
+/// PPB cut to single scattering (one stored beam per photon path: `photonBounces` is 1 for a
+/// light inside the medium, 2 for a directional light, whose photons cross the Interface hull
+/// first, which the photon tracer counts as a bounce), with a beam radius that stays ~constant (a
+/// huge schedule offset), small against the excluded 0.1 R around the light.
+RenderSettings singleScatterPpbSettings(int size, int photonBounces = 1) {
     RenderSettings s;
     s.width = s.height = size;
     s.photonsPerPass = 20000;
-    s.maxPhotonBounces = 1;
+    s.maxPhotonBounces = photonBounces;
     s.radius = 0.025f;
     s.surfaceRadius = 0.05f;
     s.radiusOffset = 1000000000000ull;
+    s.freeFlightSamples = 16;
     s.seed = 7;
     return s;
 }
@@ -229,29 +290,39 @@ ReferenceSettings singleScatterReferenceSettings(int size, uint32_t spp) {
     return s;
 }
 
-void runSingleScatter(const char* what, const Light& light, const Camera& camera, bool cameraInside,
-                      const std::vector<Bin>& bins) {
+struct SingleScatterCase {
+    const char* name;
+    Medium medium;
+    Light light;
+    Camera camera;
+    bool cameraInside;
+    std::vector<Bin> bins;
+    uint32_t referenceSpp = 256;
+};
+
+void runSingleScatter(const SingleScatterCase& c) {
     const int size = 32;
-    Medium medium = scatteringMedium();
-    Scene scene = test::makeMediumSphereScene(medium, kR, light, camera);
+    Scene scene = test::makeMediumSphereScene(c.medium, kR, c.light, c.camera);
     EmbreeScene rt(scene);
-    ASSERT_EQ(rt.mediumAt(camera.position) != kVacuum, cameraInside);
+    ASSERT_EQ(rt.mediumAt(c.camera.position) != kVacuum, c.cameraInside);
+    SingleScatterIntegral integral(c.medium, c.light);
     Expected e = expectedImage(scene, rt, size, [&](const Ray& ray) {
         float s0, s1;
-        if (!mediumInterval(rt, ray, cameraInside, &s0, &s1)) return Rgb(0.0f);
-        return singleScatter(ray.o, ray.d, s0, s1, medium, light);
+        if (!mediumInterval(rt, ray, c.cameraInside, &s0, &s1)) return Rgb(0.0f);
+        return integral(ray.o, ray.d, s0, s1);
     });
 
-    ReferenceImage ref = ReferenceTracer(rt, singleScatterReferenceSettings(size, 256)).render();
-    checkReference(what, ref, e, bins, 0.012, 0.002);
+    ReferenceImage ref = ReferenceTracer(rt, singleScatterReferenceSettings(size, c.referenceSpp)).render();
+    checkReference(c.name, ref, e, c.bins, 0.015, 0.002);
 
-    std::vector<Image> batches = ppbBatches(scene, singleScatterPpbSettings(size), 8, 2);
-    checkPpb(what, batches, e, bins, 0.01, 0.01);
+    int photonBounces = c.light.type == LightType::Directional ? 2 : 1;
+    std::vector<Image> batches = ppbBatches(scene, singleScatterPpbSettings(size, photonBounces), 8, 2);
+    checkPpb(c.name, batches, e, c.bins, 0.015, 0.01);
 
     if (::testing::Test::HasFailure()) {
         Accumulator acc(size, size);
         for (const Image& b : batches) acc.addPass(b);
-        std::string base = std::string("analytic_") + (cameraInside ? "inside" : "outside");
+        std::string base = std::string("analytic_") + c.name;
         test::writeEvidence(base + "_exact", e.radiance);
         test::writeEvidence(base + "_reference", ref.mean);
         test::writeEvidence(base + "_ppb", acc.mean());
@@ -259,16 +330,44 @@ void runSingleScatter(const char* what, const Light& light, const Camera& camera
     }
 }
 
+// Camera inside the medium, behind and beside a spot aimed along -z, looking across its cone.
+Camera insideCamera() {
+    return Camera::lookAt({0.55f, 0.1f, 0.25f}, {-0.1f, 0.0f, -0.55f}, {0, 1, 0}, 80.0f * kPi / 180.0f);
+}
+// Camera outside: its paths cross the Interface hull, the medium stretch is secondary.
+Camera outsideCamera() {
+    return Camera::lookAt({0.2f, 0.1f, 2.5f}, {0.0f, 0.0f, 0.0f}, {0, 1, 0}, 2.0f * std::atan(1.0f / 2.5f));
+}
+const std::vector<Bin> kInsideBins = {{0.1f, 0.3f}, {0.3f, 2.0f}};
+const std::vector<Bin> kOutsideBins = {{0.1f, 0.45f}, {0.45f, 0.92f}};
+
 TEST(AnalyticSphere, SingleScatteringPrimarySegments) {
-    // Camera inside the medium, behind and beside a spot aimed along -z, looking across its cone.
-    Camera camera = Camera::lookAt({0.55f, 0.1f, 0.25f}, {-0.1f, 0.0f, -0.55f}, {0, 1, 0}, 80.0f * kPi / 180.0f);
-    runSingleScatter("primary", centreLight(LightType::Spot), camera, true, {{0.1f, 0.3f}, {0.3f, 2.0f}});
+    runSingleScatter({"primary", scatteringMedium(), centreLight(LightType::Spot), insideCamera(), true, kInsideBins, 512});
 }
 
 TEST(AnalyticSphere, SingleScatteringSecondarySegmentsThroughInterface) {
-    // Camera outside: its paths cross the Interface hull, the medium stretch is secondary.
-    Camera camera = Camera::lookAt({0.2f, 0.1f, 2.5f}, {0.0f, 0.0f, 0.0f}, {0, 1, 0}, 2.0f * std::atan(1.0f / 2.5f));
-    runSingleScatter("secondary", centreLight(LightType::Point), camera, false, {{0.1f, 0.45f}, {0.45f, 0.92f}});
+    runSingleScatter({"secondary", scatteringMedium(), centreLight(LightType::Point), outsideCamera(), false, kOutsideBins});
+}
+
+TEST(AnalyticSphere, SingleScatteringDirectionalLight) {
+    // Photons start on a disk covering the scene's bounding sphere; NEE looks back along -direction.
+    Light sun;
+    sun.name = "sun";
+    sun.type = LightType::Directional;
+    sun.direction = normalize(Vec3(0.3f, -1.0f, -0.2f));
+    sun.intensity = Rgb(1.5f, 1.2f, 1.0f);
+    runSingleScatter({"directional", scatteringMedium(), sun, outsideCamera(), false, {{0.0f, 0.5f}, {0.5f, 0.92f}}});
+}
+
+// Heterogeneous: delta tracking (photons, reference), stored free-flight transmittance (beams and
+// camera segments), ratio tracking (reference shadow rays). One bin: noisier than homogeneous.
+TEST(AnalyticSphere, SingleScatteringDensityGridPrimarySegments) {
+    runSingleScatter({"grid_primary", rampMedium(), centreLight(LightType::Spot), insideCamera(), true, {{0.1f, 2.0f}}, 512});
+}
+
+TEST(AnalyticSphere, SingleScatteringDensityGridSecondarySegments) {
+    runSingleScatter({"grid_secondary", rampMedium(), centreLight(LightType::Point), outsideCamera(), false,
+                      {{0.1f, 0.92f}}, 512});
 }
 
 TEST(AnalyticSphere, DirectIrradianceThroughAbsorbingMedium) {
