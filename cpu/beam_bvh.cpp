@@ -58,6 +58,7 @@ BeamBvh::BeamBvh(const EmbreeDevice& device, const std::vector<PhotonBeam>& beam
         rtcCommitScene(m_scene);
         return;
     }
+    for (const PhotonBeam& b : beams) m_maxRadius = std::max(m_maxRadius, b.radius);
     RTCGeometry geom;
     if (kind == Kind::UserGeometry) {
         geom = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_USER);
@@ -101,17 +102,22 @@ void BeamBvh::query(const Vec3& o, const Vec3& d, float sMax, std::vector<BeamHi
     ctx.o = o;
     ctx.d = d;
     ctx.sMax = sMax;
+    // Embree's flat-curve intersector never reports a curve whose hit lies within about two radii
+    // of the ray origin, so the curve query starts `lead` before o (the filter's exact test still
+    // measures from o, so nothing outside [0, sMax] gets in). User primitives need no lead.
+    const float lead = m_kind == Kind::FlatCurves ? 4.0f * m_maxRadius : 0.0f;
+    const Vec3 start = o - d * lead;
     RTCRayHit rh;
-    rh.ray.org_x = o.x;
-    rh.ray.org_y = o.y;
-    rh.ray.org_z = o.z;
+    rh.ray.org_x = start.x;
+    rh.ray.org_y = start.y;
+    rh.ray.org_z = start.z;
     rh.ray.dir_x = d.x;
     rh.ray.dir_y = d.y;
     rh.ray.dir_z = d.z;
     rh.ray.tnear = 0.0f;
     // Curves only report hits up to tfar; user primitives test s <= sMax themselves. Beams reach
     // a little past the segment end through their radius, hence the margin.
-    rh.ray.tfar = std::isfinite(sMax) ? sMax * 1.0001f + 1e-6f : kInfinity;
+    rh.ray.tfar = std::isfinite(sMax) ? lead + sMax * 1.0001f + 1e-6f : kInfinity;
     rh.ray.mask = 0xFFFFFFFFu;
     rh.ray.flags = 0;
     rh.ray.time = 0;

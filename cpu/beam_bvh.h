@@ -41,6 +41,7 @@ public:
 private:
     const std::vector<PhotonBeam>& m_beams;
     Kind m_kind;
+    float m_maxRadius = 0;
     RTCScene m_scene = nullptr;
 };
 
