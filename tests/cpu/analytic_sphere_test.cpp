@@ -68,23 +68,6 @@ double hgDouble(double cosTheta, double g) {
     return (1.0 - g * g) / (4.0 * M_PI * denom * std::sqrt(denom));
 }
 
-/// A density field rho(x) = a + b dot(x, axis) over the unit sphere (grid media): linear, so the
-/// optical depth of any segment inside the sphere is its length times rho at its midpoint.
-class LinearRampDensity : public DensityGrid {
-public:
-    LinearRampDensity(float a, float b, Vec3 axis) : m_a(a), m_b(b), m_axis(normalize(axis)) {}
-    float density(const Vec3& p) const override {
-        return bounds().contains(p) ? std::max(0.0f, m_a + m_b * dot(p, m_axis)) : 0.0f;
-    }
-    Bounds3 bounds() const override { return {Vec3(-1.01f), Vec3(1.01f)}; }
-    float maxDensity() const override { return m_a + std::abs(m_b) * 1.01f * std::sqrt(3.0f); }
-    float meanDensity() const override { return m_a; }
-
-private:
-    float m_a, m_b;
-    Vec3 m_axis;
-};
-
 /// The single-scattering line integral of the file comment, for a light at the origin (point or
 /// spot) or a directional light, in a homogeneous medium or one with a LinearRampDensity.
 class SingleScatterIntegral {
@@ -260,7 +243,7 @@ Medium rampMedium() {
     m.sigmaS = Rgb(0.6f, 0.5f, 0.4f);
     m.sigmaA = Rgb(0.4f, 0.5f, 0.6f);
     m.g = 0.5f;
-    m.density = std::make_shared<LinearRampDensity>(1.0f, 0.7f, Vec3(1.0f, 0.5f, -0.3f));
+    m.density = std::make_shared<test::LinearRampDensity>(1.0f, 0.7f, Vec3(1.0f, 0.5f, -0.3f));
     return m;
 }
 

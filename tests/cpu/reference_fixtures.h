@@ -1,16 +1,36 @@
 #pragma once
 // Scenes and helpers shared by the reference-tracer tests (self-checks, analytic scene,
 // PPB-versus-reference consistency).
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
 #include "core/accumulator.h"
+#include "core/density_grid.h"
 #include "core/image_io.h"
 #include "core/mesh_builders.h"
 #include "core/scene.h"
 #include "cpu/pass_renderer.h"
 
 namespace tyndall::test {
+
+/// A density field rho(x) = a + b dot(x, axis) over the unit sphere (grid media): linear, so the
+/// optical depth of any segment inside the sphere is its length times rho at its midpoint.
+class LinearRampDensity : public DensityGrid {
+public:
+    LinearRampDensity(float a, float b, Vec3 axis) : m_a(a), m_b(b), m_axis(normalize(axis)) {}
+    float density(const Vec3& p) const override {
+        return bounds().contains(p) ? std::max(0.0f, m_a + m_b * dot(p, m_axis)) : 0.0f;
+    }
+    Bounds3 bounds() const override { return {Vec3(-1.01f), Vec3(1.01f)}; }
+    float maxDensity() const override { return m_a + std::abs(m_b) * 1.01f * std::sqrt(3.0f); }
+    float meanDensity() const override { return m_a; }
+
+private:
+    float m_a, m_b;
+    Vec3 m_axis;
+};
 
 /// A sphere of radius `radius` at the origin filled with `medium`, `light` (a point or spot light,
 /// normally at the centre), nothing else (vacuum outside). The hull is an index-matched Interface
