@@ -35,7 +35,9 @@ void addReferenceCommand(CLI::App& app, int& exitCode) {
         "Render a scene with the unbiased volumetric path tracer (ground truth; misses caustics of point, spot and "
         "directional lights seen through glass or mirrors)");
     addSceneAndOutputOptions(cmd, o->common, "reference.png");
-    cmd->add_option("--spp", o->reference.samplesPerPixel, "Samples (camera paths) per pixel")->capture_default_str();
+    cmd->add_option("--spp", o->reference.samplesPerPixel, "Samples (camera paths) per pixel")
+        ->check(nonNegativeInteger())
+        ->capture_default_str();
     cmd->add_option("--max-depth", o->reference.maxDepth,
                     "Most scattering vertices (surface or medium) per path; 1 = direct and single scattering")
         ->capture_default_str();

@@ -5,7 +5,7 @@
 namespace tyndall {
 
 namespace {
-float expSample(float sigma, float u) { return sigma > 0 ? -std::log1p(-u) / sigma : kInfinity; }
+float expSample(float sigma, float u) { return sigma > 0 ? -std::log(1.0f - u) / sigma : kInfinity; }  // u < 1
 }  // namespace
 
 FreeFlight sampleFreeFlight(const Medium& medium, const Ray& ray, float tEnd, Rng& rng) {

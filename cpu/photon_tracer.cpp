@@ -37,6 +37,8 @@ PhotonMap PhotonTracer::trace(uint64_t pass, uint64_t firstPath, uint32_t count)
     std::vector<PhotonMap> parts(blocks);
     tbb::parallel_for(uint32_t(0), blocks, [&](uint32_t b) {
         PhotonMap& part = parts[b];
+        part.beams.reserve(kBlock * 8);
+        part.surfacePhotons.reserve(kBlock * 4);
         part.freeFlightsPerBeam = m_anyHeterogeneous ? m_settings.freeFlightSamples : 0;
         uint32_t end = std::min(count, (b + 1) * kBlock);
         for (uint32_t k = b * kBlock; k < end; ++k) tracePath(pass, k, firstPath + k, count, part);
@@ -50,6 +52,7 @@ PhotonMap PhotonTracer::trace(uint64_t pass, uint64_t firstPath, uint32_t count)
     for (const PhotonMap& p : parts) {
         nb += p.beams.size();
         ns += p.surfacePhotons.size();
+        out.raysTraced += p.raysTraced;
     }
     out.beams.reserve(nb);
     out.surfacePhotons.reserve(ns);
@@ -80,6 +83,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
     for (int bounce = 0; bounce < m_settings.maxPhotonBounces; ++bounce) {
         SurfaceHit hit;
         bool surface = m_rt.intersect(ray, &hit);
+        out.raysTraced++;
         float tHit = surface ? hit.t : kInfinity;
 
         if (medium != kVacuum) {

@@ -1,64 +1,56 @@
-// The beam BVH's two Embree representations find exactly the beams that the brute-force beam x ray
-// test finds, including for query segments that start right next to a beam (secondary camera
-// segments start on the mirror or glass surface where photon beams end and begin; Embree's flat
-// curves drop hits within about two radii of the ray origin unless the query starts earlier).
+// BeamBvh (both Embree representations, with beams split into pieces) must return exactly the
+// beams brute force finds for a ray segment, each once, sorted by index.
 #include "cpu/beam_bvh.h"
 
 #include <gtest/gtest.h>
 
-#include <vector>
-
 #include "core/rng.h"
 #include "core/sampling.h"
 
-namespace tyndall {
+using namespace tyndall;
+
 namespace {
-
-std::vector<uint32_t> bruteForce(const std::vector<PhotonBeam>& beams, const Vec3& o, const Vec3& d, float sMax) {
-    std::vector<uint32_t> ids;
-    BeamRayHit hit;
-    for (uint32_t i = 0; i < beams.size(); ++i)
-        if (intersectBeamRay(o, d, sMax, beams[i], &hit)) ids.push_back(i);
-    return ids;
-}
-
-TEST(BeamBvh, BothKindsFindExactlyTheBruteForceBeams) {
-    Rng rng = Rng::forKey(5, 0, 0, StreamPurpose::Test);
-    std::vector<PhotonBeam> beams(3000);
-    for (PhotonBeam& b : beams) {
-        b.origin = Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 2.0f - Vec3(1.0f);
+std::vector<PhotonBeam> randomBeams(int n, uint64_t seed) {
+    Rng rng(seed, 1);
+    std::vector<PhotonBeam> beams;
+    for (int i = 0; i < n; ++i) {
+        PhotonBeam b;
+        b.origin = Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 4.0f - Vec3(2.0f);
         b.dir = sampleUniformSphere(rng.uniform(), rng.uniform());
-        b.tMax = 0.05f + 0.6f * rng.uniform();
-        b.radius = 0.005f + 0.03f * rng.uniform();
+        b.tMax = i % 10 == 0 ? 0.01f : rng.uniform() * 5.0f;  // some very short, some long
+        b.radius = 0.005f + 0.1f * rng.uniform();
         b.power = Rgb(1.0f);
         b.medium = 0;
+        beams.push_back(b);
     }
-    EmbreeDevice device;
-    BeamBvh user(device, beams, BeamBvh::Kind::UserGeometry), curves(device, beams, BeamBvh::Kind::FlatCurves);
-    std::vector<BeamHitRecord> hitsUser, hitsCurves;
-    size_t total = 0;
-    for (int q = 0; q < 4000; ++q) {
-        Vec3 d = sampleUniformSphere(rng.uniform(), rng.uniform());
-        Vec3 o;
-        if (q % 2 == 0) {
-            o = Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 2.0f - Vec3(1.0f);
-        } else {  // start where a beam ends (or next to it)
-            const PhotonBeam& b = beams[rng.nextUInt() % beams.size()];
-            o = b.origin + b.dir * (b.tMax * (0.9f + 0.1f * rng.uniform())) + sampleUniformSphere(rng.uniform(), rng.uniform()) * (0.5f * b.radius * rng.uniform());
-        }
-        float sMax = 0.1f + 1.5f * rng.uniform();
-        std::vector<uint32_t> expected = bruteForce(beams, o, d, sMax);
-        user.query(o, d, sMax, hitsUser);
-        curves.query(o, d, sMax, hitsCurves);
-        std::vector<uint32_t> gotUser, gotCurves;
-        for (const BeamHitRecord& h : hitsUser) gotUser.push_back(h.beam);
-        for (const BeamHitRecord& h : hitsCurves) gotCurves.push_back(h.beam);
-        ASSERT_EQ(gotUser, expected) << "user geometry, query " << q;
-        ASSERT_EQ(gotCurves, expected) << "flat curves, query " << q;
-        total += expected.size();
-    }
-    EXPECT_GT(total, 4000u);  // the queries do find beams
+    return beams;
 }
-
 }  // namespace
-}  // namespace tyndall
+
+TEST(BeamBvh, BothKindsFindExactlyTheBruteForceSet) {
+    EmbreeDevice device;
+    std::vector<PhotonBeam> beams = randomBeams(3000, 42);
+    for (BeamBvh::Kind kind : {BeamBvh::Kind::UserGeometry, BeamBvh::Kind::FlatCurves}) {
+        for (float piece : {0.0f, 0.05f, 100.0f}) {
+            BeamBvh bvh(device, beams, kind, piece);
+            Rng rng(7, 3);
+            std::vector<BeamHitRecord> hits;
+            size_t total = 0;
+            for (int q = 0; q < 400; ++q) {
+                Vec3 o = Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 4.0f - Vec3(2.0f);
+                Vec3 d = sampleUniformSphere(rng.uniform(), rng.uniform());
+                float sMax = q % 3 == 0 ? kInfinity : rng.uniform() * 3.0f;
+                bvh.query(o, d, sMax, hits);
+                std::vector<uint32_t> expected;
+                for (uint32_t i = 0; i < beams.size(); ++i) {
+                    BeamRayHit h;
+                    if (intersectBeamRay(o, d, sMax, beams[i], &h)) expected.push_back(i);
+                }
+                ASSERT_EQ(hits.size(), expected.size()) << "kind " << int(kind) << " piece " << piece << " query " << q;
+                for (size_t k = 0; k < hits.size(); ++k) ASSERT_EQ(hits[k].beam, expected[k]);
+                total += hits.size();
+            }
+            EXPECT_GT(total, 400u) << "queries should meet beams";
+        }
+    }
+}
