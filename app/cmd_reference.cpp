@@ -1,10 +1,11 @@
 #include "app/cmd_reference.h"
 
+#include <unistd.h>
+
 #include <chrono>
 #include <cstdio>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <unistd.h>
 
 #include "app/cli_common.h"
 #include "cpu/embree_scene.h"

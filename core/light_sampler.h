@@ -27,10 +27,10 @@ struct EmittedPhoton {
 /// A light point chosen for next-event estimation from a shading point x. The estimate of the
 /// light arriving at x along `wi` is incident * (visibility, transmittance) / pdf.
 struct DirectLightSample {
-    Vec3 wi;                  ///< unit direction from x toward the light
-    float distance = 0;       ///< from x to `point`; +infinity for directional lights
-    Vec3 point;               ///< light position, or the point on the emissive triangle
-    Vec3 normal;              ///< area lights: the triangle's unit front (emitting) normal
+    Vec3 wi;             ///< unit direction from x toward the light
+    float distance = 0;  ///< from x to `point`; +infinity for directional lights
+    Vec3 point;          ///< light position, or the point on the emissive triangle
+    Vec3 normal;         ///< area lights: the triangle's unit front (emitting) normal
     /// Area lights: emitted radiance Le (W m^-2 sr^-1), zero when x is behind the triangle.
     /// Point/spot: I * falloff / distance^2; directional: the irradiance E (both W m^-2).
     Rgb incident;

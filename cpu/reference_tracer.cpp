@@ -101,10 +101,10 @@ Rgb ReferenceTracer::radiance(Ray ray, MediumId medium, Rng& rng) const {
     const bool nee = m_settings.nextEventEstimation;
     const bool equiangular = nee && m_settings.equiangular;
     Rgb L, beta(1.0f);
-    float etaScale = 1.0f;     // undoes the 1/eta^2 radiance scaling for the roulette decision
-    int vertices = 0;          // scattering vertices so far
-    bool afterSpecular = true; // no NEE-capable vertex since the camera or the last mirror/glass event
-    float lastPdf = 0;         // solid-angle pdf of the direction sampled at the last diffuse/medium vertex
+    float etaScale = 1.0f;      // undoes the 1/eta^2 radiance scaling for the roulette decision
+    int vertices = 0;           // scattering vertices so far
+    bool afterSpecular = true;  // no NEE-capable vertex since the camera or the last mirror/glass event
+    float lastPdf = 0;          // solid-angle pdf of the direction sampled at the last diffuse/medium vertex
     Vec3 lastVertex;
     int crossings = 0;
     ray.tMin = 0.0f;
@@ -218,8 +218,7 @@ Rgb ReferenceTracer::radiance(Ray ray, MediumId medium, Rng& rng) const {
 }
 
 bool ReferenceTracer::isPointLike(int source) const {
-    return source >= 0 && source < int(m_scene.lights.size()) &&
-           m_scene.lights[source].type != LightType::Directional;
+    return source >= 0 && source < int(m_scene.lights.size()) && m_scene.lights[source].type != LightType::Directional;
 }
 
 Rgb ReferenceTracer::pointLightInScattering(const Ray& seg, MediumId medium, Rng& rng) const {

@@ -46,7 +46,6 @@
 // `maxDepth` (no environment light: rays that leave the scene carry nothing).
 #include <cstdint>
 #include <functional>
-
 #include <nlohmann/json_fwd.hpp>
 
 #include "core/image.h"

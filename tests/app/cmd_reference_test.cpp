@@ -1,11 +1,12 @@
 // `tyndall reference`: bad options fail with a message naming the option or file (before any
 // rendering), and a small render writes a readable image of the requested size.
+#include "app/cmd_reference.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <string>
 
-#include "app/cmd_reference.h"
 #include "core/error.h"
 #include "core/image_io.h"
 

@@ -99,7 +99,8 @@ public:
             if (pointLike) {
                 float dist = length(x);
                 travel = x / dist;
-                float falloff = m_light.type == LightType::Spot ? m_light.spotFalloff(dot(travel, m_light.direction)) : 1.0f;
+                float falloff =
+                    m_light.type == LightType::Spot ? m_light.spotFalloff(dot(travel, m_light.direction)) : 1.0f;
                 incident = m_light.intensity * (falloff / (dist * dist));
                 source = Vec3(0.0f);
             } else {
@@ -108,10 +109,11 @@ public:
                 double xd = dot(x, travel), back = xd + std::sqrt(std::max(0.0, xd * xd - dot(x, x) + kR * kR));
                 source = x - travel * float(back);
             }
-            double w = (k == 0 || k == n ? 1 : (k % 2 ? 4 : 2)) * dsdu * hgDouble(dot(travel, -d), m_medium.g) *
-                       density(x);
+            double w =
+                (k == 0 || k == n ? 1 : (k % 2 ? 4 : 2)) * dsdu * hgDouble(dot(travel, -d), m_medium.g) * density(x);
             double tau = opticalDepth(source, x) + opticalDepth(entry, x);
-            for (int c = 0; c < 3; ++c) sum[c] += w * m_medium.sigmaS[c] * incident[c] * std::exp(-m_medium.sigmaT()[c] * tau);
+            for (int c = 0; c < 3; ++c)
+                sum[c] += w * m_medium.sigmaS[c] * incident[c] * std::exp(-m_medium.sigmaT()[c] * tau);
         }
         return Rgb(float(sum[0] * step / 3.0), float(sum[1] * step / 3.0), float(sum[2] * step / 3.0));
     }
@@ -143,8 +145,8 @@ bool mediumInterval(const EmbreeScene& rt, const Ray& ray, bool cameraInside, fl
 }
 
 struct Expected {
-    Image radiance;            ///< pixel-averaged closed form
-    std::vector<float> h;      ///< distance of the pixel-centre ray to the light (-1: no medium)
+    Image radiance;        ///< pixel-averaged closed form
+    std::vector<float> h;  ///< distance of the pixel-centre ray to the light (-1: no medium)
 };
 
 /// The closed form for every pixel: `perRay(ray)` averaged over a 6x6 grid inside the pixel.
@@ -157,7 +159,8 @@ Expected expectedImage(const Scene& scene, const EmbreeScene& rt, int size, PerR
             Rgb sum;
             for (int j = 0; j < k; ++j)
                 for (int i = 0; i < k; ++i) {
-                    Ray ray = scene.camera.generateRay(x + (i + 0.5f) / k, y + (j + 0.5f) / k, size, size, {0.5f, 0.5f});
+                    Ray ray =
+                        scene.camera.generateRay(x + (i + 0.5f) / k, y + (j + 0.5f) / k, size, size, {0.5f, 0.5f});
                     sum += perRay(ray);
                 }
             e.radiance.at(x, y) = sum / float(k * k);
@@ -210,7 +213,8 @@ void checkReference(const char* what, const ReferenceImage& ref, const Expected&
         double ratio = num / den, stdErr = std::sqrt(var) / den;
         std::printf("%s reference, h in [%.2f, %.2f): ratio %.4f +- %.4f\n", what, bin.hLo, bin.hHi, ratio, stdErr);
         EXPECT_LT(stdErr, maxStdErr) << what << ": too noisy to test";
-        EXPECT_NEAR(ratio, 1.0, 4.0 * stdErr + biasAllowance) << what << " reference, h in [" << bin.hLo << ", " << bin.hHi << ")";
+        EXPECT_NEAR(ratio, 1.0, 4.0 * stdErr + biasAllowance)
+            << what << " reference, h in [" << bin.hLo << ", " << bin.hHi << ")";
     }
 }
 
@@ -221,7 +225,8 @@ void checkPpb(const char* what, const std::vector<Image>& batches, const Expecte
         double stdErr = std::sqrt(r.var / double(r.n));
         std::printf("%s PPB, h in [%.2f, %.2f): ratio %.4f +- %.4f\n", what, bin.hLo, bin.hHi, r.mean, stdErr);
         EXPECT_LT(stdErr, maxStdErr) << what << ": too noisy to test";
-        EXPECT_NEAR(r.mean, 1.0, 4.0 * stdErr + biasAllowance) << what << " PPB, h in [" << bin.hLo << ", " << bin.hHi << ")";
+        EXPECT_NEAR(r.mean, 1.0, 4.0 * stdErr + biasAllowance)
+            << what << " PPB, h in [" << bin.hLo << ", " << bin.hHi << ")";
     }
 }
 
@@ -229,7 +234,8 @@ void checkPpb(const char* what, const std::vector<Image>& batches, const Expecte
 std::vector<Image> ppbBatches(const Scene& scene, const RenderSettings& settings, int batches, int passesPerBatch) {
     PassRenderer renderer(scene, settings);
     std::vector<Image> out;
-    for (int b = 0; b < batches; ++b) out.push_back(test::renderPpbPasses(renderer, uint64_t(b) * passesPerBatch, passesPerBatch));
+    for (int b = 0; b < batches; ++b)
+        out.push_back(test::renderPpbPasses(renderer, uint64_t(b) * passesPerBatch, passesPerBatch));
     return out;
 }
 
@@ -331,11 +337,13 @@ const std::vector<Bin> kInsideBins = {{0.1f, 0.3f}, {0.3f, 2.0f}};
 const std::vector<Bin> kOutsideBins = {{0.1f, 0.45f}, {0.45f, 0.92f}};
 
 TEST(AnalyticSphere, SingleScatteringPrimarySegments) {
-    runSingleScatter({"primary", scatteringMedium(), centreLight(LightType::Spot), insideCamera(), true, kInsideBins, 512});
+    runSingleScatter(
+        {"primary", scatteringMedium(), centreLight(LightType::Spot), insideCamera(), true, kInsideBins, 512});
 }
 
 TEST(AnalyticSphere, SingleScatteringSecondarySegmentsThroughInterface) {
-    runSingleScatter({"secondary", scatteringMedium(), centreLight(LightType::Point), outsideCamera(), false, kOutsideBins});
+    runSingleScatter(
+        {"secondary", scatteringMedium(), centreLight(LightType::Point), outsideCamera(), false, kOutsideBins});
 }
 
 TEST(AnalyticSphere, SingleScatteringDirectionalLight) {
@@ -351,12 +359,13 @@ TEST(AnalyticSphere, SingleScatteringDirectionalLight) {
 // Heterogeneous: delta tracking (photons, reference), stored free-flight transmittance (beams and
 // camera segments), ratio tracking (reference shadow rays). One bin: noisier than homogeneous.
 TEST(AnalyticSphere, SingleScatteringDensityGridPrimarySegments) {
-    runSingleScatter({"grid_primary", rampMedium(), centreLight(LightType::Spot), insideCamera(), true, {{0.1f, 2.0f}}, 512});
+    runSingleScatter(
+        {"grid_primary", rampMedium(), centreLight(LightType::Spot), insideCamera(), true, {{0.1f, 2.0f}}, 512});
 }
 
 TEST(AnalyticSphere, SingleScatteringDensityGridSecondarySegments) {
-    runSingleScatter({"grid_secondary", rampMedium(), centreLight(LightType::Point), outsideCamera(), false,
-                      {{0.1f, 0.92f}}, 512});
+    runSingleScatter(
+        {"grid_secondary", rampMedium(), centreLight(LightType::Point), outsideCamera(), false, {{0.1f, 0.92f}}, 512});
 }
 
 TEST(AnalyticSphere, DirectIrradianceThroughAbsorbingMedium) {

@@ -38,7 +38,7 @@ constexpr double kImageMeanTolerance = 0.03;
 constexpr double kQuadrantMeanTolerance = 0.06;
 
 struct RelMse {
-    double raw = 0;         ///< against the (noisy) reference
+    double raw = 0;           ///< against the (noisy) reference
     double referenceVar = 0;  ///< the reference's own share of it
     double corrected() const { return raw - referenceVar; }
 };
@@ -112,7 +112,8 @@ TEST(PpbConsistency, RelMseAgainstReferenceFallsWithPasses) {
     for (int qy = 0; qy < 2; ++qy)
         for (int qx = 0; qx < 2; ++qx) {
             int x0 = qx * half, y0 = qy * half;
-            double q = regionMean(ppb, x0, y0, x0 + half, y0 + half) / regionMean(ref.mean, x0, y0, x0 + half, y0 + half);
+            double q =
+                regionMean(ppb, x0, y0, x0 + half, y0 + half) / regionMean(ref.mean, x0, y0, x0 + half, y0 + half);
             std::printf("quadrant (%d, %d) mean PPB / reference: %.4f\n", qx, qy, q);
             EXPECT_NEAR(q, 1.0, kQuadrantMeanTolerance) << "quadrant (" << qx << ", " << qy << ") means";
         }
@@ -157,8 +158,8 @@ TEST(PpbConsistency, MultipleScatteringInDensityGridMatchesReference) {
     RenderSettings ps;
     ps.width = ps.height = size;
     ps.photonsPerPass = 5000;
-    ps.radius = 0.04f;                       // wide and nearly constant: this checks the mean,
-    ps.radiusOffset = 1000000000000ull;      // not the convergence
+    ps.radius = 0.04f;                   // wide and nearly constant: this checks the mean,
+    ps.radiusOffset = 1000000000000ull;  // not the convergence
     ps.freeFlightSamples = 8;
     ps.seed = 404;
     PassRenderer renderer(scene, ps);

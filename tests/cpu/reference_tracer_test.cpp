@@ -8,6 +8,8 @@
 // over 4x4-pixel blocks and the image mean must agree within 4.5 standard errors (a Gaussian
 // false alarm over all comparisons of a test has probability < 1e-4), and each standard error
 // must be small enough (stated per test) that a wrong weight would be caught.
+#include "cpu/reference_tracer.h"
+
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
@@ -17,7 +19,6 @@
 
 #include "core/error.h"
 #include "core/mesh_builders.h"
-#include "cpu/reference_tracer.h"
 #include "tests/cpu/reference_fixtures.h"
 
 namespace tyndall {
