@@ -82,7 +82,7 @@ nlohmann::json explicitSettings(const CommonOptions& o) {
         {"--passes", "passes"},   {"--time", "time"},     {"--photons", "photons"},
         {"--alpha", "alpha"},     {"--radius", "radius"}, {"--surface-radius", "surface_radius"},
         {"--radius-offset", "radius_offset"}, {"--free-flights", "free_flights"}, {"--seed", "seed"},
-        {"--threads", "threads"}};
+        {"--threads", "threads"}, {"--gpu", "gpu"}};
     nlohmann::json all = o.settings.toJson(), given = nlohmann::json::object();
     auto isGiven = [&](const char* name) {
         const CLI::Option* opt = o.command ? o.command->get_option_no_throw(name) : nullptr;

@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "app/bench_cpu.h"
+#include "app/bench_hybrid.h"
 #include "app/cli_common.h"
 
 namespace tyndall::app {
@@ -15,6 +16,7 @@ struct BenchOptions {
     int passes = 10;
     uint64_t rays = 4000000;
     uint64_t queries = 200000;
+    bool hybrid = true;
 };
 
 void printRate(const char* what, double value, const char* unit, const std::string& note = "") {
@@ -38,6 +40,7 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
         ->capture_default_str();
     cmd->add_option("--rays", o->rays, "Rays for the raw Embree baseline")->capture_default_str();
     cmd->add_option("--queries", o->queries, "Beam gather queries per BVH kind")->capture_default_str();
+    cmd->add_flag("!--no-hybrid", o->hybrid, "Skip the hybrid (GL splat) figures");
     cmd->callback([o, &exitCode]() {
         finishOptions(o->common);
         const RenderSettings& s = o->common.settings;
@@ -86,6 +89,7 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
         printRate("  primary splat stage", pr.totals.splatSeconds / pr.passes * 1e3, "ms/pass",
                   ratio(pr.totals.splatSeconds / pr.passes, perPass, "of a pass"));
         printRate("beams per pass", double(pr.totals.beams) / pr.passes, "beams");
+        if (o->hybrid) printHybridBench(measureHybrid(renderer, o->passes));
         exitCode = 0;
     });
 }

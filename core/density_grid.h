@@ -2,6 +2,9 @@
 // A scalar density field in world space for heterogeneous media (OpenVDB grids implement it in
 // core/vdb_grid.*; tests use analytic fields). Density is dimensionless and multiplies the
 // medium's coefficients. Implementations must be safe to call from many threads at once.
+#include <cstddef>
+
+#include "core/density_volume.h"
 #include "core/math.h"
 
 namespace tyndall {
@@ -20,6 +23,10 @@ public:
     virtual float maxDensity() const = 0;
     /// Mean density over the active region (for the homogeneous twin of `tyndall compare`).
     virtual float meanDensity() const = 0;
+    /// The grid in dense voxel form for the GL splatter (core/density_volume.h states the rule
+    /// `out->sample(p)` must match density(p) by), when it has one of at most `maxVoxels` voxels;
+    /// false otherwise, and the primary-segment splat of this medium stays on the CPU.
+    virtual bool denseVolume(DensityVolume* out, size_t maxVoxels) const { return false; }
 };
 
 }  // namespace tyndall
