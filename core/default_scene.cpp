@@ -18,17 +18,17 @@ Scene makeDefaultScene() {
         s.materials.push_back(m);
         return int(s.materials.size() - 1);
     };
-    int white = material("white", MaterialType::Diffuse, Rgb(0.75f, 0.74f, 0.72f));
-    int red = material("red", MaterialType::Diffuse, Rgb(0.70f, 0.18f, 0.14f));
-    int teal = material("teal", MaterialType::Diffuse, Rgb(0.14f, 0.50f, 0.48f));
+    int white = material("white", MaterialType::Diffuse, Rgb(0.45f, 0.444f, 0.432f));
+    int red = material("red", MaterialType::Diffuse, Rgb(0.42f, 0.108f, 0.084f));
+    int teal = material("teal", MaterialType::Diffuse, Rgb(0.084f, 0.30f, 0.288f));
     int mirror = material("mirror", MaterialType::Mirror, Rgb(0.92f));
     int glass = material("glass", MaterialType::Dielectric, Rgb(1.0f), 1.5f);
     int frame = material("frame", MaterialType::Diffuse, Rgb(0.08f));
 
     Medium fog;
     fog.name = "fog";
-    fog.sigmaS = Rgb(0.09f);
-    fog.sigmaA = Rgb(0.01f);
+    fog.sigmaS = Rgb(0.06f);
+    fog.sigmaA = Rgb(0.009f);
     fog.g = 0.25f;
     s.media.push_back(fog);
     s.globalMedium = 0;
@@ -59,10 +59,10 @@ Scene makeDefaultScene() {
     spot.position = {-1.75f, 2.85f, 0.4f};
     spot.direction = normalize(sphereCenter - spot.position);
     float dist = length(sphereCenter - spot.position);
-    float halfAngle = std::atan(sphereRadius * 1.35f / dist);
+    float halfAngle = std::atan(sphereRadius * 1.08f / dist);  // nearly all of it through the sphere
     spot.cosOuterAngle = std::cos(halfAngle);
-    spot.cosInnerAngle = std::cos(0.75f * halfAngle);
-    spot.intensity = Rgb(60.0f, 52.0f, 40.0f);
+    spot.cosInnerAngle = std::cos(0.8f * halfAngle);
+    spot.intensity = Rgb(150.0f, 130.0f, 100.0f);
     s.lights.push_back(spot);
 
     // A dim fill so the room reads: a weak warm point light near the front ceiling.

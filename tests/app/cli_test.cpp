@@ -46,7 +46,7 @@ TEST(Cli, HelpListsEveryOptionWithDefaults) {
     EXPECT_NE(top.out.find("bench"), std::string::npos);
     Result r = run("render --help");
     EXPECT_EQ(r.status, 0);
-    for (const char* opt : {"--passes UINT=64", "--time", "--photons UINT=1000", "--alpha FLOAT=0.5", "--radius FLOAT=0",
+    for (const char* opt : {"--passes UINT=64", "--time", "--photons UINT=4000", "--alpha FLOAT=0.5", "--radius FLOAT=0",
                             "--seed UINT=1", "--size TEXT=512x512", "--threads INT=0", "-o,--output TEXT=tyndall.png"})
         EXPECT_NE(r.out.find(opt), std::string::npos) << opt << " missing from:\n" << r.out;
 }
