@@ -1,8 +1,10 @@
 #pragma once
 // Free-flight sampling in a medium, for photon paths, the reference path tracer and the stored
 // transmittance distances. Homogeneous media sample analytically with spectral MIS over the
-// three channels; density-grid media use delta (Woodcock) tracking against the grid's majorant.
-// No ray marching anywhere: every estimate here is unbiased.
+// three channels; density-grid media use delta (Woodcock) tracking against the grid's majorant:
+// piecewise constant along the ray when the grid has a majorant grid (a DDA over its coarse
+// cells), else one value per segment. No ray marching anywhere: every estimate here is unbiased.
+// Randomness comes only from the caller's keyed stream `rng`.
 #include "core/medium.h"
 #include "core/rng.h"
 
