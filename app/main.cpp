@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <exception>
 
+#include "app/cmd_bench.h"
 #include "app/cmd_compare.h"
 #include "app/cmd_render.h"
 #include "core/error.h"
@@ -15,6 +16,7 @@ int main(int argc, char** argv) {
     app.set_help_all_flag("--help-all", "Help for every command");
     int exitCode = 0;
     tyndall::app::addRenderCommand(app, exitCode);
+    tyndall::app::addBenchCommand(app, exitCode);
     tyndall::app::addCompareCommand(app, exitCode);
     try {
         app.parse(argc, argv);

@@ -38,6 +38,7 @@ struct PhotonMap {
     uint64_t pass = 0;
     uint64_t firstPath = 0;   ///< global index of the pass's first photon path (radius schedule)
     uint32_t pathCount = 0;   ///< photon paths emitted (the divisor in the beam power)
+    uint64_t raysTraced = 0;  ///< surface rays cast while tracing (for throughput figures)
     std::vector<PhotonBeam> beams;
     /// Heterogeneous media: `freeFlightsPerBeam` distances per beam (beam i uses
     /// freeFlights[i*n .. i*n+n)), distances along the beam from its origin; a distance >= tMax

@@ -1,6 +1,7 @@
 #include "cpu/beam_bvh.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace tyndall {
 
@@ -10,21 +11,28 @@ namespace {
 struct GatherContext {
     RTCIntersectContext rtc;
     const std::vector<PhotonBeam>* beams;
+    const std::vector<BeamBvh::Piece>* pieces;
     std::vector<BeamHitRecord>* hits;
     Vec3 o, d;
     float sMax;
 };
 
 void recordIfHit(GatherContext* ctx, unsigned primID) {
+    const BeamBvh::Piece& piece = (*ctx->pieces)[primID];
+    const PhotonBeam& beam = (*ctx->beams)[piece.beam];
     BeamRayHit h;
-    if (intersectBeamRay(ctx->o, ctx->d, ctx->sMax, (*ctx->beams)[primID], &h)) ctx->hits->push_back({primID, h});
+    if (!intersectBeamRay(ctx->o, ctx->d, ctx->sMax, beam, &h)) return;
+    // Half-open pieces: the one holding t_v reports the beam (the last one is closed).
+    if (h.t < piece.t0 || (h.t >= piece.t1 && piece.t1 < beam.tMax)) return;
+    ctx->hits->push_back({piece.beam, h});
 }
 
 void beamBounds(const RTCBoundsFunctionArguments* args) {
-    const auto& beams = *static_cast<const std::vector<PhotonBeam>*>(args->geometryUserPtr);
-    const PhotonBeam& b = beams[args->primID];
-    Vec3 e = b.origin + b.dir * b.tMax;
-    Vec3 lo = vmin(b.origin, e) - Vec3(b.radius), hi = vmax(b.origin, e) + Vec3(b.radius);
+    const auto* bvh = static_cast<const BeamBvh*>(args->geometryUserPtr);
+    const BeamBvh::Piece& piece = bvh->pieces()[args->primID];
+    const PhotonBeam& b = bvh->beams()[piece.beam];
+    Vec3 s = b.origin + b.dir * piece.t0, e = b.origin + b.dir * piece.t1;
+    Vec3 lo = vmin(s, e) - Vec3(b.radius), hi = vmax(s, e) + Vec3(b.radius);
     args->bounds_o->lower_x = lo.x;
     args->bounds_o->lower_y = lo.y;
     args->bounds_o->lower_z = lo.z;
@@ -49,8 +57,18 @@ void curveFilter(const RTCFilterFunctionNArguments* args) {
 
 }  // namespace
 
-BeamBvh::BeamBvh(const EmbreeDevice& device, const std::vector<PhotonBeam>& beams, Kind kind)
+BeamBvh::BeamBvh(const EmbreeDevice& device, const std::vector<PhotonBeam>& beams, Kind kind, float pieceLength)
     : m_beams(beams), m_kind(kind) {
+    for (const PhotonBeam& b : beams) m_maxRadius = std::max(m_maxRadius, b.radius);
+    if (pieceLength <= 0) pieceLength = 16.0f * m_maxRadius;
+    for (uint32_t i = 0; i < beams.size(); ++i) {
+        const PhotonBeam& b = beams[i];
+        uint32_t n = std::isfinite(pieceLength) && pieceLength > 0
+                         ? uint32_t(std::min(4096.0f, std::max(1.0f, std::ceil(b.tMax / pieceLength))))
+                         : 1u;
+        for (uint32_t k = 0; k < n; ++k)
+            m_pieces.push_back({i, b.tMax * float(k) / float(n), k + 1 == n ? b.tMax : b.tMax * float(k + 1) / float(n)});
+    }
     RTCDevice dev = device.get();
     m_scene = rtcNewScene(dev);
     rtcSetSceneFlags(m_scene, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
@@ -61,23 +79,24 @@ BeamBvh::BeamBvh(const EmbreeDevice& device, const std::vector<PhotonBeam>& beam
     RTCGeometry geom;
     if (kind == Kind::UserGeometry) {
         geom = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_USER);
-        rtcSetGeometryUserPrimitiveCount(geom, unsigned(beams.size()));
-        rtcSetGeometryUserData(geom, const_cast<std::vector<PhotonBeam>*>(&beams));
-        rtcSetGeometryBoundsFunction(geom, beamBounds, const_cast<std::vector<PhotonBeam>*>(&beams));
+        rtcSetGeometryUserPrimitiveCount(geom, unsigned(m_pieces.size()));
+        rtcSetGeometryUserData(geom, this);
+        rtcSetGeometryBoundsFunction(geom, beamBounds, nullptr);
         rtcSetGeometryIntersectFunction(geom, beamIntersect);
         rtcSetGeometryOccludedFunction(geom, beamOccluded);
     } else {
         geom = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_FLAT_LINEAR_CURVE);
         auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4,
-                                                              4 * sizeof(float), 2 * beams.size()));
+                                                              4 * sizeof(float), 2 * m_pieces.size()));
         auto* idx = static_cast<unsigned*>(
-            rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT, sizeof(unsigned), beams.size()));
-        for (size_t i = 0; i < beams.size(); ++i) {
-            const PhotonBeam& b = beams[i];
-            Vec3 e = b.origin + b.dir * b.tMax;
+            rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT, sizeof(unsigned), m_pieces.size()));
+        for (size_t i = 0; i < m_pieces.size(); ++i) {
+            const PhotonBeam& b = beams[m_pieces[i].beam];
+            Vec3 s = b.origin + b.dir * m_pieces[i].t0, e = b.origin + b.dir * m_pieces[i].t1;
             float* p = v + 8 * i;
-            p[0] = b.origin.x, p[1] = b.origin.y, p[2] = b.origin.z, p[3] = b.radius;
-            p[4] = e.x, p[5] = e.y, p[6] = e.z, p[7] = b.radius;
+            const float r = 1.1f * b.radius;  // the ribbon is approximate: over-cover, filter exactly
+            p[0] = s.x, p[1] = s.y, p[2] = s.z, p[3] = r;
+            p[4] = e.x, p[5] = e.y, p[6] = e.z, p[7] = r;
             idx[i] = unsigned(2 * i);
         }
         rtcSetGeometryIntersectFilterFunction(geom, curveFilter);
@@ -97,21 +116,25 @@ void BeamBvh::query(const Vec3& o, const Vec3& d, float sMax, std::vector<BeamHi
     GatherContext ctx;
     rtcInitIntersectContext(&ctx.rtc);
     ctx.beams = &m_beams;
+    ctx.pieces = &m_pieces;
     ctx.hits = &hits;
     ctx.o = o;
     ctx.d = d;
     ctx.sMax = sMax;
+    // Embree's curve intersector ignores hits within about a radius of the ray origin, so the
+    // traversal ray starts `back` earlier; the filter still tests the real segment [0, sMax].
+    const float back = m_kind == Kind::FlatCurves ? 4.0f * m_maxRadius : 0.0f;
     RTCRayHit rh;
-    rh.ray.org_x = o.x;
-    rh.ray.org_y = o.y;
-    rh.ray.org_z = o.z;
+    rh.ray.org_x = o.x - d.x * back;
+    rh.ray.org_y = o.y - d.y * back;
+    rh.ray.org_z = o.z - d.z * back;
     rh.ray.dir_x = d.x;
     rh.ray.dir_y = d.y;
     rh.ray.dir_z = d.z;
     rh.ray.tnear = 0.0f;
     // Curves only report hits up to tfar; user primitives test s <= sMax themselves. Beams reach
     // a little past the segment end through their radius, hence the margin.
-    rh.ray.tfar = std::isfinite(sMax) ? sMax * 1.0001f + 1e-6f : kInfinity;
+    rh.ray.tfar = std::isfinite(sMax) ? back + sMax * 1.0001f + 2.0f * m_maxRadius + 1e-6f : kInfinity;
     rh.ray.mask = 0xFFFFFFFFu;
     rh.ray.flags = 0;
     rh.ray.time = 0;

@@ -6,6 +6,9 @@
 //   UserGeometry: one user primitive per beam (AABB of the cylinder, our own intersector);
 //   FlatCurves:   Embree flat linear curves (ray-facing ribbons of half-width r) with a filter that
 //                 applies the exact test and rejects the hit so traversal continues.
+// Long beams have huge, mostly empty bounding boxes, so each beam is split along its axis into
+// pieces no longer than `pieceLength` (one BVH primitive each); a piece reports a beam only when
+// the closest point t_v falls inside the piece, so every beam is found once.
 // Thread-safe queries after construction.
 #include <embree3/rtcore.h>
 
@@ -25,8 +28,10 @@ class BeamBvh {
 public:
     enum class Kind { UserGeometry, FlatCurves };
 
-    /// Keeps a reference to `beams`: they must outlive the BVH.
-    BeamBvh(const EmbreeDevice& device, const std::vector<PhotonBeam>& beams, Kind kind = Kind::UserGeometry);
+    /// Keeps a reference to `beams`: they must outlive the BVH. `pieceLength` <= 0 picks 16x the
+    /// largest beam radius.
+    BeamBvh(const EmbreeDevice& device, const std::vector<PhotonBeam>& beams, Kind kind = Kind::UserGeometry,
+            float pieceLength = 0.0f);
     ~BeamBvh();
     BeamBvh(const BeamBvh&) = delete;
     BeamBvh& operator=(const BeamBvh&) = delete;
@@ -36,11 +41,20 @@ public:
     void query(const Vec3& o, const Vec3& d, float sMax, std::vector<BeamHitRecord>& hits) const;
 
     Kind kind() const { return m_kind; }
+
+    /// A stretch [t0, t1] of one beam: the BVH primitive.
+    struct Piece {
+        uint32_t beam;
+        float t0, t1;
+    };
+    const std::vector<Piece>& pieces() const { return m_pieces; }
     const std::vector<PhotonBeam>& beams() const { return m_beams; }
 
 private:
     const std::vector<PhotonBeam>& m_beams;
     Kind m_kind;
+    std::vector<Piece> m_pieces;
+    float m_maxRadius = 0;
     RTCScene m_scene = nullptr;
 };
 

@@ -11,7 +11,7 @@
 namespace tyndall {
 
 namespace {
-constexpr int kTile = 16;
+constexpr int kBand = 8;  // rows per band: the unit of parallel work
 
 struct CameraSpace {
     float x, y, z;
@@ -54,20 +54,78 @@ BeamFootprint beamFootprint(const Camera& cam, int width, int height, const Phot
         fp.fullScreen = true;
         return fp;
     }
-    fp.ax = 0.5f * float(width) + f * c0.x / c0.z;
-    fp.ay = 0.5f * float(height) - f * c0.y / c0.z;
-    fp.bx = 0.5f * float(width) + f * c1.x / c1.z;
-    fp.by = 0.5f * float(height) - f * c1.y / c1.z;
-    // Projected radius (a sphere of radius r at depth z projects within f r / (z - r), stretched
-    // up to 1/cos^2 off-axis), the lens's circle of confusion, and one pixel for the film jitter.
-    float stretch = 1.0f + tx * tx + ty * ty;
+    const float cx = 0.5f * float(width), cy = 0.5f * float(height);
+    fp.ax = cx + f * c0.x / c0.z;
+    fp.ay = cy - f * c0.y / c0.z;
+    fp.bx = cx + f * c1.x / c1.z;
+    fp.by = cy - f * c1.y / c1.z;
+    // Off-axis stretch 1/cos(theta) = sqrt(1 + |p - centre|^2 / f^2): largest at an end of the
+    // projected segment, and no larger than at the film's corner.
+    auto stretchAt = [&](float px, float py) {
+        float dx = std::min(std::abs(px - cx), cx), dy = std::min(std::abs(py - cy), cy);
+        return std::sqrt(1.0f + (dx * dx + dy * dy) / (f * f));
+    };
+    float stretch = std::max(stretchAt(fp.ax, fp.ay), stretchAt(fp.bx, fp.by));
     float coc = 0.0f;
     if (cam.lensRadius > 0) {
         float invF = 1.0f / cam.focusDistance;
         coc = f * cam.lensRadius * std::max(std::abs(invF - 1.0f / zMin), std::abs(invF - 1.0f / zMax));
     }
-    fp.radius = f * beam.radius / (zMin - beam.radius) * stretch + coc + 1.5f;
+    const float margin = coc + 0.75f;  // 0.75 > half the pixel diagonal: any jittered film position
+    fp.ra = f * beam.radius / (c0.z - beam.radius) * stretch + margin;
+    fp.rb = f * beam.radius / (c1.z - beam.radius) * stretch + margin;
     return fp;
+}
+
+bool footprintRowSpan(const BeamFootprint& fp, float y, float* x0, float* x1) {
+    if (fp.fullScreen) {
+        *x0 = -kInfinity;
+        *x1 = kInfinity;
+        return true;
+    }
+    float lo = kInfinity, hi = -kInfinity;
+    auto disc = [&](float cx, float cy, float r) {
+        float dy = y - cy;
+        float h2 = r * r - dy * dy;
+        if (h2 < 0) return;
+        float h = std::sqrt(h2);
+        lo = std::min(lo, cx - h);
+        hi = std::max(hi, cx + h);
+    };
+    disc(fp.ax, fp.ay, fp.ra);
+    disc(fp.bx, fp.by, fp.rb);
+    float dx = fp.bx - fp.ax, dy = fp.by - fp.ay;
+    float len = std::sqrt(dx * dx + dy * dy);
+    if (len > std::abs(fp.ra - fp.rb)) {
+        // The hull's straight sides touch the discs where the outward normal is
+        // n cos(phi) + u sin(phi), sin(phi) = (ra - rb) / len.
+        float ux = dx / len, uy = dy / len, nx = -uy, ny = ux;
+        float sinPhi = (fp.ra - fp.rb) / len, cosPhi = std::sqrt(std::max(0.0f, 1.0f - sinPhi * sinPhi));
+        float quad[4][2];
+        for (int side = 0; side < 2; ++side) {
+            float s = side == 0 ? 1.0f : -1.0f;
+            float ox = s * nx * cosPhi + ux * sinPhi, oy = s * ny * cosPhi + uy * sinPhi;
+            quad[side == 0 ? 0 : 3][0] = fp.ax + fp.ra * ox;
+            quad[side == 0 ? 0 : 3][1] = fp.ay + fp.ra * oy;
+            quad[side == 0 ? 1 : 2][0] = fp.bx + fp.rb * ox;
+            quad[side == 0 ? 1 : 2][1] = fp.by + fp.rb * oy;
+        }
+        for (int e = 0; e < 4; ++e) {
+            const float* p = quad[e];
+            const float* q = quad[(e + 1) % 4];
+            if ((p[1] - y) * (q[1] - y) > 0) continue;
+            float x = p[1] == q[1] ? p[0] : p[0] + (q[0] - p[0]) * (y - p[1]) / (q[1] - p[1]);
+            lo = std::min(lo, x);
+            hi = std::max(hi, x);
+            if (p[1] == q[1]) {
+                lo = std::min(lo, q[0]);
+                hi = std::max(hi, q[0]);
+            }
+        }
+    }
+    *x0 = lo;
+    *x1 = hi;
+    return lo <= hi;
 }
 
 Rgb BeamRasterizer::pixelRadiance(const PrimarySegments& primary, size_t pixel, const PhotonMap& photons,
@@ -92,7 +150,7 @@ Rgb BeamRasterizer::pixelRadiance(const PrimarySegments& primary, size_t pixel, 
 
 Image BeamRasterizer::rasterize(const PrimarySegments& primary, const PhotonMap& photons, RasterStats* stats) const {
     const int w = primary.width, h = primary.height;
-    const int tilesX = (w + kTile - 1) / kTile, tilesY = (h + kTile - 1) / kTile;
+    const int bands = (h + kBand - 1) / kBand;
     Image out(w, h);
     const std::vector<PhotonBeam>& beams = photons.beams;
 
@@ -101,59 +159,38 @@ Image BeamRasterizer::rasterize(const PrimarySegments& primary, const PhotonMap&
         fps[i] = beams[i].medium == kVacuum ? BeamFootprint{} : beamFootprint(m_scene.camera, w, h, beams[i]);
     });
 
-    // Bin in beam order: a tile takes a beam when the 2D capsule reaches the tile's rectangle.
-    std::vector<std::vector<uint32_t>> tiles(size_t(tilesX) * tilesY);
+    // Bin in beam order: a band takes a beam when the footprint's bounding box reaches it.
+    std::vector<std::vector<uint32_t>> bandBeams(bands);
     uint64_t binned = 0;
-    const float halfDiag = 0.5f * std::sqrt(2.0f) * kTile;
     for (uint32_t i = 0; i < beams.size(); ++i) {
         const BeamFootprint& fp = fps[i];
         if (!fp.visible) continue;
-        int tx0 = 0, ty0 = 0, tx1 = tilesX - 1, ty1 = tilesY - 1;
+        int b0 = 0, b1 = bands - 1;
         if (!fp.fullScreen) {
-            tx0 = std::max(0, int(std::floor((std::min(fp.ax, fp.bx) - fp.radius) / kTile)));
-            ty0 = std::max(0, int(std::floor((std::min(fp.ay, fp.by) - fp.radius) / kTile)));
-            tx1 = std::min(tilesX - 1, int(std::floor((std::max(fp.ax, fp.bx) + fp.radius) / kTile)));
-            ty1 = std::min(tilesY - 1, int(std::floor((std::max(fp.ay, fp.by) + fp.radius) / kTile)));
+            float y0 = std::min(fp.ay - fp.ra, fp.by - fp.rb), y1 = std::max(fp.ay + fp.ra, fp.by + fp.rb);
+            float x0 = std::min(fp.ax - fp.ra, fp.bx - fp.rb), x1 = std::max(fp.ax + fp.ra, fp.bx + fp.rb);
+            if (x1 < 0 || x0 > float(w) || y1 < 0 || y0 > float(h)) continue;
+            b0 = std::max(0, int(std::floor(y0 / kBand)));
+            b1 = std::min(bands - 1, int(std::floor(y1 / kBand)));
         }
-        float dx = fp.bx - fp.ax, dy = fp.by - fp.ay, len2 = dx * dx + dy * dy;
-        for (int ty = ty0; ty <= ty1; ++ty)
-            for (int tx = tx0; tx <= tx1; ++tx) {
-                if (!fp.fullScreen) {
-                    float cx = (tx + 0.5f) * kTile, cy = (ty + 0.5f) * kTile;
-                    float t = len2 > 0 ? clampValue(((cx - fp.ax) * dx + (cy - fp.ay) * dy) / len2, 0.0f, 1.0f) : 0.0f;
-                    float ex = fp.ax + t * dx - cx, ey = fp.ay + t * dy - cy;
-                    float reachT = fp.radius + halfDiag;
-                    if (ex * ex + ey * ey > reachT * reachT) continue;
-                }
-                tiles[size_t(ty) * tilesX + tx].push_back(i);
-                ++binned;
-            }
+        for (int b = b0; b <= b1; ++b) bandBeams[b].push_back(i);
+        binned += uint64_t(b1 - b0 + 1);
     }
 
     std::atomic<uint64_t> tests{0};
-    tbb::parallel_for(0, tilesX * tilesY, [&](int tile) {
-        const std::vector<uint32_t>& list = tiles[tile];
-        if (list.empty()) return;
-        const int x0 = (tile % tilesX) * kTile, y0 = (tile / tilesX) * kTile;
-        const int x1 = std::min(w, x0 + kTile), y1 = std::min(h, y0 + kTile);
+    tbb::parallel_for(0, bands, [&](int band) {
+        const int y0 = band * kBand, y1 = std::min(h, y0 + kBand);
         uint64_t localTests = 0;
-        for (uint32_t b : list) {
-            const BeamFootprint& fp = fps[b];
-            float dx = fp.bx - fp.ax, dy = fp.by - fp.ay, len2 = dx * dx + dy * dy;
-            float r2 = fp.radius * fp.radius;
+        for (uint32_t b : bandBeams[band]) {
             for (int y = y0; y < y1; ++y) {
-                float py = y + 0.5f;
-                for (int x = x0; x < x1; ++x) {
-                    if (!fp.fullScreen) {
-                        float px = x + 0.5f;
-                        float t = len2 > 0 ? clampValue(((px - fp.ax) * dx + (py - fp.ay) * dy) / len2, 0.0f, 1.0f) : 0.0f;
-                        float ex = fp.ax + t * dx - px, ey = fp.ay + t * dy - py;
-                        if (ex * ex + ey * ey > r2) continue;
-                    }
-                    ++localTests;
-                    size_t pixel = size_t(y) * w + x;
-                    out.pixels[pixel] += pixelRadiance(primary, pixel, photons, b);
-                }
+                float sx0, sx1;
+                if (!footprintRowSpan(fps[b], float(y) + 0.5f, &sx0, &sx1)) continue;
+                // Pixels whose centre x + 0.5 lies in [sx0, sx1].
+                int x0 = int(std::max(0.0f, std::ceil(std::max(sx0, -1.0f) - 0.5f)));
+                int x1 = int(std::min(float(w - 1), std::floor(std::min(sx1, float(w) + 1.0f) - 0.5f)));
+                size_t row = size_t(y) * w;
+                for (int x = x0; x <= x1; ++x) out.pixels[row + x] += pixelRadiance(primary, row + x, photons, b);
+                localTests += uint64_t(std::max(0, x1 - x0 + 1));
             }
         }
         tests += localTests;

@@ -1,13 +1,18 @@
 #pragma once
 // The CPU twin of the GL splatter: adds the medium radiance along every pixel's primary segment
-// from all beams of the pass, by tiled rasterization instead of ray queries. Each beam's screen
-// footprint (its segment clipped to the view frustum widened by radius + lens, projected and
-// dilated by the projected radius, the lens's circle of confusion and one pixel of jitter) is
-// binned to 16x16 tiles; each tile walks, per row, the pixels inside that footprint and evaluates
-// the exact beam x ray estimator against the pixel's stored primary ray. Beams are visited in index
-// order inside a tile, so the result is independent of the thread count.
+// from all beams of the pass, by rasterization instead of ray queries.
+//
+// Each beam's screen footprint is a tapered capsule: its axis clipped to the view frustum widened
+// by radius + lens radius, projected, with a radius at each end that bounds the projected beam
+// radius there (f r / (z - r), stretched by 1/cos of the off-axis angle), plus the lens's circle
+// of confusion and 0.75 px for the film jitter. The projected radius is convex in screen space
+// (1/z is linear there), so the linear taper is conservative. Beams are binned to bands of rows;
+// each band walks, per row, the exact span of the capsule and evaluates the estimator against
+// each pixel's stored primary ray. Beams are visited in index order inside a band, so the result
+// does not depend on the thread count.
 #include <cstdint>
 
+#include "core/camera.h"
 #include "core/image.h"
 #include "core/photon_beam.h"
 #include "core/primary_segments.h"
@@ -17,19 +22,23 @@ namespace tyndall {
 
 struct RasterStats {
     uint64_t pixelTests = 0;  ///< beam x pixel estimator evaluations
-    uint64_t binned = 0;      ///< beam x tile entries
+    uint64_t binned = 0;      ///< beam x band entries
 };
 
-/// Screen-space bound of one beam: the 2D capsule (a, b, radius) in film pixels, or the whole
-/// film when the beam passes too close to the camera to project safely.
+/// Screen-space bound of one beam, in film pixels: the convex hull of the discs (a, ra) and
+/// (b, rb), or the whole film when the beam passes too close to the camera to project safely.
 struct BeamFootprint {
-    float ax = 0, ay = 0, bx = 0, by = 0;
-    float radius = 0;
+    float ax = 0, ay = 0, ra = 0;
+    float bx = 0, by = 0, rb = 0;
     bool fullScreen = false;
     bool visible = false;
 };
 
 BeamFootprint beamFootprint(const Camera& camera, int width, int height, const PhotonBeam& beam);
+
+/// The x-interval [x0, x1] where the horizontal line at `y` crosses the footprint; false if it
+/// misses. For a full-screen footprint, the whole line.
+bool footprintRowSpan(const BeamFootprint& fp, float y, float* x0, float* x1);
 
 class BeamRasterizer {
 public:

@@ -61,6 +61,8 @@ public:
     }
 
     const Scene& scene() const { return m_scene; }
+    /// The Embree scene, for raw-throughput baselines in `tyndall bench`.
+    RTCScene rtcScene() const { return m_rtcScene; }
     const std::shared_ptr<EmbreeDevice>& device() const { return m_device; }
 
 private:

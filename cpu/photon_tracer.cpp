@@ -50,6 +50,7 @@ PhotonMap PhotonTracer::trace(uint64_t pass, uint64_t firstPath, uint32_t count)
     for (const PhotonMap& p : parts) {
         nb += p.beams.size();
         ns += p.surfacePhotons.size();
+        out.raysTraced += p.raysTraced;
     }
     out.beams.reserve(nb);
     out.surfacePhotons.reserve(ns);
@@ -80,6 +81,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
     for (int bounce = 0; bounce < m_settings.maxPhotonBounces; ++bounce) {
         SurfaceHit hit;
         bool surface = m_rt.intersect(ray, &hit);
+        out.raysTraced++;
         float tHit = surface ? hit.t : kInfinity;
 
         if (medium != kVacuum) {

@@ -1,0 +1,91 @@
+#include "app/cmd_bench.h"
+
+#include <cstdio>
+#include <memory>
+#include <thread>
+
+#include "app/bench_cpu.h"
+#include "app/cli_common.h"
+
+namespace tyndall::app {
+
+namespace {
+struct BenchOptions {
+    CommonOptions common;
+    int passes = 10;
+    uint64_t rays = 4000000;
+    uint64_t queries = 200000;
+};
+
+void printRate(const char* what, double value, const char* unit, const std::string& note = "") {
+    std::printf("  %-34s %12.3f %-12s %s\n", what, value, unit, note.c_str());
+}
+std::string ratio(double value, double base, const char* baseName) {
+    char buf[96];
+    std::snprintf(buf, sizeof(buf), "= %.2fx %s", value / base, baseName);
+    return buf;
+}
+}  // namespace
+
+void addBenchCommand(CLI::App& app, int& exitCode) {
+    auto o = std::make_shared<BenchOptions>();
+    o->common.settings.photonsPerPass = 1000;
+    CLI::App* cmd = app.add_subcommand("bench", "Measure the throughput of every stage (default scene, 512x512)");
+    addSceneAndOutputOptions(cmd, o->common, "");
+    cmd->add_option("--passes", o->passes, "Passes timed for the passes/s figure")->capture_default_str();
+    cmd->add_option("--photons", o->common.settings.photonsPerPass, "Photon paths per pass")->capture_default_str();
+    cmd->add_option("--rays", o->rays, "Rays for the raw Embree baseline")->capture_default_str();
+    cmd->add_option("--queries", o->queries, "Beam gather queries per BVH kind")->capture_default_str();
+    cmd->callback([o, &exitCode]() {
+        finishOptions(o->common);
+        const RenderSettings& s = o->common.settings;
+        Scene scene = loadScene(o->common.scene);
+        ThreadLimit threads(s.threads);
+        PassRenderer renderer(scene, s);
+        unsigned hw = s.threads > 0 ? unsigned(s.threads) : std::thread::hardware_concurrency();
+        std::printf("tyndall bench: scene '%s', %dx%d, %u photon paths/pass, %u threads\n", scene.name.c_str(), s.width,
+                    s.height, s.photonsPerPass, hw);
+
+        double raw = measureRawRayRate(renderer.rayTracer(), o->rays);
+        std::printf("baseline\n");
+        printRate("Embree raw incoherent rays", raw / 1e6, "M rays/s");
+
+        std::printf("photon tracing\n");
+        PhotonRate ph = measurePhotonTracing(renderer, std::max(4, o->passes));
+        printRate("photon paths", ph.pathsPerSecond / 1e3, "k paths/s");
+        printRate("photon beams stored", ph.beamsPerSecond / 1e3, "k beams/s");
+        printRate("photon rays", ph.raysPerSecond / 1e6, "M rays/s",
+                  ratio(ph.raysPerSecond, raw, "raw ray rate (target >= 0.50x)"));
+
+        std::printf("beam gather (secondary segments; queries along this pass's primary segments)\n");
+        GatherRate user = measureBeamGather(renderer, BeamBvh::Kind::UserGeometry, o->queries);
+        GatherRate curves = measureBeamGather(renderer, BeamBvh::Kind::FlatCurves, o->queries);
+        printRate("user geometry: queries", user.queriesPerSecond / 1e3, "k queries/s");
+        printRate("user geometry: beam hits", user.hitsPerSecond / 1e6, "M hits/s");
+        printRate("flat curves: queries", curves.queriesPerSecond / 1e3, "k queries/s",
+                  ratio(curves.queriesPerSecond, user.queriesPerSecond, "user geometry"));
+        printRate("flat curves: beam hits", curves.hitsPerSecond / 1e6, "M hits/s");
+        printRate("BVH build: user geometry", user.buildSeconds * 1e3, "ms");
+        printRate("BVH build: flat curves", curves.buildSeconds * 1e3, "ms");
+
+        std::printf("full passes (CPU only)\n");
+        PassRate pr = measurePasses(renderer, o->passes);
+        double perPass = 1.0 / pr.passesPerSecond;
+        double pixels = double(s.width) * s.height * pr.passes;
+        printRate("passes", pr.passesPerSecond, "passes/s", pr.passesPerSecond >= 3.0 ? "(target >= 3: met)" : "(target >= 3: NOT met)");
+        printRate("camera paths", pixels / pr.totals.cameraSeconds / 1e6, "M paths/s");
+        printRate("secondary gather queries", pr.totals.beamQueries / pr.totals.cameraSeconds / 1e3, "k queries/s",
+                  "(inside the camera pass)");
+        printRate("primary splat estimator evals", pr.totals.rasterTests / pr.totals.splatSeconds / 1e6, "M evals/s");
+        printRate("  photon stage", pr.totals.photonSeconds / pr.passes * 1e3, "ms/pass",
+                  ratio(pr.totals.photonSeconds / pr.passes, perPass, "of a pass"));
+        printRate("  camera stage", pr.totals.cameraSeconds / pr.passes * 1e3, "ms/pass",
+                  ratio(pr.totals.cameraSeconds / pr.passes, perPass, "of a pass"));
+        printRate("  primary splat stage", pr.totals.splatSeconds / pr.passes * 1e3, "ms/pass",
+                  ratio(pr.totals.splatSeconds / pr.passes, perPass, "of a pass"));
+        printRate("beams per pass", double(pr.totals.beams) / pr.passes, "beams");
+        exitCode = 0;
+    });
+}
+
+}  // namespace tyndall::app
