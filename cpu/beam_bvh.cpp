@@ -7,6 +7,10 @@ namespace tyndall {
 
 namespace {
 
+// Splitting beyond this gains little on queries but makes the per-pass build dominate once the
+// radius (and so the default piece length) has shrunk by orders of magnitude.
+constexpr float kMaxPieces = 8.0f;
+
 // Extends Embree's context (first member) with what the callbacks need.
 struct GatherContext {
     RTCIntersectContext rtc;
@@ -64,7 +68,7 @@ BeamBvh::BeamBvh(const EmbreeDevice& device, const std::vector<PhotonBeam>& beam
     for (uint32_t i = 0; i < beams.size(); ++i) {
         const PhotonBeam& b = beams[i];
         uint32_t n = std::isfinite(pieceLength) && pieceLength > 0
-                         ? uint32_t(std::min(4096.0f, std::max(1.0f, std::ceil(b.tMax / pieceLength))))
+                         ? uint32_t(std::min(kMaxPieces, std::max(1.0f, std::ceil(b.tMax / pieceLength))))
                          : 1u;
         for (uint32_t k = 0; k < n; ++k)
             m_pieces.push_back({i, b.tMax * float(k) / float(n), k + 1 == n ? b.tMax : b.tMax * float(k + 1) / float(n)});

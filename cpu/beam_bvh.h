@@ -7,7 +7,7 @@
 //   FlatCurves:   Embree flat linear curves (ray-facing ribbons of half-width r) with a filter that
 //                 applies the exact test and rejects the hit so traversal continues.
 // Long beams have huge, mostly empty bounding boxes, so each beam is split along its axis into
-// pieces no longer than `pieceLength` (one BVH primitive each); a piece reports a beam only when
+// at most 8 pieces no shorter than `pieceLength` (one BVH primitive each); a piece reports a beam only when
 // the closest point t_v falls inside the piece, so every beam is found once.
 // Thread-safe queries after construction.
 #include <embree3/rtcore.h>

@@ -1,0 +1,66 @@
+// A pass is a pure function of (scene, settings, seed, pass index): any thread count, any order
+// of passes, gives bit-identical pass images; and the beam radius really shrinks in the renderer
+// along the per-path schedule (not only in the schedule function).
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include "core/default_scene.h"
+#include "cpu/pass_renderer.h"
+#include "tests/test_scenes.h"
+
+using namespace tyndall;
+
+namespace {
+bool identical(const Image& a, const Image& b) {
+    if (a.pixels.size() != b.pixels.size()) return false;
+    for (size_t i = 0; i < a.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c)
+            if (a.pixels[i][c] != b.pixels[i][c]) return false;
+    return true;
+}
+}  // namespace
+
+TEST(Determinism, PassImagesDoNotDependOnThreadsOrOrder) {
+    Scene scene = makeDefaultScene();
+    RenderSettings s;
+    s.width = 64;
+    s.height = 48;
+    s.photonsPerPass = 400;
+    s.seed = 77;
+    PassRenderer renderer(scene, s);
+    Image pass3Many = renderer.renderPass(3);
+    Image pass7Many = renderer.renderPass(7);
+    Image pass3One;
+    {
+        tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+        (void)renderer.renderPass(7);  // a different order first
+        pass3One = renderer.renderPass(3);
+    }
+    EXPECT_TRUE(identical(pass3Many, pass3One));
+    EXPECT_FALSE(identical(pass3Many, pass7Many));
+    RenderSettings other = s;
+    other.seed = 78;
+    PassRenderer renderer2(scene, other);
+    EXPECT_FALSE(identical(pass3Many, renderer2.renderPass(3)));
+}
+
+TEST(Determinism, RadiusShrinksPerPhotonPathInTheRenderer) {
+    Scene scene = test::causticScene();
+    RenderSettings s;
+    s.photonsPerPass = 100;
+    s.alpha = 0.5;
+    s.radius = 0.05f;
+    PassRenderer renderer(scene, s);
+    PhotonMap first = renderer.tracePhotons(0), later = renderer.tracePhotons(200);
+    ASSERT_FALSE(first.beams.empty());
+    ASSERT_FALSE(later.beams.empty());
+    float rFirst = first.beams.front().radius, rLater = later.beams.front().radius;
+    EXPECT_NEAR(rFirst, 0.05f, 0.05f * 0.06f);  // path 0..: within the first path's ~5% drift
+    RadiusSchedule schedule(s.alpha, s.radiusOffset);
+    // The beams of pass 200 come from paths 20000..20099; each uses its own path's factor.
+    EXPECT_GE(rLater, float(0.05 * schedule.beamFactor(20099)) * 0.9999f);
+    EXPECT_LE(rLater, float(0.05 * schedule.beamFactor(20000)) * 1.0001f);
+    EXPECT_LT(rLater, 0.4f * rFirst);
+    for (const SurfacePhoton& p : later.surfacePhotons)
+        ASSERT_LE(p.radius, renderer.radii().surfaceRadius * float(schedule.surfaceFactor(20000)) * 1.0001f);
+}
