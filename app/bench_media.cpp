@@ -3,6 +3,7 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <chrono>
 #include <memory>
 
@@ -46,7 +47,8 @@ private:
 };
 }  // namespace
 
-FreeFlightRate measureFreeFlights(const PassRenderer& renderer, uint64_t samples, MajorantMode mode) {
+FreeFlightRate measureFreeFlights(const PassRenderer& renderer, uint64_t samples, MajorantMode mode, int perSegment) {
+    perSegment = std::clamp(perSegment, 1, kMaxFreeFlights);
     const Scene& scene = renderer.scene();
     PhotonMap photons = renderer.tracePhotons(0);
     CameraPassResult camera = renderer.traceCamera(0, photons);
@@ -67,16 +69,21 @@ FreeFlightRate measureFreeFlights(const PassRenderer& renderer, uint64_t samples
         media[i].density = views[i];
     }
     auto sampleRange = [&](const std::vector<Medium>& m, uint64_t begin, uint64_t end) {
-        float sink = 0;
-        for (uint64_t i = begin; i < end; ++i) {
+        float sink = 0, d[kMaxFreeFlights];
+        for (uint64_t i = begin; i < end; i += uint64_t(perSegment)) {
             const PrimaryRay& r = rays[(i * 7919) % rays.size()];
             Rng rng = Rng::forKey(7, 0, i, StreamPurpose::Transmittance);
-            float d = sampleCollisionDistance(m[r.medium], Ray{r.origin, r.dir}, r.tMax, rng);
-            sink += d < kInfinity ? d : 0.0f;
+            if (perSegment == 1) {
+                d[0] = sampleCollisionDistance(m[r.medium], Ray{r.origin, r.dir}, r.tMax, rng);
+            } else {
+                sampleCollisionDistances(m[r.medium], Ray{r.origin, r.dir}, r.tMax, rng, perSegment, d);
+            }
+            for (int k = 0; k < perSegment; ++k) sink += d[k] < kInfinity ? d[k] : 0.0f;
         }
         return sink;
     };
-    const uint64_t block = 1024, blocks = (samples + block - 1) / block;
+    samples = (samples + uint64_t(perSegment) - 1) / uint64_t(perSegment) * uint64_t(perSegment);
+    const uint64_t block = 1024 * uint64_t(perSegment), blocks = (samples + block - 1) / block;
     auto t0 = Clock::now();
     tbb::parallel_for(uint64_t(0), blocks, [&](uint64_t b) {
         volatile float sink = sampleRange(media, b * block, std::min(samples, (b + 1) * block));
@@ -87,7 +94,7 @@ FreeFlightRate measureFreeFlights(const PassRenderer& renderer, uint64_t samples
 
     for (const auto& v : views)
         if (v) v->setCounting(true);
-    const uint64_t counted = std::min<uint64_t>(samples, 200000);
+    const uint64_t counted = std::min<uint64_t>(samples, 200000 / block * block + block);
     tbb::parallel_for(uint64_t(0), (counted + block - 1) / block, [&](uint64_t b) {
         volatile float sink = sampleRange(media, b * block, std::min(counted, (b + 1) * block));
         (void)sink;

@@ -24,7 +24,10 @@ struct FreeFlightRate {
 
 /// Samples `samples` collision distances along pass 0's primary camera segments that run through
 /// density-grid media (as the camera pass does for its stored distances), in parallel with keyed
-/// streams. Zero rates when no primary segment is in a grid medium.
-FreeFlightRate measureFreeFlights(const PassRenderer& renderer, uint64_t samples, MajorantMode mode);
+/// streams. `perSegment` > 1 draws them in sets of that size with sampleCollisionDistances (one
+/// majorant walk per set, as the renderer stores them). Zero rates when no primary segment is in a
+/// grid medium.
+FreeFlightRate measureFreeFlights(const PassRenderer& renderer, uint64_t samples, MajorantMode mode,
+                                  int perSegment = 1);
 
 }  // namespace tyndall::app

@@ -123,7 +123,12 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                 std::snprintf(buf, sizeof buf, "(%.2f density lookups each)", r.densityLookupsPerSample);
                 return std::string(buf);
             };
+            FreeFlightRate sets = measureFreeFlights(hetRenderer, o->freeFlights, MajorantMode::Grid, s.freeFlightSamples);
             printRate("free flights: majorant grid (DDA)", grid.samplesPerSecond / 1e6, "M samples/s", lookups(grid));
+            char setName[64];
+            std::snprintf(setName, sizeof setName, "free flights: sets of %d (as passes)", s.freeFlightSamples);
+            printRate(setName, sets.samplesPerSecond / 1e6, "M samples/s",
+                      ratio(sets.samplesPerSecond, grid.samplesPerSecond, "one at a time"));
             printRate("free flights: one bound per segment", seg.samplesPerSecond / 1e6, "M samples/s",
                       ratio(seg.samplesPerSecond, grid.samplesPerSecond, "majorant grid ") + lookups(seg));
             printRate("free flights: global maximum", glob.samplesPerSecond / 1e6, "M samples/s",

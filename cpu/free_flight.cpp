@@ -108,6 +108,57 @@ float sampleCollisionDistance(const Medium& medium, const Ray& ray, float tEnd, 
     return deltaTrack(medium, ray, tEnd, rng);
 }
 
+void sampleCollisionDistances(const Medium& medium, const Ray& ray, float tEnd, Rng& rng, int n, float* out) {
+    n = std::min(n, kMaxFreeFlights);
+    if (medium.homogeneous()) {
+        for (int k = 0; k < n; ++k) out[k] = sampleCollisionDistance(medium, ray, tEnd, rng);
+        return;
+    }
+    // n delta trackers advanced piece by piece: the same process as n separate calls (each
+    // tracker has its own optical-depth targets), with one walk of the majorant grid.
+    const DensityGrid& grid = *medium.density;
+    const float sigmaT = medium.sigmaT().r;
+    float tau[kMaxFreeFlights];
+    int live[kMaxFreeFlights];
+    int active = 0;
+    for (int k = 0; k < n; ++k) {
+        out[k] = kInfinity;
+        tau[k] = -std::log1p(-rng.uniform());
+        live[active++] = k;
+    }
+    if (!(sigmaT > 0)) return;
+    MajorantPieces pieces(grid, ray, tEnd);
+    float t0, t1, maj;
+    while (active > 0 && pieces.next(&t0, &t1, &maj)) {
+        const float mu = maj * sigmaT;
+        if (!(mu > 0)) continue;
+        for (int i = 0; i < active;) {
+            const int k = live[i];
+            float t = t0;
+            bool collided = false;
+            while (true) {
+                float dt = tau[k] / mu;
+                if (!(t + dt < t1)) {
+                    tau[k] = std::max(0.0f, tau[k] - mu * (t1 - t));
+                    break;
+                }
+                t += dt;
+                if (rng.uniform() * maj < grid.density(ray.at(t))) {
+                    out[k] = t;
+                    collided = true;
+                    break;
+                }
+                tau[k] = -std::log1p(-rng.uniform());
+            }
+            if (collided) {
+                live[i] = live[--active];
+            } else {
+                ++i;
+            }
+        }
+    }
+}
+
 Rgb estimateTransmittance(const Medium& medium, const Ray& ray, float tEnd, Rng& rng) {
     if (medium.homogeneous()) return medium.transmittance(tEnd);
     // Ratio tracking (Novak et al. 2014): product of (1 - density/majorant) at tentative collisions.

@@ -26,6 +26,12 @@ FreeFlight sampleFreeFlight(const Medium& medium, const Ray& ray, float tEnd, Rn
 /// extinction for grid media (channel 0 is used for homogeneous ones).
 float sampleCollisionDistance(const Medium& medium, const Ray& ray, float tEnd, Rng& rng);
 
+/// `n` (<= kMaxFreeFlights) independent collision distances along one segment, each distributed as
+/// sampleCollisionDistance's: the stored set of one beam or one pixel. Grid media walk the
+/// majorant grid once for all n trackers.
+constexpr int kMaxFreeFlights = 64;
+void sampleCollisionDistances(const Medium& medium, const Ray& ray, float tEnd, Rng& rng, int n, float* out);
+
 /// Transmittance estimate over [0, tEnd]: analytic for homogeneous media, a ratio-tracking
 /// estimate (unbiased) for grid media.
 Rgb estimateTransmittance(const Medium& medium, const Ray& ray, float tEnd, Rng& rng);
