@@ -61,19 +61,22 @@ std::string formatDensity(float d) {
     return buf;
 }
 
-/// The two halves side by side with a dark gap, each labelled at its top-left.
-Image sideBySide(const Image& left, const Image& right, const std::string& leftLabel, const std::string& rightLabel) {
+/// The two halves side by side with a dark gap, each labelled at its top-left (clipped to its half;
+/// `shortLabel` when the full one does not fit).
+Image sideBySide(const Image& left, const Image& right, const std::string (&labels)[2],
+                 const std::string (&shortLabels)[2]) {
     const int w = left.width, h = left.height, gap = std::max(2, w / 128);
-    Image out(2 * w + gap, h);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            out.at(x, y) = left.at(x, y);
-            out.at(w + gap + x, y) = right.at(x, y);
-        }
-    // Linear values: the glyphs at 20 saturate to white under the PNG tone curve at any sane exposure.
     const int scale = std::max(1, h / 256), margin = 2 * scale;
-    drawLabel(out, margin, margin, leftLabel, scale, Rgb(20.0f), Rgb(0.0f));
-    drawLabel(out, w + gap + margin, margin, rightLabel, scale, Rgb(20.0f), Rgb(0.0f));
+    Image out(2 * w + gap, h);
+    const Image* halves[2] = {&left, &right};
+    for (int i = 0; i < 2; ++i) {
+        Image half = *halves[i];
+        const std::string& text = labelWidth(labels[i], scale) + 2 * margin <= w ? labels[i] : shortLabels[i];
+        // Linear values: glyphs at 20 saturate to white under the PNG tone curve at any sane exposure.
+        drawLabel(half, margin, margin, text, scale, Rgb(20.0f), Rgb(0.0f));
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) out.at(i * (w + gap) + x, y) = half.at(x, y);
+    }
     return out;
 }
 }  // namespace
@@ -125,9 +128,11 @@ void addCompareCommand(CLI::App& app, int& exitCode) {
         };
         writeImage(hetPath, het.image, withHalf("heterogeneous"));
         writeImage(homPath, hom.image, withHalf("homogeneous"));
-        std::string rightLabel = (o->density >= 0 ? "homogeneous, density " : "homogeneous, mean density ") + densities;
-        writeImage(c.output, sideBySide(het.image, hom.image, "heterogeneous (OpenVDB grid)", rightLabel), meta,
-                   c.exposure);
+        const std::string labels[2] = {
+            "heterogeneous (OpenVDB grid)",
+            (o->density >= 0 ? "homogeneous, density " : "homogeneous, mean density ") + densities};
+        const std::string shortLabels[2] = {"heterogeneous", "homogeneous"};
+        writeImage(c.output, sideBySide(het.image, hom.image, labels, shortLabels), meta, c.exposure);
 
         double hetPerPass = het.seconds / std::max<uint64_t>(het.passes, 1);
         double homPerPass = hom.seconds / std::max<uint64_t>(hom.passes, 1);
