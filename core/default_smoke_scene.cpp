@@ -2,7 +2,7 @@
 
 #include "core/default_scene.h"
 #include "core/error.h"
-#include "core/procedural_smoke.h"
+#include "core/procedural_media.h"
 
 namespace tyndall {
 

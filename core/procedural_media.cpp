@@ -1,4 +1,4 @@
-#include "core/procedural_smoke.h"
+#include "core/procedural_media.h"
 
 #include <cmath>
 #include <vector>
@@ -73,6 +73,33 @@ std::shared_ptr<const VdbDensityGrid> makeProceduralSmoke(const ProceduralSmoke&
         }
     Affine3 indexToWorld = Affine3::scaleTranslate(Vec3(s.voxelSize), lo);
     return VdbDensityGrid::fromDense(dims, values, indexToWorld, "procedural smoke");
+}
+
+std::shared_ptr<const VdbDensityGrid> makeRollingFog(const RollingFog& f) {
+    const Vec3 size = f.hi - f.lo;
+    const int dims[3] = {int(std::ceil(size.x / f.voxelSize)) + 1, int(std::ceil(size.y / f.voxelSize)) + 1,
+                         int(std::ceil(size.z / f.voxelSize)) + 1};
+    std::vector<float> values(size_t(dims[0]) * dims[1] * dims[2], 0.0f);
+    const float inv = 1.0f / f.bankSize;
+    for (int k = 0; k < dims[2]; ++k)
+        for (int i = 0; i < dims[0]; ++i) {
+            const float x = f.lo.x + float(i) * f.voxelSize, z = f.lo.z + float(k) * f.voxelSize;
+            // The layer's local top rolls between 0.4x and 1.6x the mean thickness, in long banks.
+            float banks = fbm(Vec3(x * inv, 0.37f, z * inv * 0.6f), f.seed);
+            float top = f.layerHeight * (0.4f + 1.2f * smoothstep(0.3f, 0.7f, banks));
+            for (int j = 0; j < dims[1]; ++j) {
+                const float y = float(j) * f.voxelSize;
+                // Densest on the ground, thinning with height and fading out over the top 40% of
+                // the layer, with wisps: finer noise stretched along the banks.
+                float profile = std::exp(-1.5f * y / top) * (1.0f - smoothstep(0.6f * top, top, y));
+                if (profile <= 0) break;
+                float wisps = fbm(Vec3(x * 2.5f * inv, y * 3.0f / f.layerHeight, z * 1.5f * inv), f.seed + 101);
+                float d = profile * (0.35f + 0.65f * smoothstep(0.35f, 0.75f, wisps));
+                values[(size_t(k) * dims[1] + j) * dims[0] + i] = d > 1e-3f ? d : 0.0f;
+            }
+        }
+    Affine3 indexToWorld = Affine3::scaleTranslate(Vec3(f.voxelSize), f.lo);
+    return VdbDensityGrid::fromDense(dims, values, indexToWorld, "procedural rolling fog");
 }
 
 }  // namespace tyndall
