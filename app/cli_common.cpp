@@ -13,22 +13,37 @@
 
 namespace tyndall::app {
 
+CLI::Validator nonNegativeInteger() {
+    return CLI::Validator(
+        [](std::string& v) {
+            return !v.empty() && v[0] == '-' ? "expected a non-negative integer, got '" + v + "'" : std::string();
+        },
+        "", "non-negative");
+}
+
 void addSceneAndOutputOptions(CLI::App* cmd, CommonOptions& o, const std::string& defaultOutput) {
     o.output = defaultOutput;
     cmd->add_option("scene", o.scene, "Scene file (.json, .gltf, .glb); omitted = the built-in default scene");
     cmd->add_option("-o,--output", o.output, "Output image: .exr (linear, settings in metadata) or .png (tone-mapped)")
         ->capture_default_str();
     cmd->add_option("--size", o.size, "Image size WxH in pixels")->capture_default_str();
-    cmd->add_option("--seed", o.settings.seed, "Random seed: the same seed gives the same passes")->capture_default_str();
+    cmd->add_option("--seed", o.settings.seed, "Random seed: the same seed gives the same passes")
+        ->check(nonNegativeInteger())
+        ->capture_default_str();
     cmd->add_option("--threads", o.settings.threads, "Worker threads (0 = all cores)")->capture_default_str();
     cmd->add_option("--exposure", o.exposure, "Exposure multiplier for PNG output")->capture_default_str();
 }
 
 void addPpbOptions(CLI::App* cmd, CommonOptions& o) {
-    auto* passes = cmd->add_option("--passes", o.settings.passes, "Number of passes")->capture_default_str();
+    // Unsigned options reject "-3" explicitly: CLI11 would otherwise wrap it to 2^64 - 3.
+    auto* passes = cmd->add_option("--passes", o.settings.passes, "Number of passes")
+                       ->check(nonNegativeInteger())
+                       ->capture_default_str();
     auto* time = cmd->add_option("--time", o.settings.timeBudget, "Time budget in seconds (instead of --passes)");
     passes->excludes(time);
-    cmd->add_option("--photons", o.settings.photonsPerPass, "Photon paths per pass")->capture_default_str();
+    cmd->add_option("--photons", o.settings.photonsPerPass, "Photon paths per pass")
+        ->check(nonNegativeInteger())
+        ->capture_default_str();
     cmd->add_option("--alpha", o.settings.alpha, "Radius reduction alpha in (0,1): lower = less noise, more bias")
         ->capture_default_str();
     cmd->add_option("--radius", o.settings.radius,
@@ -39,6 +54,7 @@ void addPpbOptions(CLI::App* cmd, CommonOptions& o) {
         ->capture_default_str();
     cmd->add_option("--radius-offset", o.settings.radiusOffset,
                     "Photon paths the radius schedule treats as already traced (see docs/algorithm.md)")
+        ->check(nonNegativeInteger())
         ->capture_default_str();
     cmd->add_option("--free-flights", o.settings.freeFlightSamples,
                     "Stored free-flight distances per beam and pixel (heterogeneous media)")

@@ -19,6 +19,9 @@ struct CommonOptions {
     RenderSettings settings;
 };
 
+/// Rejects "-3" for unsigned options (CLI11 would wrap it to 2^64 - 3) with a plain message.
+CLI::Validator nonNegativeInteger();
+
 /// Adds [SCENE] --size --seed --threads -o --exposure.
 void addSceneAndOutputOptions(CLI::App* cmd, CommonOptions& o, const std::string& defaultOutput);
 /// Adds the PPB options: --passes --time --photons --alpha --radius --surface-radius.

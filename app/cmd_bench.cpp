@@ -36,7 +36,9 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
     CLI::App* cmd = app.add_subcommand("bench", "Measure the throughput of every stage (default scene, 512x512)");
     addSceneAndOutputOptions(cmd, o->common, "");
     cmd->add_option("--passes", o->passes, "Passes timed for the passes/s figure")->capture_default_str();
-    cmd->add_option("--photons", o->common.settings.photonsPerPass, "Photon paths per pass")->capture_default_str();
+    cmd->add_option("--photons", o->common.settings.photonsPerPass, "Photon paths per pass")
+        ->check(nonNegativeInteger())
+        ->capture_default_str();
     cmd->add_option("--rays", o->rays, "Rays for the raw Embree baseline")->capture_default_str();
     cmd->add_option("--queries", o->queries, "Beam gather queries per BVH kind")->capture_default_str();
     cmd->add_option("--free-flights", o->freeFlights, "Free-flight distances sampled per majorant kind")

@@ -94,9 +94,12 @@ bool EmbreeScene::intersect(const Ray& ray, SurfaceHit* hit) const {
     hit->b1 = rh.hit.u;
     hit->b2 = rh.hit.v;
     hit->p = ray.at(hit->t);
-    hit->ng = normalize(mesh.geometricNormal(rh.hit.primID));
+    // Embree's Ng is cross(v1 - v0, v2 - v0): the same orientation as Scene's CCW convention.
+    hit->ng = normalize(Vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
     hit->ns = hit->ng;
-    if (!mesh.normals.empty()) {
+    // Shading normals only change specular directions (diffuse sampling uses ng): skip the vertex
+    // fetches for everything else.
+    if (!mesh.normals.empty() && m_scene.materials[mesh.material].isSpecular()) {
         const uint32_t* tri = &mesh.indices[3 * size_t(rh.hit.primID)];
         Vec3 n = mesh.normals[tri[0]] * (1.0f - hit->b1 - hit->b2) + mesh.normals[tri[1]] * hit->b1 +
                  mesh.normals[tri[2]] * hit->b2;

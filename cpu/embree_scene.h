@@ -30,7 +30,7 @@ struct SurfaceHit {
     uint32_t triangle = 0;
     Vec3 p;   ///< hit point
     Vec3 ng;  ///< unit geometric normal, pointing to the mesh exterior (CCW winding)
-    Vec3 ns;  ///< unit shading normal (interpolated, or ng), on the same side as ng
+    Vec3 ns;  ///< unit shading normal, on ng's side: interpolated on specular meshes with normals, else ng
     float b1 = 0, b2 = 0;  ///< barycentrics of vertices 1 and 2
 };
 

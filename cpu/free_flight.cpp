@@ -5,7 +5,7 @@
 namespace tyndall {
 
 namespace {
-float expSample(float sigma, float u) { return sigma > 0 ? -std::log1p(-u) / sigma : kInfinity; }
+float expSample(float sigma, float u) { return sigma > 0 ? -std::log(1.0f - u) / sigma : kInfinity; }  // u < 1
 
 /// The majorant along [0, tEnd] of a ray through a density grid, as constant pieces: the grid's
 /// majorant grid walked cell by cell when it has one, else one piece with majorant(ray).
@@ -46,7 +46,7 @@ float deltaTrack(const Medium& medium, const Ray& ray, float tEnd, Rng& rng) {
     const float sigmaT = medium.sigmaT().r;
     if (!(sigmaT > 0)) return kInfinity;
     MajorantPieces pieces(grid, ray, tEnd);
-    float tau = -std::log1p(-rng.uniform());
+    float tau = -std::log(1.0f - rng.uniform());
     float t0, t1, maj;
     while (pieces.next(&t0, &t1, &maj)) {
         const float mu = maj * sigmaT;
@@ -60,7 +60,7 @@ float deltaTrack(const Medium& medium, const Ray& ray, float tEnd, Rng& rng) {
             }
             t += dt;
             if (rng.uniform() * maj < grid.density(ray.at(t))) return t;
-            tau = -std::log1p(-rng.uniform());
+            tau = -std::log(1.0f - rng.uniform());
         }
     }
     return kInfinity;
@@ -123,7 +123,7 @@ void sampleCollisionDistances(const Medium& medium, const Ray& ray, float tEnd, 
     int active = 0;
     for (int k = 0; k < n; ++k) {
         out[k] = kInfinity;
-        tau[k] = -std::log1p(-rng.uniform());
+        tau[k] = -std::log(1.0f - rng.uniform());
         live[active++] = k;
     }
     if (!(sigmaT > 0)) return;
@@ -148,7 +148,7 @@ void sampleCollisionDistances(const Medium& medium, const Ray& ray, float tEnd, 
                     collided = true;
                     break;
                 }
-                tau[k] = -std::log1p(-rng.uniform());
+                tau[k] = -std::log(1.0f - rng.uniform());
             }
             if (collided) {
                 live[i] = live[--active];

@@ -37,6 +37,8 @@ PhotonMap PhotonTracer::trace(uint64_t pass, uint64_t firstPath, uint32_t count)
     std::vector<PhotonMap> parts(blocks);
     tbb::parallel_for(uint32_t(0), blocks, [&](uint32_t b) {
         PhotonMap& part = parts[b];
+        part.beams.reserve(kBlock * 8);
+        part.surfacePhotons.reserve(kBlock * 4);
         part.freeFlightsPerBeam = m_anyHeterogeneous ? m_settings.freeFlightSamples : 0;
         uint32_t end = std::min(count, (b + 1) * kBlock);
         for (uint32_t k = b * kBlock; k < end; ++k) tracePath(pass, k, firstPath + k, count, part);
