@@ -39,7 +39,8 @@ public:
     virtual float maxDensity() const = 0;
     /// Mean density over the active region (for the homogeneous twin of `tyndall compare`).
     virtual float meanDensity() const = 0;
-    /// The voxels as a dense block for GPU upload; false when the grid has no voxel form.
+    /// The voxels as a dense block for GPU upload; false when the grid has no voxel form or the
+    /// block would be too large to hold.
     virtual bool toDense(DenseDensity* out) const { return false; }
 };
 

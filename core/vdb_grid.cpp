@@ -62,6 +62,7 @@ struct VdbDensityGrid::Impl {
     float maxDensity = 0;
     float meanDensity = 0;
     uint64_t activeVoxels = 0;
+    int majorantBlock = 0;
 };
 
 namespace {
@@ -156,12 +157,18 @@ std::shared_ptr<const VdbDensityGrid> makeVdbDensityGrid(openvdb::FloatGrid::Con
 
     // Majorant cells: cell c covers index [O + cB, O + (c+1)B] with O = lo - 1. A point there
     // interpolates voxels O + cB .. O + (c+1)B + 1; one more voxel each side absorbs rounding.
-    const int64_t B = majorantBlock;
+    // Sparse grids spanning a huge index range get coarser cells (a bounded majorant grid).
+    int64_t B = majorantBlock;
     int64_t origin[3], res[3];
-    for (int a = 0; a < 3; ++a) {
-        origin[a] = int64_t(lo[a]) - 1;
-        res[a] = std::max<int64_t>(1, (int64_t(hi[a]) - int64_t(lo[a]) + 2 + B - 1) / B);
+    while (true) {
+        for (int a = 0; a < 3; ++a) {
+            origin[a] = int64_t(lo[a]) - 1;
+            res[a] = std::max<int64_t>(1, (int64_t(hi[a]) - int64_t(lo[a]) + 2 + B - 1) / B);
+        }
+        if (res[0] * res[1] * res[2] <= VdbDensityGrid::kMaxMajorantCells) break;
+        B *= 2;
     }
+    impl->majorantBlock = int(B);
     Affine3 indexToCell = Affine3::scaleTranslate(Vec3(1.0f / float(B)),
                                                   Vec3(-float(origin[0]) / float(B), -float(origin[1]) / float(B),
                                                        -float(origin[2]) / float(B)));
@@ -288,6 +295,7 @@ float VdbDensityGrid::meanDensity() const { return m_impl->meanDensity; }
 const std::string& VdbDensityGrid::label() const { return m_impl->label; }
 const std::string& VdbDensityGrid::gridName() const { return m_impl->name; }
 uint64_t VdbDensityGrid::activeVoxelCount() const { return m_impl->activeVoxels; }
+int VdbDensityGrid::majorantBlock() const { return m_impl->majorantBlock; }
 const Affine3& VdbDensityGrid::indexToWorld() const { return m_impl->indexToWorld; }
 const Affine3& VdbDensityGrid::worldToIndex() const { return m_impl->worldToIndex; }
 
@@ -298,6 +306,10 @@ bool VdbDensityGrid::toDense(DenseDensity* out) const {
     // The positive voxels plus a zero border, so clamp-to-edge and clamp-to-border agree.
     const openvdb::Coord lo = g.positiveBox.min() - openvdb::Coord(1), hi = g.positiveBox.max() + openvdb::Coord(1);
     for (int a = 0; a < 3; ++a) out->dims[a] = hi[a] - lo[a] + 1;
+    if (uint64_t(out->dims[0]) * uint64_t(out->dims[1]) * uint64_t(out->dims[2]) > kMaxDenseVoxels) {
+        *out = DenseDensity();
+        return false;
+    }
     out->values.resize(size_t(out->dims[0]) * out->dims[1] * out->dims[2]);
     Accessor& acc = accessorFor(g);
     size_t n = 0;

@@ -13,8 +13,9 @@
 //   volumes). The same values feed the majorant grid and the dense export, so tracking, gathering
 //   and the GL texture all see one field.
 // - An empty grid (no positive voxel) is a valid, empty medium: density 0 everywhere.
-// - Majorants: a coarse grid of cells of `kMajorantBlock`^3 voxels, each holding the maximum of
-//   every voxel its trilinear stencil can touch (plus one voxel of margin for rounding).
+// - Majorants: a coarse grid of cells of `kMajorantBlock`^3 voxels (coarser for huge sparse
+//   grids), each holding the maximum of every voxel its trilinear stencil can touch (plus one
+//   voxel of margin for rounding).
 //
 // Threading: all queries are safe from any number of threads. OpenVDB accessors are not, so each
 // thread keeps its own accessor (a small thread_local cache keyed by a per-grid id that is never
@@ -40,8 +41,12 @@ struct VdbGridSource {
 
 class VdbDensityGrid : public DensityGrid {
 public:
-    /// Edge of a majorant cell, in voxels.
+    /// Edge of a majorant cell, in voxels (doubled until the majorant grid has at most
+    /// kMaxMajorantCells cells, for sparse grids spanning huge index ranges).
     static constexpr int kMajorantBlock = 8;
+    static constexpr int64_t kMaxMajorantCells = int64_t(1) << 21;
+    /// toDense() refuses blocks larger than this (1 GiB of floats).
+    static constexpr uint64_t kMaxDenseVoxels = uint64_t(1) << 28;
 
     /// Loads a grid; throws Error "vdb file '<file>': ..." for a missing or unreadable file, a
     /// missing grid name (listing the grids present), a level set, a non-float grid, a frustum or
@@ -69,6 +74,8 @@ public:
     const std::string& label() const;
     const std::string& gridName() const;
     uint64_t activeVoxelCount() const;
+    /// Edge of the majorant cells actually used, in voxels.
+    int majorantBlock() const;
     const Affine3& indexToWorld() const;
     const Affine3& worldToIndex() const;
 

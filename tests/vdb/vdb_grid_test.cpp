@@ -249,6 +249,27 @@ TEST(VdbGrid, AnEmptyGridIsAnEmptyMedium) {
     EXPECT_FALSE(w.next(&t0, &t1, &m));
 }
 
+// Two voxels 40000 apart: the majorant grid coarsens instead of allocating 5000^3 cells, still
+// bounds both voxels, and the dense export declines.
+TEST(VdbGrid, SparseGridsOverHugeRangesStayBounded) {
+    openvdb::initialize();
+    auto g = openvdb::FloatGrid::create(0.0f);
+    g->tree().setValue(openvdb::Coord(0, 0, 0), 1.0f);
+    g->tree().setValue(openvdb::Coord(40000, 40000, 40000), 2.0f);
+    std::string path = test::outputDir() + "/sparse-far-apart.vdb";
+    openvdb::io::File(path).write({g});
+    VdbGridSource src;
+    src.file = path;
+    auto grid = VdbDensityGrid::load(src);
+    EXPECT_GT(grid->majorantBlock(), VdbDensityGrid::kMajorantBlock);
+    EXPECT_LE(int64_t(grid->majorantGrid()->cellCount()), VdbDensityGrid::kMaxMajorantCells);
+    EXPECT_GE(grid->majorant(Ray{Vec3(-1.0f), normalize(Vec3(1.0f)), 0.0f, 10.0f}), 1.0f);
+    EXPECT_GE(grid->majorant(Ray{Vec3(39999.0f), normalize(Vec3(1.0f)), 0.0f, 10.0f}), 2.0f);
+    EXPECT_NEAR(grid->density(Vec3(40000.0f)), 2.0f, 1e-5f);
+    DenseDensity dense;
+    EXPECT_FALSE(grid->toDense(&dense));
+}
+
 // ---- The loader's errors, on files written by this test ----
 
 std::string outPath(const std::string& name) { return test::outputDir() + "/" + name; }
