@@ -6,6 +6,7 @@
 
 #include "app/bench_cpu.h"
 #include "app/bench_media.h"
+#include "app/bench_hybrid.h"
 #include "app/cli_common.h"
 #include "core/default_smoke_scene.h"
 
@@ -18,6 +19,7 @@ struct BenchOptions {
     uint64_t rays = 4000000;
     uint64_t queries = 200000;
     uint64_t freeFlights = 2000000;
+    bool hybrid = true;
 };
 
 void printRate(const char* what, double value, const char* unit, const std::string& note = "") {
@@ -43,6 +45,7 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--queries", o->queries, "Beam gather queries per BVH kind")->capture_default_str();
     cmd->add_option("--free-flights", o->freeFlights, "Free-flight distances sampled per majorant kind")
         ->capture_default_str();
+    cmd->add_flag("!--no-hybrid", o->hybrid, "Skip the hybrid (GL splat) figures");
     cmd->callback([o, &exitCode]() {
         finishOptions(o->common);
         const RenderSettings& s = o->common.settings;
@@ -91,6 +94,7 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
         printRate("  primary splat stage", pr.totals.splatSeconds / pr.passes * 1e3, "ms/pass",
                   ratio(pr.totals.splatSeconds / pr.passes, perPass, "of a pass"));
         printRate("beams per pass", double(pr.totals.beams) / pr.passes, "beams");
+        if (o->hybrid) printHybridBench(measureHybrid(renderer, o->passes));
 
         // Heterogeneous media: the built-in smoke scene against this (fog) scene, or a scene's own
         // grid media against their homogeneous twin.

@@ -10,6 +10,7 @@
 #include "app/interrupt.h"
 #include "core/accumulator.h"
 #include "cpu/progressive_render.h"
+#include "hybrid/pass_scheduler.h"
 
 namespace tyndall::app {
 
@@ -31,30 +32,39 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
     CLI::App* cmd = app.add_subcommand("render", "Render a scene with progressive photon beams");
     addSceneAndOutputOptions(cmd, *o, "tyndall.png");
     addPpbOptions(cmd, *o);
+    cmd->add_option("--gpu", o->settings.gpu,
+                    "Primary-beam splatting on OpenGL: auto (a hardware GPU when there is one, else the CPU), "
+                    "on (OpenGL or fail; llvmpipe counts), off (CPU only, never touches OpenGL)")
+        ->capture_default_str();
     cmd->callback([o, &exitCode]() {
         finishOptions(*o);
         checkOutputWritable(o->output);
         Scene scene = loadScene(o->scene);
         ThreadLimit threads(o->settings.threads);
+        PassScheduler scheduler(parseGpuMode(o->settings.gpu));
         PassRenderer renderer(scene, o->settings);
         Accumulator acc(o->settings.width, o->settings.height);
         installInterruptHandler();
         bool tty = isatty(fileno(stderr));
-        RenderProgress p = renderProgressive(renderer, acc, 0, [&](const RenderProgress& pr) {
+        CallbackDisplay display([&](const Accumulator&, const RenderProgress& pr) {
             if (tty) {
                 double rate = pr.passesDone / std::max(pr.elapsedSeconds, 1e-9);
                 std::fprintf(stderr, "\rpass %llu  %.1f s  %.2f passes/s ", (unsigned long long)pr.passesDone,
                              pr.elapsedSeconds, rate);
             }
-            return !interruptRequested();
+            return interruptRequested() ? DisplayCommand::Exit : DisplayCommand::Continue;
         });
+        scheduler.bind(scene);
+        if (!scheduler.notice().empty()) std::fprintf(stderr, "tyndall: %s\n", scheduler.notice().c_str());
+        RenderProgress p = scheduler.run(renderer, acc, 0, display);
         if (tty) std::fprintf(stderr, "\n");
         writeImage(o->output, acc.mean(), renderMetadata(scene, o->settings, renderer.radii(), acc.passCount()), o->exposure);
-        std::printf("rendered %s: %llu passes, %llu photon paths, %llu beams, %.2f s (%.2f passes/s)%s -> %s\n",
+        std::printf("rendered %s: %llu passes, %llu photon paths, %llu beams, %.2f s (%.2f passes/s, %s)%s -> %s\n",
                     scene.name.c_str(), (unsigned long long)acc.passCount(), (unsigned long long)p.totals.photonPaths,
                     (unsigned long long)p.totals.beams, p.elapsedSeconds,
-                    acc.passCount() / std::max(p.elapsedSeconds, 1e-9), interruptRequested() ? " [interrupted]" : "",
-                    o->output.c_str());
+                    acc.passCount() / std::max(p.elapsedSeconds, 1e-9),
+                    scheduler.hybrid() ? ("hybrid, " + scheduler.glDescription()).c_str() : "CPU",
+                    interruptRequested() ? " [interrupted]" : "", o->output.c_str());
         exitCode = interruptRequested() ? 130 : 0;
     });
 }

@@ -1,7 +1,7 @@
 #pragma once
 // The beam x ray 1D estimator ("beam radiance estimate", Jarosz et al. 2011), shared verbatim by
-// the CPU gather, the CPU beam rasterizer and the GLSL splatter (gpu/shaders/beam_splat.frag is
-// its twin; tests/gpu parity checks them against each other).
+// the CPU gather and the CPU beam rasterizer; gpu/shaders/beam_estimator.glsl is its GLSL twin
+// (tests/gpu/estimator_parity_test.cpp runs both on the same inputs).
 //
 // For a camera segment x_c + s w_c, s in [0, sMax], and a beam x_b + t w_b, t in [0, tMax]:
 //   L += k_r(u) sigma_s(x_w) Phi_b Tr_cam(0->s_w) Tr_beam(0->t_v) p(theta) / sin(theta)

@@ -5,23 +5,13 @@
 //
 // Tracking (cpu/free_flight.cpp) bounds the density along a ray by majorantGrid() when the grid
 // has one (piecewise-constant, tight) and by majorant(ray) otherwise (one value per segment).
-#include <vector>
+#include <cstddef>
 
-#include "core/affine3.h"
+#include "core/density_volume.h"
 #include "core/majorant_grid.h"
 #include "core/math.h"
 
 namespace tyndall {
-
-/// A grid's voxels as a dense block, for uploading as a 3D texture (gpu/). Sampling it with
-/// hardware trilinear filtering at texture coordinate worldToTexture.point(p) (clamp to a zero
-/// border) reproduces DensityGrid::density(p): texel (i, j, k) is voxel (i, j, k) of the block and
-/// its centre sits at ((i, j, k) + 0.5) / dims.
-struct DenseDensity {
-    int dims[3] = {0, 0, 0};
-    std::vector<float> values;  ///< x fastest: values[(k * dims[1] + j) * dims[0] + i], >= 0
-    Affine3 worldToTexture;     ///< world -> [0, 1]^3 texture coordinates
-};
 
 class DensityGrid {
 public:
@@ -39,9 +29,10 @@ public:
     virtual float maxDensity() const = 0;
     /// Mean density over the active region (for the homogeneous twin of `tyndall compare`).
     virtual float meanDensity() const = 0;
-    /// The voxels as a dense block for GPU upload; false when the grid has no voxel form or the
-    /// block would be too large to hold.
-    virtual bool toDense(DenseDensity* out) const { return false; }
+    /// The grid in dense voxel form for the GL splatter (core/density_volume.h states the rule
+    /// `out->sample(p)` must match density(p) by), when it has one of at most `maxVoxels` voxels;
+    /// false otherwise, and the primary-segment splat of this medium stays on the CPU.
+    virtual bool denseVolume(DensityVolume* out, size_t maxVoxels) const { return false; }
 };
 
 }  // namespace tyndall

@@ -299,28 +299,30 @@ int VdbDensityGrid::majorantBlock() const { return m_impl->majorantBlock; }
 const Affine3& VdbDensityGrid::indexToWorld() const { return m_impl->indexToWorld; }
 const Affine3& VdbDensityGrid::worldToIndex() const { return m_impl->worldToIndex; }
 
-bool VdbDensityGrid::toDense(DenseDensity* out) const {
+bool VdbDensityGrid::denseVolume(DensityVolume* out, size_t maxVoxels) const {
     const Impl& g = *m_impl;
-    *out = DenseDensity();
-    if (g.empty) return true;
-    // The positive voxels plus a zero border, so clamp-to-edge and clamp-to-border agree.
+    *out = DensityVolume();
+    if (g.empty) return true;  // no lattice points: 0 everywhere
+    // The positive voxels plus a zero border (the trilinear support), lattice point (0,0,0) at
+    // index lo; the scale folded into the values.
     const openvdb::Coord lo = g.positiveBox.min() - openvdb::Coord(1), hi = g.positiveBox.max() + openvdb::Coord(1);
-    for (int a = 0; a < 3; ++a) out->dims[a] = hi[a] - lo[a] + 1;
-    if (uint64_t(out->dims[0]) * uint64_t(out->dims[1]) * uint64_t(out->dims[2]) > kMaxDenseVoxels) {
-        *out = DenseDensity();
-        return false;
-    }
-    out->values.resize(size_t(out->dims[0]) * out->dims[1] * out->dims[2]);
+    const uint64_t nx = uint64_t(hi.x() - lo.x() + 1), ny = uint64_t(hi.y() - lo.y() + 1),
+                   nz = uint64_t(hi.z() - lo.z() + 1);
+    if (nx * ny * nz > uint64_t(maxVoxels)) return false;
+    out->nx = int(nx);
+    out->ny = int(ny);
+    out->nz = int(nz);
+    out->voxels.resize(out->voxelCount());
     Accessor& acc = accessorFor(g);
     size_t n = 0;
     for (int k = lo.z(); k <= hi.z(); ++k)
         for (int j = lo.y(); j <= hi.y(); ++j)
             for (int i = lo.x(); i <= hi.x(); ++i)
-                out->values[n++] = std::max(acc.getValue(openvdb::Coord(i, j, k)), 0.0f) * g.scale;
-    Vec3 inv(1.0f / float(out->dims[0]), 1.0f / float(out->dims[1]), 1.0f / float(out->dims[2]));
-    Affine3 indexToTexture = Affine3::scaleTranslate(
-        inv, Vec3((0.5f - float(lo.x())) * inv.x, (0.5f - float(lo.y())) * inv.y, (0.5f - float(lo.z())) * inv.z));
-    out->worldToTexture = indexToTexture * g.worldToIndex;
+                out->voxels[n++] = std::max(acc.getValue(openvdb::Coord(i, j, k)), 0.0f) * g.scale;
+    Affine3 shift = Affine3::scaleTranslate(Vec3(1.0f), Vec3(-float(lo.x()), -float(lo.y()), -float(lo.z())));
+    Affine3 w = shift * g.worldToIndex;
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 4; ++c) out->worldToIndex[r][c] = w.m[r][c];
     return true;
 }
 

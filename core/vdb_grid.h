@@ -10,8 +10,9 @@
 //   index-space point (i, j, k) (OpenVDB's BoxSampler), at index point worldToIndex(p). The
 //   world <- index map is the file's index-to-world transform (anisotropic voxels, rotations)
 //   followed by the scene's transform. Inactive voxels read as their stored value (0 in fog
-//   volumes). The same values feed the majorant grid and the dense export, so tracking, gathering
-//   and the GL texture all see one field.
+//   volumes). The same values feed the majorant grid and the dense export (denseVolume: the
+//   positive voxels plus a one-voxel zero border, scale folded in), so tracking, gathering and the
+//   GL splatter all see one field.
 // - An empty grid (no positive voxel) is a valid, empty medium: density 0 everywhere.
 // - Majorants: a coarse grid of cells of `kMajorantBlock`^3 voxels (coarser for huge sparse
 //   grids), each holding the maximum of every voxel its trilinear stencil can touch (plus one
@@ -45,8 +46,6 @@ public:
     /// kMaxMajorantCells cells, for sparse grids spanning huge index ranges).
     static constexpr int kMajorantBlock = 8;
     static constexpr int64_t kMaxMajorantCells = int64_t(1) << 21;
-    /// toDense() refuses blocks larger than this (1 GiB of floats).
-    static constexpr uint64_t kMaxDenseVoxels = uint64_t(1) << 28;
 
     /// Loads a grid; throws Error "vdb file '<file>': ..." for a missing or unreadable file, a
     /// missing grid name (listing the grids present), a level set, a non-float grid, a frustum or
@@ -68,7 +67,7 @@ public:
     const MajorantGrid* majorantGrid() const override;
     float maxDensity() const override;
     float meanDensity() const override;
-    bool toDense(DenseDensity* out) const override;
+    bool denseVolume(DensityVolume* out, size_t maxVoxels) const override;
 
     /// "file 'x' grid 'density'" or the label given to fromDense.
     const std::string& label() const;

@@ -18,19 +18,27 @@ struct CameraSpace {
 };
 }  // namespace
 
+// Which pixels can accept a beam: the estimator pairs a ray point Q = o + s d (s >= 0, so depth
+// z_Q >= 0) with an axis point C at distance u < r. For a thin lens, o is within `lens` of the
+// camera centre and d aims at the focus plane (depth fd), so Q lies in the pinhole frustum widened
+// by lens |1 - z/fd| <= lens (1 + z/fd): tangents tx + lens/fd, ty + lens/fd, planes moved out by
+// lens (beyond 2 fd the lens rays leave the pinhole frustum by more than the lens radius). C must
+// lie within r of that set: clip the axis to it widened by r, plane by plane. On the film, Q lands
+// within the projected radius of C's projection, shifted by f |o| |1/fd - 1/z_Q| for the lens,
+// with z_Q in [zMin - r, zMax + r]. gpu/shaders/beam_footprint.glsl is the GLSL twin.
 BeamFootprint beamFootprint(const Camera& cam, int width, int height, const PhotonBeam& beam) {
     BeamFootprint fp;
     const float tanHalf = std::tan(0.5f * cam.yFov);
     const float tx = tanHalf * float(width) / float(height), ty = tanHalf;
     const float f = 0.5f * float(height) / tanHalf;  // focal length in pixels
-    const float reach = beam.radius + cam.lensRadius;
+    const float r = beam.radius, lens = cam.lensRadius;
     auto toCamera = [&](const Vec3& p) {
         Vec3 v = p - cam.position;
         return CameraSpace{dot(v, cam.right), dot(v, cam.up), dot(v, cam.forward)};
     };
     CameraSpace a = toCamera(beam.origin), b = toCamera(beam.origin + beam.dir * beam.tMax);
 
-    // Clip the axis to the frustum widened by `reach`: each plane is g(p) >= 0, linear in p.
+    // Each plane is g(p) >= 0, linear in p.
     float lo = 0.0f, hi = 1.0f;
     auto clip = [&](float ga, float gb) {
         if (ga < 0 && gb < 0) return false;
@@ -38,19 +46,21 @@ BeamFootprint beamFootprint(const Camera& cam, int width, int height, const Phot
         else if (gb < 0) hi = std::min(hi, ga / (ga - gb));
         return lo <= hi;
     };
-    const float sx = reach * std::sqrt(1.0f + tx * tx), sy = reach * std::sqrt(1.0f + ty * ty);
-    if (!clip(a.z + reach, b.z + reach)) return fp;
-    if (!clip(a.z * tx - a.x + sx, b.z * tx - b.x + sx)) return fp;
-    if (!clip(a.z * tx + a.x + sx, b.z * tx + b.x + sx)) return fp;
-    if (!clip(a.z * ty - a.y + sy, b.z * ty - b.y + sy)) return fp;
-    if (!clip(a.z * ty + a.y + sy, b.z * ty + b.y + sy)) return fp;
+    const float spread = lens > 0 ? lens / cam.focusDistance : 0.0f;
+    const float lx = tx + spread, ly = ty + spread;
+    const float sx = lens + r * std::sqrt(1.0f + lx * lx), sy = lens + r * std::sqrt(1.0f + ly * ly);
+    if (!clip(a.z + r, b.z + r)) return fp;
+    if (!clip(a.z * lx - a.x + sx, b.z * lx - b.x + sx)) return fp;
+    if (!clip(a.z * lx + a.x + sx, b.z * lx + b.x + sx)) return fp;
+    if (!clip(a.z * ly - a.y + sy, b.z * ly - b.y + sy)) return fp;
+    if (!clip(a.z * ly + a.y + sy, b.z * ly + b.y + sy)) return fp;
     fp.visible = true;
     auto lerp = [](const CameraSpace& p, const CameraSpace& q, float t) {
         return CameraSpace{p.x + (q.x - p.x) * t, p.y + (q.y - p.y) * t, p.z + (q.z - p.z) * t};
     };
     CameraSpace c0 = lerp(a, b, lo), c1 = lerp(a, b, hi);
     float zMin = std::min(c0.z, c1.z), zMax = std::max(c0.z, c1.z);
-    if (zMin <= 2.0f * reach) {  // passes right by the camera: every pixel may see it
+    if (zMin <= 2.0f * (r + lens)) {  // passes right by the camera: every pixel may see it
         fp.fullScreen = true;
         return fp;
     }
@@ -67,13 +77,17 @@ BeamFootprint beamFootprint(const Camera& cam, int width, int height, const Phot
     };
     float stretch = std::max(stretchAt(fp.ax, fp.ay), stretchAt(fp.bx, fp.by));
     float coc = 0.0f;
-    if (cam.lensRadius > 0) {
+    if (lens > 0) {
         float invF = 1.0f / cam.focusDistance;
-        coc = f * cam.lensRadius * std::max(std::abs(invF - 1.0f / zMin), std::abs(invF - 1.0f / zMax));
+        coc = f * lens * std::max(std::abs(invF - 1.0f / (zMin - r)), std::abs(invF - 1.0f / (zMax + r)));
     }
     const float margin = coc + 0.75f;  // 0.75 > half the pixel diagonal: any jittered film position
-    fp.ra = f * beam.radius / (c0.z - beam.radius) * stretch + margin;
-    fp.rb = f * beam.radius / (c1.z - beam.radius) * stretch + margin;
+    fp.ra = f * r / (c0.z - r) * stretch + margin;
+    fp.rb = f * r / (c1.z - r) * stretch + margin;
+    // Degenerate input (NaN, or coordinates too large to bin as ints): be safe, not fast.
+    const float limit = 1e7f;
+    for (float v : {fp.ax, fp.ay, fp.bx, fp.by, fp.ra, fp.rb})
+        if (!(std::abs(v) < limit)) fp.fullScreen = true;
     return fp;
 }
 

@@ -95,3 +95,24 @@ TEST(Cli, RendersAreReproducibleAcrossThreadCounts) {
         }
     EXPECT_GT(sum, 0.0);
 }
+
+TEST(Cli, GpuModes) {
+    const std::string out = tyndall::test::outputDir() + "/cli_gpu.exr";
+    const std::string common = "render --passes 2 --photons 200 --size 48x32 -o " + out + " --gpu ";
+    Result off = run(common + "off");
+    ASSERT_EQ(off.status, 0) << off.out;
+    EXPECT_NE(off.out.find("passes/s, CPU)"), std::string::npos) << off.out;
+    EXPECT_EQ(lineCount(off.out), 1) << off.out;
+    Result on = run(common + "on");
+    ASSERT_EQ(on.status, 0) << on.out;
+    EXPECT_NE(on.out.find("hybrid, "), std::string::npos) << on.out;
+    // Here OpenGL is llvmpipe: auto renders on the CPU and says why in one line.
+    Result automatic = run(common + "auto");
+    ASSERT_EQ(automatic.status, 0) << automatic.out;
+    EXPECT_NE(automatic.out.find("tyndall: --gpu auto: rendering on the CPU"), std::string::npos) << automatic.out;
+    EXPECT_EQ(lineCount(automatic.out), 2) << automatic.out;
+    Result bad = run(common + "sometimes");
+    EXPECT_NE(bad.status, 0);
+    EXPECT_EQ(lineCount(bad.out), 1) << bad.out;
+    EXPECT_NE(bad.out.find("--gpu"), std::string::npos) << bad.out;
+}

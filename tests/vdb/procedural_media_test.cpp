@@ -7,6 +7,8 @@
 namespace tyndall {
 namespace {
 
+constexpr size_t kMaxVoxels = size_t(1) << 26;
+
 void expectSane(const VdbDensityGrid& g, const Bounds3& box, const char* what) {
     SCOPED_TRACE(what);
     ASSERT_FALSE(g.bounds().empty());
@@ -26,16 +28,16 @@ TEST(ProceduralMedia, SmokeIsDeterministicAndSane) {
     ProceduralSmoke p;
     p.voxelSize = 0.06f;  // coarser than the default, to keep the test quick
     auto a = makeProceduralSmoke(p), b = makeProceduralSmoke(p);
-    DenseDensity da, db;
-    ASSERT_TRUE(a->toDense(&da));
-    ASSERT_TRUE(b->toDense(&db));
-    EXPECT_EQ(da.values, db.values);
+    DensityVolume da, db;
+    ASSERT_TRUE(a->denseVolume(&da, kMaxVoxels));
+    ASSERT_TRUE(b->denseVolume(&db, kMaxVoxels));
+    EXPECT_EQ(da.voxels, db.voxels);
     Bounds3 box{p.base - Vec3(1.2f, 0.0f, 1.2f), p.base + Vec3(1.2f, p.height, 1.2f)};
     expectSane(*a, box, "smoke");
     p.seed += 1;
-    DenseDensity dc;
-    makeProceduralSmoke(p)->toDense(&dc);
-    EXPECT_NE(da.values, dc.values);
+    DensityVolume dc;
+    makeProceduralSmoke(p)->denseVolume(&dc, kMaxVoxels);
+    EXPECT_NE(da.voxels, dc.voxels);
 }
 
 TEST(ProceduralMedia, RollingFogIsDeterministicAndHugsTheGround) {
@@ -43,10 +45,10 @@ TEST(ProceduralMedia, RollingFogIsDeterministicAndHugsTheGround) {
     f.lo = Vec3(-3.0f, 0.0f, -3.0f);
     f.hi = Vec3(3.0f, 3.0f, 3.0f);
     auto a = makeRollingFog(f), b = makeRollingFog(f);
-    DenseDensity da, db;
-    a->toDense(&da);
-    b->toDense(&db);
-    EXPECT_EQ(da.values, db.values);
+    DensityVolume da, db;
+    ASSERT_TRUE(a->denseVolume(&da, kMaxVoxels));
+    ASSERT_TRUE(b->denseVolume(&db, kMaxVoxels));
+    EXPECT_EQ(da.voxels, db.voxels);
     expectSane(*a, Bounds3{f.lo, f.hi}, "fog");
     // Thicker near the ground than at the mean layer height, nothing well above the layer.
     double low = 0, high = 0;

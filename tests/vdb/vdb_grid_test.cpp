@@ -184,33 +184,33 @@ TEST(VdbGrid, MajorantGridBoundsTheDensityAlongEveryRay) {
     }
 }
 
-TEST(VdbGrid, DenseExportReproducesDensityUnderTextureFiltering) {
+// The GL splatter's form (core/density_volume.h): DensityVolume::sample, the rule its shader
+// twin follows, reproduces density() everywhere, inside and around the grid.
+TEST(VdbGrid, DenseVolumeReproducesDensity) {
     Block b = randomBlock(8);
     Affine3 xf = skewedIndexToWorld();
     auto grid = VdbDensityGrid::fromDense(b.dims, b.values, xf, "test block");
-    DenseDensity dense;
-    ASSERT_TRUE(grid->toDense(&dense));
-    ASSERT_EQ(dense.values.size(), size_t(dense.dims[0]) * dense.dims[1] * dense.dims[2]);
-    auto texel = [&](int i, int j, int k) {
-        if (i < 0 || j < 0 || k < 0 || i >= dense.dims[0] || j >= dense.dims[1] || k >= dense.dims[2]) return 0.0f;
-        return dense.values[(size_t(k) * dense.dims[1] + j) * dense.dims[0] + i];
-    };
+    DensityVolume dense;
+    ASSERT_TRUE(grid->denseVolume(&dense, size_t(1) << 20));
+    EXPECT_EQ(dense.voxels.size(), dense.voxelCount());
+    EXPECT_EQ(dense.nx, b.dims[0] + 2);  // every face of the random block has a positive voxel
+    DensityVolume small;
+    EXPECT_FALSE(grid->denseVolume(&small, dense.voxelCount() - 1)) << "must respect maxVoxels";
     Rng rng = Rng::forKey(9, 0, 0, StreamPurpose::Test);
     Bounds3 box = grid->bounds();
+    Vec3 lo = box.lo - box.diagonal() * 0.2f, size = box.diagonal() * 1.4f;
     for (int n = 0; n < 20000; ++n) {
-        Vec3 p = box.lo + mul(box.diagonal(), Vec3(rng.uniform(), rng.uniform(), rng.uniform()));
-        Vec3 uvw = dense.worldToTexture.point(p);
-        // GL trilinear: texel centres at (i + 0.5) / dims.
-        Vec3 x(uvw.x * dense.dims[0] - 0.5f, uvw.y * dense.dims[1] - 0.5f, uvw.z * dense.dims[2] - 0.5f);
-        int i = int(std::floor(x.x)), j = int(std::floor(x.y)), k = int(std::floor(x.z));
-        float fx = x.x - i, fy = x.y - j, fz = x.z - k;
-        double v = 0;
-        for (int c = 0; c < 8; ++c) {
-            int di = c & 1, dj = (c >> 1) & 1, dk = (c >> 2) & 1;
-            v += (di ? fx : 1 - fx) * (dj ? fy : 1 - fy) * (dk ? fz : 1 - fz) * texel(i + di, j + dj, k + dk);
-        }
-        ASSERT_NEAR(v, grid->density(p), 1e-4 * (1 + v));
+        Vec3 p = lo + mul(size, Vec3(rng.uniform(), rng.uniform(), rng.uniform()));
+        float d = grid->density(p);
+        ASSERT_NEAR(dense.sample(p), d, 1e-4f * (1 + d)) << n;
     }
+    // An empty grid exports an empty volume that samples to 0.
+    int dims[3] = {2, 2, 2};
+    auto empty = VdbDensityGrid::fromDense(dims, std::vector<float>(8, 0.0f), Affine3(), "empty");
+    DensityVolume none;
+    ASSERT_TRUE(empty->denseVolume(&none, 10));
+    EXPECT_EQ(none.voxelCount(), 0u);
+    EXPECT_EQ(none.sample(Vec3(0.5f)), 0.0f);
 }
 
 // Five grids read in interleaved order from many threads: more grids than the per-thread accessor
@@ -250,7 +250,7 @@ TEST(VdbGrid, AnEmptyGridIsAnEmptyMedium) {
 }
 
 // Two voxels 40000 apart: the majorant grid coarsens instead of allocating 5000^3 cells, still
-// bounds both voxels, and the dense export declines.
+// bounds both voxels, and the dense export declines (40001^3 voxels).
 TEST(VdbGrid, SparseGridsOverHugeRangesStayBounded) {
     openvdb::initialize();
     auto g = openvdb::FloatGrid::create(0.0f);
@@ -266,8 +266,8 @@ TEST(VdbGrid, SparseGridsOverHugeRangesStayBounded) {
     EXPECT_GE(grid->majorant(Ray{Vec3(-1.0f), normalize(Vec3(1.0f)), 0.0f, 10.0f}), 1.0f);
     EXPECT_GE(grid->majorant(Ray{Vec3(39999.0f), normalize(Vec3(1.0f)), 0.0f, 10.0f}), 2.0f);
     EXPECT_NEAR(grid->density(Vec3(40000.0f)), 2.0f, 1e-5f);
-    DenseDensity dense;
-    EXPECT_FALSE(grid->toDense(&dense));
+    DensityVolume dense;
+    EXPECT_FALSE(grid->denseVolume(&dense, size_t(1) << 28));
 }
 
 // ---- The loader's errors, on files written by this test ----

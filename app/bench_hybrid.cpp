@@ -1,0 +1,149 @@
+#include "app/bench_hybrid.h"
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+
+#include "gpu/beam_splatter.h"
+#include "hybrid/gl_thread.h"
+#include "hybrid/pass_scheduler.h"
+
+namespace tyndall::app {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+/// CPU time of the whole process (every thread: TBB's, llvmpipe's, the GL thread).
+double processCpuSeconds() {
+    timespec t;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
+struct LoopRun {
+    double wall = 0, cpu = 0;
+    RenderProgress progress;
+};
+
+/// `passes` passes through the scheduler after a one-pass warm-up (shader compilation, caches).
+LoopRun runLoop(PassScheduler& scheduler, const PassRenderer& renderer, int passes) {
+    RenderSettings warm = renderer.settings();
+    warm.passes = 1;
+    warm.timeBudget = 0;
+    PassRenderer warmRenderer(renderer.scene(), warm);
+    CallbackDisplay display([](const Accumulator&, const RenderProgress&) { return DisplayCommand::Continue; });
+    Accumulator acc(warm.width, warm.height);
+    scheduler.run(warmRenderer, acc, 1000, display);
+
+    RenderSettings s = renderer.settings();
+    s.passes = uint64_t(passes);
+    s.timeBudget = 0;
+    PassRenderer measured(renderer.scene(), s);
+    Accumulator acc2(s.width, s.height);
+    LoopRun r;
+    double c0 = processCpuSeconds();
+    auto t0 = Clock::now();
+    r.progress = scheduler.run(measured, acc2, 0, display);
+    r.wall = since(t0);
+    r.cpu = processCpuSeconds() - c0;
+    return r;
+}
+}  // namespace
+
+HybridBench measureHybrid(const PassRenderer& renderer, int passes) {
+    HybridBench b;
+    b.passes = passes;
+    {
+        PassScheduler cpuOnly(GpuMode::Off);
+        LoopRun r = runLoop(cpuOnly, renderer, passes);
+        b.cpuOnlyPassesPerSecond = passes / r.wall;
+        b.cpuOnlyCpuSecondsPerPass = r.cpu / passes;
+    }
+    {
+        PassScheduler hybrid(GpuMode::On);
+        b.gl = hybrid.glDescription();
+        LoopRun r = runLoop(hybrid, renderer, passes);
+        b.hybridPassesPerSecond = passes / r.wall;
+        b.hybridCpuSecondsPerPass = r.cpu / passes;
+        b.overlappedCpuStageSeconds = (r.progress.totals.photonSeconds + r.progress.totals.cameraSeconds) / passes;
+        b.overlappedGlSplatSeconds = r.progress.totals.splatSeconds / passes;
+    }
+
+    // Each side alone, on the same passes.
+    GlThread gl;
+    auto splatter = gl.submit([&](GlContext& ctx) {
+                          auto s = std::make_shared<GlBeamSplatter>(ctx, renderer.scene());
+                          s->countFragments(true);
+                          return s;
+                      }).get();
+    for (int i = 0; i <= passes; ++i) {
+        auto t0 = Clock::now();
+        PhotonMap photons = renderer.tracePhotons(uint64_t(i));
+        CameraPassResult camera = renderer.traceCamera(uint64_t(i), photons);
+        double cpuStage = since(t0);
+
+        double c0 = processCpuSeconds();
+        auto t1 = Clock::now();
+        GlSplatStats stats;
+        gl.submit([&](GlContext&) { return splatter->splat(camera.primary, photons, &stats); }).get();
+        double glWall = since(t1), glCpu = processCpuSeconds() - c0;
+
+        c0 = processCpuSeconds();
+        auto t2 = Clock::now();
+        RasterStats raster;
+        renderer.splatPrimary(camera, photons, &raster);
+        double cpuSplatWall = since(t2), cpuSplatCpu = processCpuSeconds() - c0;
+        if (i == 0) continue;  // warm-up
+        b.cpuStageSeconds += cpuStage / passes;
+        b.glSplatSeconds += glWall / passes;
+        b.glSplatCpuSeconds += glCpu / passes;
+        b.cpuSplatSeconds += cpuSplatWall / passes;
+        b.cpuSplatCpuSeconds += cpuSplatCpu / passes;
+        b.fragmentsPerPass += double(stats.fragments) / passes;
+        b.beamsPerPass += double(photons.beams.size()) / passes;
+        b.pixelTestsPerPass += double(raster.pixelTests) / passes;
+    }
+    gl.submit([&](GlContext&) { splatter.reset(); }).get();
+    return b;
+}
+
+void printHybridBench(const HybridBench& b) {
+    auto row = [](const char* what, double value, const char* unit, const std::string& note = "") {
+        std::printf("  %-34s %12.3f %-12s %s\n", what, value, unit, note.c_str());
+    };
+    auto ratio = [](double value, double base, const char* baseName) {
+        char buf[128];
+        std::snprintf(buf, sizeof(buf), "= %.2fx %s", value / base, baseName);
+        return std::string(buf);
+    };
+    const char* lp = std::getenv("LP_NUM_THREADS");
+    std::printf("hybrid: GL splat on %s (LP_NUM_THREADS=%s), %d passes per figure\n", b.gl.c_str(), lp ? lp : "unset",
+                b.passes);
+    row("CPU-only loop", b.cpuOnlyPassesPerSecond, "passes/s");
+    row("hybrid loop", b.hybridPassesPerSecond, "passes/s",
+        ratio(b.hybridPassesPerSecond, b.cpuOnlyPassesPerSecond, "CPU-only (target >= 1.50x)"));
+    row("  process CPU time, CPU-only", b.cpuOnlyCpuSecondsPerPass, "s/pass");
+    row("  process CPU time, hybrid", b.hybridCpuSecondsPerPass, "s/pass",
+        ratio(b.hybridCpuSecondsPerPass, b.cpuOnlyCpuSecondsPerPass, "CPU-only"));
+    row("CPU side alone (photons+camera)", b.cpuStageSeconds * 1e3, "ms/pass");
+    row("GL splat alone", b.glSplatSeconds * 1e3, "ms/pass", ratio(b.glSplatSeconds, b.cpuSplatSeconds, "CPU twin"));
+    row("CPU twin splat alone", b.cpuSplatSeconds * 1e3, "ms/pass");
+    row("  GL splat process CPU time", b.glSplatCpuSeconds * 1e3, "ms/pass",
+        ratio(b.glSplatCpuSeconds, b.cpuSplatCpuSeconds, "CPU twin's"));
+    row("  CPU twin process CPU time", b.cpuSplatCpuSeconds * 1e3, "ms/pass");
+    row("CPU side inside the hybrid loop", b.overlappedCpuStageSeconds * 1e3, "ms/pass",
+        ratio(b.overlappedCpuStageSeconds, b.cpuStageSeconds, "alone"));
+    row("GL splat inside the hybrid loop", b.overlappedGlSplatSeconds * 1e3, "ms/pass",
+        ratio(b.overlappedGlSplatSeconds, b.glSplatSeconds, "alone"));
+    row("overlap efficiency", b.overlapEfficiency(), "", "hybrid s/pass / max(sides alone) (target <= 1.15)");
+    row("GL fragments", b.fragmentsPerPass / 1e6, "M/pass",
+        ratio(b.fragmentsPerPass, b.pixelTestsPerPass, "the CPU twin's estimator evaluations"));
+    row("GL fragment rate", b.fragmentsPerPass / b.glSplatSeconds / 1e6, "M frags/s");
+    row("GL time per beam", b.glSplatSeconds / b.beamsPerPass * 1e6, "us/beam",
+        ratio(b.glSplatSeconds, b.cpuSplatSeconds, "CPU twin"));
+}
+
+}  // namespace tyndall::app

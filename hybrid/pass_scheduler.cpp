@@ -1,0 +1,188 @@
+#include "hybrid/pass_scheduler.h"
+
+#include <chrono>
+#include <deque>
+#include <future>
+
+#include "core/error.h"
+#include "gpu/beam_splatter.h"
+#include "hybrid/gl_thread.h"
+
+namespace tyndall {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+}  // namespace
+
+GpuMode parseGpuMode(const std::string& text) {
+    if (text == "auto") return GpuMode::Auto;
+    if (text == "on") return GpuMode::On;
+    if (text == "off") return GpuMode::Off;
+    throw Error("--gpu must be auto, on or off (got '" + text + "')");
+}
+
+/// One pass between its CPU stage and the accumulator.
+struct PassScheduler::Flight {
+    uint64_t pass = 0;
+    PassStats stats;
+    std::shared_ptr<const CameraPassResult> camera;
+    std::future<std::pair<Image, double>> splat;  // GL: the primary-segment image and its seconds
+    Image image;                                  // CPU only: the finished pass image
+};
+
+PassScheduler::PassScheduler(GpuMode mode, SchedulerOptions options) : m_mode(mode), m_options(options) {
+    m_options.queueDepth = std::max(m_options.queueDepth, 1);
+    if (mode == GpuMode::Off) return;
+    try {
+        m_gl = std::make_unique<GlThread>();
+    } catch (const Error& e) {
+        if (mode == GpuMode::On) throw Error(std::string("--gpu on: ") + e.what());
+        m_notice = std::string("--gpu auto: rendering on the CPU: ") + e.what();
+        return;
+    }
+    m_glDescription = m_gl->description();
+    if (mode == GpuMode::Auto && m_gl->isSoftware() && !m_options.autoAcceptsSoftwareGl) {
+        m_notice = "--gpu auto: rendering on the CPU: OpenGL here is a software rasterizer (" + m_glDescription +
+                   ") that would take its cores from the CPU passes (--gpu on forces it)";
+        m_gl.reset();
+        m_glDescription.clear();
+    }
+}
+
+PassScheduler::~PassScheduler() {
+    if (m_gl && m_splatter) m_gl->submit([this](GlContext&) { m_splatter.reset(); }).wait();
+}
+
+void PassScheduler::bind(const Scene& scene) {
+    if (!m_gl) return;
+    if (m_boundScene == &scene && m_splatter) {
+        reloadMedia();
+        return;
+    }
+    try {
+        m_gl->submit([this, &scene](GlContext& ctx) {
+                m_splatter.reset();
+                m_splatter = std::make_shared<GlBeamSplatter>(ctx, scene);
+            })
+            .get();
+        m_boundScene = &scene;
+        m_glUsable = true;
+        m_notice.clear();
+    } catch (const Error& e) {
+        m_boundScene = nullptr;
+        m_glUsable = false;
+        if (m_mode == GpuMode::On) throw Error(std::string("--gpu on: ") + e.what());
+        m_notice = std::string("--gpu auto: rendering on the CPU: ") + e.what();
+    }
+}
+
+void PassScheduler::reloadMedia() {
+    if (m_glUsable) m_gl->submit([this](GlContext&) { m_splatter->reloadMedia(); }).get();
+}
+
+RenderProgress PassScheduler::run(const PassRenderer& renderer, Accumulator& acc, uint64_t firstPass,
+                                  RenderDisplay& display) {
+    bind(renderer.scene());
+    const RenderSettings& s = renderer.settings();
+    std::deque<Flight> flights;
+    RenderProgress progress;
+    auto start = Clock::now();
+    uint64_t next = firstPass;
+    m_peakPassesHeld = 0;
+
+    auto wantMore = [&] {
+        if (s.timeBudget > 0) return secondsSince(start) < s.timeBudget;
+        return next - firstPass < s.passes;
+    };
+    // Waits for the oldest pass's splat, adds the pass, asks the display.
+    auto finishOldest = [&] {
+        Flight f = std::move(flights.front());
+        flights.pop_front();
+        if (f.splat.valid()) {
+            auto [image, splatSeconds] = f.splat.get();
+            image += f.camera->radiance;
+            f.image = std::move(image);
+            f.stats.splatSeconds += splatSeconds;
+        }
+        acc.addPass(f.image);
+        progress.totals += f.stats;
+        progress.pass = f.pass;
+        progress.passesDone++;
+        progress.elapsedSeconds = secondsSince(start);
+        return display.passAdded(acc, progress);
+    };
+    // Passes in flight are thrown away; their splats still finish (they read their inputs).
+    auto discardFlights = [&] {
+        for (Flight& f : flights)
+            if (f.splat.valid()) f.splat.wait();
+        flights.clear();
+    };
+
+    try {
+        for (;;) {
+            DisplayCommand command = DisplayCommand::Continue;
+            if (wantMore()) {
+                Flight f;
+                f.pass = next++;
+                if (m_glUsable) {
+                    auto t0 = Clock::now();
+                    auto photons = std::make_shared<const PhotonMap>(renderer.tracePhotons(f.pass));
+                    auto t1 = Clock::now();
+                    f.camera = std::make_shared<const CameraPassResult>(renderer.traceCamera(f.pass, *photons));
+                    f.stats.photonPaths = photons->pathCount;
+                    f.stats.beams = photons->beams.size();
+                    f.stats.surfacePhotons = photons->surfacePhotons.size();
+                    f.stats.cameraRays = f.camera->stats.rays;
+                    f.stats.beamQueries = f.camera->stats.beamQueries;
+                    f.stats.beamHits = f.camera->stats.beamHits;
+                    f.stats.photonSeconds = std::chrono::duration<double>(t1 - t0).count();
+                    f.stats.cameraSeconds = secondsSince(t1);
+                    m_peakPassesHeld = std::max(m_peakPassesHeld, int(flights.size()) + 1);
+                    if (int(flights.size()) >= m_options.queueDepth) command = finishOldest();
+                    if (command == DisplayCommand::Continue) {
+                        std::shared_ptr<const CameraPassResult> camera = f.camera;
+                        f.splat = m_gl->submit([this, camera, photons](GlContext&) {
+                            auto t = Clock::now();
+                            Image image = m_splatter->splat(camera->primary, *photons);
+                            return std::make_pair(std::move(image), secondsSince(t));
+                        });
+                        flights.push_back(std::move(f));
+                    }
+                } else {
+                    m_peakPassesHeld = 1;
+                    f.image = renderer.renderPass(f.pass, &f.stats);
+                    flights.push_back(std::move(f));
+                    command = finishOldest();
+                }
+            } else if (!flights.empty()) {
+                command = finishOldest();
+            } else {
+                break;
+            }
+            if (m_resetRequested.exchange(false) && command == DisplayCommand::Continue)
+                command = DisplayCommand::Reset;
+            if (m_exitRequested) command = DisplayCommand::Exit;
+            if (command == DisplayCommand::Exit) break;
+            if (command == DisplayCommand::Reset) {
+                discardFlights();
+                acc.reset();
+                display.restarting();
+                reloadMedia();
+                next = firstPass;
+                progress = RenderProgress();
+                start = Clock::now();
+            }
+        }
+    } catch (...) {
+        discardFlights();
+        throw;
+    }
+    discardFlights();
+    m_exitRequested = false;
+    return progress;
+}
+
+}  // namespace tyndall

@@ -1,0 +1,225 @@
+// The hybrid render loop: with the same seed, GL-splatted and CPU-only renders of the default
+// scene agree up to float rounding; reset and exit (from the display or another thread) throw
+// away the passes in flight and the result equals a fresh render; the queue stays bounded; the
+// --gpu modes choose and fall back as documented.
+#include "hybrid/pass_scheduler.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <thread>
+
+#include "core/default_scene.h"
+#include "core/error.h"
+#include "tests/gpu/gpu_test_util.h"
+
+using namespace tyndall;
+using tyndall::test::relativeRms;
+
+namespace {
+
+RenderSettings smallSettings(uint64_t passes) {
+    RenderSettings s;
+    s.width = 64;
+    s.height = 48;
+    s.passes = passes;
+    s.photonsPerPass = 500;
+    return s;
+}
+
+struct Rendered {
+    Image image;
+    std::vector<uint64_t> passOrder;
+    int restarts = 0;
+};
+
+/// Renders with `mode`; `command(passesDone)` answers after every pass.
+Rendered render(GpuMode mode, const Scene& scene, const RenderSettings& s,
+                const std::function<DisplayCommand(uint64_t)>& command = {}) {
+    PassScheduler scheduler(mode);
+    PassRenderer renderer(scene, s);
+    Accumulator acc(s.width, s.height);
+    Rendered out;
+    CallbackDisplay display(
+        [&](const Accumulator& a, const RenderProgress& p) {
+            EXPECT_EQ(a.passCount(), p.passesDone);
+            out.passOrder.push_back(p.pass);
+            return command ? command(p.passesDone) : DisplayCommand::Continue;
+        },
+        [&] { ++out.restarts; });
+    scheduler.run(renderer, acc, 0, display);
+    EXPECT_EQ(scheduler.hybrid(), mode == GpuMode::On);
+    EXPECT_LE(scheduler.peakPassesHeld(), 2);
+    out.image = acc.mean();
+    return out;
+}
+
+const Scene& defaultScene() {
+    static const Scene scene = [] {
+        Scene s = makeDefaultScene();
+        s.validate();
+        return s;
+    }();
+    return scene;
+}
+
+}  // namespace
+
+TEST(PassScheduler, HybridAndCpuOnlyGiveTheSameImage) {
+    RenderSettings s = smallSettings(64);
+    Rendered cpu = render(GpuMode::Off, defaultScene(), s);
+    Rendered hybrid = render(GpuMode::On, defaultScene(), s);
+    double rms = relativeRms(hybrid.image, cpu.image);
+    std::printf("64 passes, %dx%d: relative RMS hybrid vs CPU-only %.3g\n", s.width, s.height, rms);
+    EXPECT_LT(rms, 1e-3);
+    ASSERT_EQ(hybrid.passOrder.size(), 64u);
+    for (uint64_t i = 0; i < 64; ++i) EXPECT_EQ(hybrid.passOrder[i], i);
+    if (rms >= 1e-3) tyndall::test::writeEvidence("hybrid_vs_cpu", hybrid.image, cpu.image);
+
+    // The comparison means something: the primary-segment splat is a large part of the image.
+    PassRenderer renderer(defaultScene(), s);
+    PhotonMap photons = renderer.tracePhotons(0);
+    CameraPassResult camera = renderer.traceCamera(0, photons);
+    Image splat = renderer.splatPrimary(camera, photons), none(s.width, s.height);
+    Image full = splat;
+    full += camera.radiance;
+    EXPECT_GT(relativeRms(camera.radiance, full), 0.05);
+}
+
+TEST(PassScheduler, HybridAndCpuOnlyAgreeInAGridMedium) {
+    // The default scene's fog made heterogeneous: the GL side samples the dense volume and reads
+    // the stored free flights of every pixel and beam.
+    Scene scene = defaultScene();
+    scene.media[0].density = std::make_shared<tyndall::test::LatticeTestGrid>(scene.bounds, 12);
+    scene.validate();
+    RenderSettings s = smallSettings(16);
+    Rendered cpu = render(GpuMode::Off, scene, s);
+    Rendered hybrid = render(GpuMode::On, scene, s);
+    double rms = relativeRms(hybrid.image, cpu.image);
+    std::printf("grid medium, 16 passes: relative RMS hybrid vs CPU-only %.3g\n", rms);
+    EXPECT_LT(rms, 1e-3);
+    EXPECT_GT(relativeRms(cpu.image, render(GpuMode::Off, defaultScene(), s).image), 0.02)
+        << "the grid should change the image";
+    PassRenderer renderer(scene, s);
+    PhotonMap photons = renderer.tracePhotons(0);
+    CameraPassResult camera = renderer.traceCamera(0, photons);
+    ASSERT_GT(photons.freeFlightsPerBeam, 0);
+    Image full = renderer.splatPrimary(camera, photons);
+    full += camera.radiance;
+    EXPECT_GT(relativeRms(camera.radiance, full), 0.05) << "the primary splat should matter in the grid medium";
+}
+
+TEST(PassScheduler, ResetFromTheDisplayRestartsCleanly) {
+    RenderSettings s = smallSettings(12);
+    Rendered fresh = render(GpuMode::Off, defaultScene(), s);
+    for (GpuMode mode : {GpuMode::Off, GpuMode::On}) {
+        bool didReset = false;
+        Rendered r = render(mode, defaultScene(), s, [&](uint64_t done) {
+            if (done == 5 && !didReset) {
+                didReset = true;
+                return DisplayCommand::Reset;
+            }
+            return DisplayCommand::Continue;
+        });
+        EXPECT_EQ(r.restarts, 1);
+        ASSERT_EQ(r.passOrder.size(), 5u + 12u);
+        EXPECT_EQ(r.passOrder[5], 0u) << "the render restarts at pass 0";
+        EXPECT_LT(relativeRms(r.image, fresh.image), 1e-3) << "passes in flight at the reset leaked into the image";
+    }
+}
+
+TEST(PassScheduler, ExitFromTheDisplayStopsAfterThatPass) {
+    RenderSettings s = smallSettings(50);
+    for (GpuMode mode : {GpuMode::Off, GpuMode::On}) {
+        Rendered r = render(mode, defaultScene(), s,
+                            [](uint64_t done) { return done == 3 ? DisplayCommand::Exit : DisplayCommand::Continue; });
+        EXPECT_EQ(r.passOrder.size(), 3u);
+    }
+}
+
+TEST(PassScheduler, ResetAndExitFromAnotherThread) {
+    RenderSettings s = smallSettings(100000);
+    PassScheduler scheduler(GpuMode::On);
+    PassRenderer renderer(defaultScene(), s);
+    Accumulator acc(s.width, s.height);
+    std::atomic<uint64_t> passes{0};
+    std::atomic<int> restarts{0};
+    CallbackDisplay display(
+        [&](const Accumulator&, const RenderProgress& p) {
+            passes = p.passesDone;
+            return DisplayCommand::Continue;
+        },
+        [&] {
+            passes = 0;
+            ++restarts;
+        });
+    std::thread viewer([&] {
+        while (passes < 3) std::this_thread::yield();
+        scheduler.requestReset();
+        while (restarts == 0) std::this_thread::yield();
+        while (passes < 2) std::this_thread::yield();
+        scheduler.requestExit();
+    });
+    RenderProgress p = scheduler.run(renderer, acc, 0, display);
+    viewer.join();
+    EXPECT_EQ(restarts, 1);
+    EXPECT_GE(p.passesDone, 2u);
+    EXPECT_LT(p.passesDone, 20u) << "exit should stop within a pass or two";
+    EXPECT_EQ(acc.passCount(), p.passesDone);
+}
+
+TEST(PassScheduler, TimeBudgetStopsTheRender) {
+    RenderSettings s = smallSettings(1);
+    s.timeBudget = 0.5;
+    PassScheduler scheduler(GpuMode::On);
+    PassRenderer renderer(defaultScene(), s);
+    Accumulator acc(s.width, s.height);
+    CallbackDisplay display([](const Accumulator&, const RenderProgress&) { return DisplayCommand::Continue; });
+    RenderProgress p = scheduler.run(renderer, acc, 0, display);
+    EXPECT_GE(p.passesDone, 1u);
+    EXPECT_GE(p.elapsedSeconds, 0.5);
+    EXPECT_LT(p.elapsedSeconds, 5.0);
+}
+
+TEST(PassScheduler, GpuModes) {
+    EXPECT_EQ(parseGpuMode("auto"), GpuMode::Auto);
+    EXPECT_THROW(parseGpuMode("yes"), Error);
+    PassScheduler off(GpuMode::Off);
+    EXPECT_FALSE(off.hybrid());
+    EXPECT_TRUE(off.glDescription().empty());
+    EXPECT_TRUE(off.notice().empty());
+    // Here OpenGL is llvmpipe: auto keeps the splat on the CPU and says why in one line.
+    PassScheduler automatic(GpuMode::Auto);
+    automatic.bind(defaultScene());
+    EXPECT_FALSE(automatic.hybrid());
+    EXPECT_NE(automatic.notice().find("software"), std::string::npos) << automatic.notice();
+    EXPECT_EQ(automatic.notice().find('\n'), std::string::npos);
+    PassScheduler on(GpuMode::On);
+    on.bind(defaultScene());
+    EXPECT_TRUE(on.hybrid());
+    EXPECT_FALSE(on.glDescription().empty());
+}
+
+TEST(PassScheduler, GridWithoutDenseFormFailsOnAndFallsBackOnAuto) {
+    Scene scene = defaultScene();
+    scene.media[0].name = "smoke";
+    scene.media[0].sigmaA = Rgb(0.01f);
+    scene.media[0].density = std::make_shared<tyndall::test::OpaqueTestGrid>(scene.bounds, 4);
+    PassScheduler on(GpuMode::On);
+    try {
+        on.bind(scene);
+        FAIL() << "--gpu on accepted a medium the GL splatter cannot render";
+    } catch (const Error& e) {
+        std::string m = e.what();
+        EXPECT_NE(m.find("--gpu on"), std::string::npos) << m;
+        EXPECT_NE(m.find("'smoke'"), std::string::npos) << m;
+    }
+    SchedulerOptions softwareOk;
+    softwareOk.autoAcceptsSoftwareGl = true;
+    PassScheduler automatic(GpuMode::Auto, softwareOk);
+    automatic.bind(scene);
+    EXPECT_FALSE(automatic.hybrid());
+    EXPECT_NE(automatic.notice().find("'smoke'"), std::string::npos) << automatic.notice();
+    automatic.bind(defaultScene());
+    EXPECT_TRUE(automatic.hybrid()) << "a scene it can splat brings the GL side back";
+}
