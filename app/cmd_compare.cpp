@@ -16,6 +16,7 @@
 #include "core/error.h"
 #include "core/default_smoke_scene.h"
 #include "cpu/progressive_render.h"
+#include "hybrid/pass_scheduler.h"
 
 namespace tyndall::app {
 
@@ -29,11 +30,14 @@ struct Half {
     Image image;
     uint64_t passes = 0;
     double seconds = 0;
+    bool hybrid = false;
 };
 
-/// Renders `scene` progressively; `passes` > 0 forces that many passes (the twin matches the
-/// heterogeneous half's count even when that one ran on a time budget or was interrupted).
-Half renderHalf(const Scene& scene, RenderSettings settings, uint64_t passes, const char* what) {
+/// Renders `scene` progressively through `scheduler` (GL splat or CPU); `passes` > 0 forces that
+/// many passes (the twin matches the heterogeneous half's count even when that one ran on a time
+/// budget or was interrupted).
+Half renderHalf(PassScheduler& scheduler, const Scene& scene, RenderSettings settings, uint64_t passes,
+                const char* what) {
     if (passes > 0) {
         settings.passes = passes;
         settings.timeBudget = 0;
@@ -41,13 +45,16 @@ Half renderHalf(const Scene& scene, RenderSettings settings, uint64_t passes, co
     PassRenderer renderer(scene, settings);
     Accumulator acc(settings.width, settings.height);
     bool tty = isatty(fileno(stderr));
-    RenderProgress p = renderProgressive(renderer, acc, 0, [&](const RenderProgress& pr) {
+    CallbackDisplay display([&](const Accumulator&, const RenderProgress& pr) {
         if (tty)
             std::fprintf(stderr, "\r%s: pass %llu  %.1f s ", what, (unsigned long long)pr.passesDone, pr.elapsedSeconds);
-        return !interruptRequested();
+        return interruptRequested() ? DisplayCommand::Exit : DisplayCommand::Continue;
     });
+    scheduler.bind(scene);
+    if (!scheduler.notice().empty()) std::fprintf(stderr, "tyndall: %s\n", scheduler.notice().c_str());
+    RenderProgress p = scheduler.run(renderer, acc, 0, display);
     if (tty) std::fprintf(stderr, "\n");
-    return {acc.mean(), acc.passCount(), p.elapsedSeconds};
+    return {acc.mean(), acc.passCount(), p.elapsedSeconds, scheduler.hybrid()};
 }
 
 std::string withSuffix(const std::string& path, const std::string& suffix) {
@@ -89,6 +96,9 @@ void addCompareCommand(CLI::App& app, int& exitCode) {
         "same passes and photons; writes one labelled side-by-side image plus one EXR per half");
     addSceneAndOutputOptions(cmd, o->common, "compare.png");
     addPpbOptions(cmd, o->common);
+    cmd->add_option("--gpu", o->common.settings.gpu,
+                    "Primary-beam splatting on OpenGL: auto, on or off (as for `tyndall render`)")
+        ->capture_default_str();
     cmd->add_option("--density", o->density,
                     "Density of the homogeneous twin (default: each grid's mean over its active voxels)");
     cmd->callback([o, &exitCode]() {
@@ -109,9 +119,10 @@ void addCompareCommand(CLI::App& app, int& exitCode) {
         twin.validate();
 
         ThreadLimit threads(c.settings.threads);
+        PassScheduler scheduler(parseGpuMode(c.settings.gpu));
         installInterruptHandler();
-        Half het = renderHalf(scene, c.settings, 0, "heterogeneous");
-        Half hom = renderHalf(twin, c.settings, het.passes, "homogeneous");
+        Half het = renderHalf(scheduler, scene, c.settings, 0, "heterogeneous");
+        Half hom = renderHalf(scheduler, twin, c.settings, het.passes, "homogeneous");
 
         std::string densities;
         for (size_t i = 0; i < used.size(); ++i) densities += (i ? "," : "") + formatDensity(used[i]);
@@ -136,9 +147,10 @@ void addCompareCommand(CLI::App& app, int& exitCode) {
 
         double hetPerPass = het.seconds / std::max<uint64_t>(het.passes, 1);
         double homPerPass = hom.seconds / std::max<uint64_t>(hom.passes, 1);
-        std::printf("compared %s: %llu passes each; heterogeneous %.3f s/pass, homogeneous (density %s) %.3f s/pass "
-                    "(ratio %.2f)%s -> %s, %s, %s\n",
-                    scene.name.c_str(), (unsigned long long)het.passes, hetPerPass, densities.c_str(), homPerPass,
+        std::printf("compared %s: %llu passes each; heterogeneous %.3f s/pass (%s), homogeneous (density %s) %.3f "
+                    "s/pass (%s) (ratio %.2f)%s -> %s, %s, %s\n",
+                    scene.name.c_str(), (unsigned long long)het.passes, hetPerPass, het.hybrid ? "hybrid" : "CPU",
+                    densities.c_str(), homPerPass, hom.hybrid ? "hybrid" : "CPU",
                     hetPerPass / std::max(homPerPass, 1e-12), interruptRequested() ? " [interrupted]" : "",
                     c.output.c_str(), hetPath.c_str(), homPath.c_str());
         exitCode = interruptRequested() ? 130 : 0;
