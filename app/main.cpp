@@ -7,6 +7,7 @@
 
 #include "app/cmd_bench.h"
 #include "app/cmd_compare.h"
+#include "app/cmd_reference.h"
 #include "app/cmd_render.h"
 #include "core/error.h"
 
@@ -18,6 +19,7 @@ int main(int argc, char** argv) {
     tyndall::app::addRenderCommand(app, exitCode);
     tyndall::app::addBenchCommand(app, exitCode);
     tyndall::app::addCompareCommand(app, exitCode);
+    tyndall::app::addReferenceCommand(app, exitCode);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

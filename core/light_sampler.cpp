@@ -42,13 +42,80 @@ LightSampler::LightSampler(const Scene& scene) : m_scene(scene) {
     }
     if (sum <= 0.0) throw Error("scene '" + scene.name + "' emits no light (every light has zero power)");
     for (double& c : m_cdf) c /= sum;
+    for (size_t e = 0; e < scene.emitters.size(); ++e)
+        m_emitterSource[(uint64_t(scene.emitters[e].mesh) << 32) | scene.emitters[e].triangle] =
+            int(scene.lights.size() + e);
+}
+
+size_t LightSampler::chooseSource(float u) const {
+    size_t i = size_t(std::lower_bound(m_cdf.begin(), m_cdf.end(), double(u)) - m_cdf.begin());
+    i = std::min(i, m_cdf.size() - 1);
+    while (i > 0 && m_cdf[i] == m_cdf[i - 1]) --i;  // never pick a zero-power source
+    return i;
+}
+
+int LightSampler::emitterSource(int mesh, uint32_t triangle) const {
+    auto it = m_emitterSource.find((uint64_t(mesh) << 32) | triangle);
+    return it == m_emitterSource.end() ? -1 : it->second;
+}
+
+DirectLightSample LightSampler::sampleDirect(const Vec3& x, Rng& rng) const {
+    DirectLightSample s;
+    size_t i = chooseSource(rng.uniform());
+    float u1 = rng.uniform(), u2 = rng.uniform();
+    float pick = sourceProbability(i);
+    s.source = int(i);
+    if (i < m_scene.lights.size()) {
+        const Light& l = m_scene.lights[i];
+        s.delta = true;
+        s.pdf = pick;
+        if (l.type == LightType::Directional) {
+            s.wi = -l.direction;
+            s.distance = kInfinity;
+            s.incident = l.intensity;
+            return s;
+        }
+        Vec3 toLight = l.position - x;
+        float d2 = lengthSquared(toLight);
+        if (!(d2 > 0)) return DirectLightSample{};
+        s.distance = std::sqrt(d2);
+        s.wi = toLight / s.distance;
+        s.point = l.position;
+        float falloff = l.type == LightType::Spot ? l.spotFalloff(dot(-s.wi, l.direction)) : 1.0f;
+        s.incident = l.intensity * (falloff / d2);
+        return s;
+    }
+    const EmissiveTriangle& e = m_scene.emitters[i - m_scene.lights.size()];
+    const TriangleMesh& mesh = m_scene.meshes[e.mesh];
+    Vec2 b = sampleUniformTriangle(u1, u2);
+    s.point = mesh.vertex(e.triangle, 0) * (1.0f - b.x - b.y) + mesh.vertex(e.triangle, 1) * b.x +
+              mesh.vertex(e.triangle, 2) * b.y;
+    s.normal = normalize(mesh.geometricNormal(e.triangle));
+    Vec3 toLight = s.point - x;
+    float d2 = lengthSquared(toLight);
+    if (!(d2 > 0)) return DirectLightSample{};
+    s.distance = std::sqrt(d2);
+    s.wi = toLight / s.distance;
+    float cosLight = -dot(s.wi, s.normal);
+    if (!(cosLight > 0)) return DirectLightSample{};  // x sees the back of the triangle
+    s.incident = e.radiance;
+    s.pdf = pick * d2 / (cosLight * e.area);
+    return s;
+}
+
+float LightSampler::directPdf(size_t source, const Vec3& x, const Vec3& y) const {
+    if (source < m_scene.lights.size()) return 0.0f;
+    const EmissiveTriangle& e = m_scene.emitters[source - m_scene.lights.size()];
+    Vec3 n = normalize(m_scene.meshes[e.mesh].geometricNormal(e.triangle));
+    Vec3 toLight = y - x;
+    float d2 = lengthSquared(toLight);
+    float cosLight = -dot(toLight, n) / std::sqrt(d2);
+    if (!(cosLight > 0)) return 0.0f;
+    return sourceProbability(source) * d2 / (cosLight * e.area);
 }
 
 EmittedPhoton LightSampler::sample(Rng& rng) const {
-    float uPick = rng.uniform();
-    size_t i = size_t(std::lower_bound(m_cdf.begin(), m_cdf.end(), double(uPick)) - m_cdf.begin());
-    i = std::min(i, m_cdf.size() - 1);
-    while (i > 0 && m_cdf[i] == m_cdf[i - 1]) --i;  // never pick a zero-power source
+    size_t i = chooseSource(rng.uniform());
     double pick = m_cdf[i] - (i > 0 ? m_cdf[i - 1] : 0.0);
     float u1 = rng.uniform(), u2 = rng.uniform();
 

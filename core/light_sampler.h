@@ -1,6 +1,10 @@
 #pragma once
-// Photon emission: picks a light (point, spot, directional or one emissive triangle) with
-// probability proportional to its power and samples an emitted ray. Used by the photon tracer.
+// Light sampling. Photon emission: picks a light (point, spot, directional or one emissive
+// triangle) with probability proportional to its power and samples an emitted ray (the photon
+// tracer). Next-event estimation: the same power-proportional choice, then a point on the chosen
+// light as seen from a shading point (the reference path tracer). Sources are indexed lights
+// first (Scene::lights), then Scene::emitters.
+#include <unordered_map>
 #include <vector>
 
 #include "core/math.h"
@@ -20,6 +24,23 @@ struct EmittedPhoton {
     int emitterMesh = -1;
 };
 
+/// A light point chosen for next-event estimation from a shading point x. The estimate of the
+/// light arriving at x along `wi` is incident * (visibility, transmittance) / pdf.
+struct DirectLightSample {
+    Vec3 wi;             ///< unit direction from x toward the light
+    float distance = 0;  ///< from x to `point`; +infinity for directional lights
+    Vec3 point;          ///< light position, or the point on the emissive triangle
+    Vec3 normal;         ///< area lights: the triangle's unit front (emitting) normal
+    /// Area lights: emitted radiance Le (W m^-2 sr^-1), zero when x is behind the triangle.
+    /// Point/spot: I * falloff / distance^2; directional: the irradiance E (both W m^-2).
+    Rgb incident;
+    /// Area lights: solid-angle pdf at x of this direction (choice probability included);
+    /// delta lights (point, spot, directional): the choice probability alone.
+    float pdf = 0;
+    bool delta = false;  ///< point, spot or directional: no other strategy can reach it
+    int source = -1;     ///< the chosen source index
+};
+
 class LightSampler {
 public:
     explicit LightSampler(const Scene& scene);
@@ -35,6 +56,21 @@ public:
     /// disk that covers the scene's bounding sphere).
     static Rgb lightPower(const Light& light, const Bounds3& sceneBounds);
 
+    /// Power-proportional choice of a source from u in [0, 1); never a zero-power source.
+    size_t chooseSource(float u) const;
+    /// Probability that chooseSource picks source `i` (luminance of its power over the total).
+    float sourceProbability(size_t i) const { return float(m_cdf[i] - (i > 0 ? m_cdf[i - 1] : 0.0)); }
+    /// The source index of emissive triangle `triangle` of mesh `mesh`, or -1 when it is not one.
+    int emitterSource(int mesh, uint32_t triangle) const;
+
+    /// Next-event estimation from shading point `x`: a power-proportional source, then a point
+    /// on it (uniform over an emissive triangle's area). Draws three uniforms from `rng`.
+    DirectLightSample sampleDirect(const Vec3& x, Rng& rng) const;
+    /// The pdf sampleDirect(x) has of reaching point `y` on area-light `source` (solid angle at
+    /// x, choice included); for MIS when a scattered path hits that emitter. 0 for delta lights
+    /// and when x is behind the triangle.
+    float directPdf(size_t source, const Vec3& x, const Vec3& y) const;
+
 private:
     const Scene& m_scene;
     std::vector<Rgb> m_power;
@@ -42,6 +78,7 @@ private:
     Rgb m_totalPower;
     Vec3 m_sceneCenter;
     float m_sceneRadius = 1.0f;
+    std::unordered_map<uint64_t, int> m_emitterSource;  // (mesh << 32 | triangle) -> source
 };
 
 }  // namespace tyndall

@@ -142,25 +142,79 @@ bool footprintRowSpan(const BeamFootprint& fp, float y, float* x0, float* x1) {
     return lo <= hi;
 }
 
-Rgb BeamRasterizer::pixelRadiance(const PrimarySegments& primary, size_t pixel, const PhotonMap& photons,
-                                  uint32_t b) const {
-    const PrimaryRay& ray = primary.rays[pixel];
-    const PhotonBeam& beam = photons.beams[b];
-    if (beam.medium != ray.medium || ray.medium == kVacuum) return Rgb();
-    BeamRayHit hit;
-    if (!intersectBeamRay(ray.origin, ray.dir, ray.tMax, beam, &hit)) return Rgb();
-    const Medium& med = m_scene.media[ray.medium];
-    if (med.homogeneous()) {
-        Rgb st = med.sigmaT();
-        float l = hit.s + hit.t;
-        return beamRadiance(hit, beam, med.sigmaS, med.g, exp(Rgb(-st.r * l, -st.g * l, -st.b * l)), Rgb(1.0f));
+namespace {
+
+// The estimator of core/beam_estimator.h for one beam against many pixels, with the per-beam
+// constants hoisted and the homogeneous case specialised: the HG denominator uses
+// cos = -dot(w_c, w_b) directly, and a grey medium needs one exp. Agrees with
+// intersectBeamRay + beamRadiance to float rounding (tests/cpu/beam_rasterizer_test.cpp).
+class BeamPixelEvaluator {
+public:
+    BeamPixelEvaluator(const Scene& scene, const PhotonMap& photons, uint32_t b)
+        : m_photons(photons), m_beam(photons.beams[b]), m_index(b) {
+        if (m_beam.medium == kVacuum) return;
+        m_medium = &scene.media[m_beam.medium];
+        const float r = m_beam.radius;
+        m_r2 = r * r;
+        m_kernelScale = (15.0f / 16.0f) / r;
+        const float g = m_medium->g;
+        m_hgA = kInv4Pi * (1.0f - g * g);
+        m_hgB = 1.0f + g * g;
+        m_hgC = 2.0f * g;
+        m_sigmaT = m_medium->sigmaT();
+        m_grey = m_sigmaT.r == m_sigmaT.g && m_sigmaT.r == m_sigmaT.b;
+        m_scaledPower = m_beam.power * m_medium->sigmaS;
     }
-    int nc = primary.freeFlightsPerRay, nb = photons.freeFlightsPerBeam;
-    float trCam = storedTransmittance(&primary.freeFlights[pixel * nc], nc, hit.s);
-    float trBeam = storedTransmittance(&photons.freeFlights[size_t(b) * nb], nb, hit.t);
-    if (trCam == 0 || trBeam == 0) return Rgb();
-    return beamRadiance(hit, beam, med.sigmaSAt(ray.origin + ray.dir * hit.s), med.g, Rgb(trCam), Rgb(trBeam));
-}
+
+    Rgb operator()(const PrimarySegments& primary, size_t pixel) const {
+        const PrimaryRay& ray = primary.rays[pixel];
+        if (ray.medium != m_beam.medium || ray.medium == kVacuum) return Rgb();
+        if (!m_medium->homogeneous()) return heterogeneous(primary, pixel);
+        const Vec3 w0 = ray.origin - m_beam.origin;
+        const float b = dot(ray.dir, m_beam.dir);
+        const float sin2 = 1.0f - b * b;
+        if (sin2 < 1e-12f) return Rgb();
+        const float d = dot(ray.dir, w0), e = dot(m_beam.dir, w0);
+        const float s = (b * e - d) / sin2, t = (e - b * d) / sin2;
+        if (s < 0.0f || s > ray.tMax || t < 0.0f || t > m_beam.tMax) return Rgb();
+        const Vec3 between = w0 + ray.dir * s - m_beam.dir * t;
+        const float u2 = dot(between, between);
+        if (u2 >= m_r2) return Rgb();
+        // The kernel exactly as beamKernel() forms it, so coverage at the rim matches the GLSL twin.
+        const float x = std::sqrt(u2) / m_beam.radius;
+        const float a = 1.0f - x * x;
+        if (!(a > 0.0f)) return Rgb();
+        const float denom = m_hgB + m_hgC * b;  // 1 + g^2 - 2 g cos, cos = dot(w_b, -w_c) = -b
+        const float phase = m_hgA / (denom * std::sqrt(std::max(denom, 1e-12f)));
+        const float weight = m_kernelScale * a * a * phase / std::max(std::sqrt(sin2), kMinSinTheta);
+        const float l = s + t;
+        if (m_grey) return m_scaledPower * (weight * std::exp(-m_sigmaT.r * l));
+        return m_scaledPower * exp(Rgb(-m_sigmaT.r * l, -m_sigmaT.g * l, -m_sigmaT.b * l)) * weight;
+    }
+
+private:
+    Rgb heterogeneous(const PrimarySegments& primary, size_t pixel) const {
+        const PrimaryRay& ray = primary.rays[pixel];
+        BeamRayHit hit;
+        if (!intersectBeamRay(ray.origin, ray.dir, ray.tMax, m_beam, &hit)) return Rgb();
+        int nc = primary.freeFlightsPerRay, nb = m_photons.freeFlightsPerBeam;
+        float trCam = storedTransmittance(&primary.freeFlights[pixel * nc], nc, hit.s);
+        float trBeam = storedTransmittance(&m_photons.freeFlights[size_t(m_index) * nb], nb, hit.t);
+        if (trCam == 0 || trBeam == 0) return Rgb();
+        return beamRadiance(hit, m_beam, m_medium->sigmaSAt(ray.origin + ray.dir * hit.s), m_medium->g, Rgb(trCam),
+                            Rgb(trBeam));
+    }
+
+    const PhotonMap& m_photons;
+    const PhotonBeam& m_beam;
+    uint32_t m_index;
+    const Medium* m_medium = nullptr;
+    float m_r2 = 0, m_kernelScale = 0, m_hgA = 0, m_hgB = 0, m_hgC = 0;
+    Rgb m_sigmaT, m_scaledPower;
+    bool m_grey = false;
+};
+
+}  // namespace
 
 Image BeamRasterizer::rasterize(const PrimarySegments& primary, const PhotonMap& photons, RasterStats* stats) const {
     const int w = primary.width, h = primary.height;
@@ -196,6 +250,7 @@ Image BeamRasterizer::rasterize(const PrimarySegments& primary, const PhotonMap&
         const int y0 = band * kBand, y1 = std::min(h, y0 + kBand);
         uint64_t localTests = 0;
         for (uint32_t b : bandBeams[band]) {
+            const BeamPixelEvaluator eval(m_scene, photons, b);
             for (int y = y0; y < y1; ++y) {
                 float sx0, sx1;
                 if (!footprintRowSpan(fps[b], float(y) + 0.5f, &sx0, &sx1)) continue;
@@ -203,7 +258,7 @@ Image BeamRasterizer::rasterize(const PrimarySegments& primary, const PhotonMap&
                 int x0 = int(std::max(0.0f, std::ceil(std::max(sx0, -1.0f) - 0.5f)));
                 int x1 = int(std::min(float(w - 1), std::floor(std::min(sx1, float(w) + 1.0f) - 0.5f)));
                 size_t row = size_t(y) * w;
-                for (int x = x0; x <= x1; ++x) out.pixels[row + x] += pixelRadiance(primary, row + x, photons, b);
+                for (int x = x0; x <= x1; ++x) out.pixels[row + x] += eval(primary, row + x);
                 localTests += uint64_t(std::max(0, x1 - x0 + 1));
             }
         }
@@ -219,7 +274,8 @@ Image BeamRasterizer::rasterize(const PrimarySegments& primary, const PhotonMap&
 Image BeamRasterizer::bruteForce(const PrimarySegments& primary, const PhotonMap& photons) const {
     Image out(primary.width, primary.height);
     tbb::parallel_for(size_t(0), primary.rays.size(), [&](size_t pixel) {
-        for (uint32_t b = 0; b < photons.beams.size(); ++b) out.pixels[pixel] += pixelRadiance(primary, pixel, photons, b);
+        for (uint32_t b = 0; b < photons.beams.size(); ++b)
+            out.pixels[pixel] += BeamPixelEvaluator(m_scene, photons, b)(primary, pixel);
     });
     return out;
 }

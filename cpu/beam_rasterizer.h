@@ -50,8 +50,6 @@ public:
     Image bruteForce(const PrimarySegments& primary, const PhotonMap& photons) const;
 
 private:
-    Rgb pixelRadiance(const PrimarySegments& primary, size_t pixel, const PhotonMap& photons, uint32_t beam) const;
-
     const Scene& m_scene;
 };
 

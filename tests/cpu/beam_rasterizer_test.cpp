@@ -139,3 +139,52 @@ TEST(BeamRasterizer, RowSpanContainsEveryPointOfTheTaperedCapsule) {
         }
     }
 }
+
+TEST(BeamRasterizer, FastEvaluatorAgreesWithTheCoreEstimator) {
+    // The rasterizer's hoisted, u^2-only evaluator against intersectBeamRay + beamRadiance, per
+    // pixel, for a chromatic and a grey medium and g of both signs.
+    for (int variant = 0; variant < 2; ++variant) {
+        Camera cam = Camera::lookAt({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 1.0f);
+        Scene scene = fogScene(cam);
+        if (variant == 1) {
+            scene.media[0].sigmaS = Rgb(0.2f);
+            scene.media[0].sigmaA = Rgb(0.1f);
+            scene.media[0].g = -0.6f;
+        }
+        const int w = 40, h = 30;
+        PrimarySegments primary = primaryRays(scene, w, h, 6.0f, 5);
+        PhotonMap photons;
+        Rng rng(21, 2);
+        for (int i = 0; i < 200; ++i) {
+            PhotonBeam b;
+            b.origin = {rng.uniform() * 4 - 2, rng.uniform() * 4 - 2, -rng.uniform() * 5};
+            b.dir = sampleUniformSphere(rng.uniform(), rng.uniform());
+            b.tMax = rng.uniform() * 4;
+            b.radius = 0.02f + 0.2f * rng.uniform();
+            b.power = Rgb(rng.uniform(), rng.uniform(), rng.uniform());
+            b.medium = 0;
+            photons.beams.push_back(b);
+        }
+        Image fast = BeamRasterizer(scene).bruteForce(primary, photons);
+        const Medium& m = scene.media[0];
+        double maxRel = 0;
+        int lit = 0;
+        for (size_t p = 0; p < primary.rays.size(); ++p) {
+            Rgb ref;
+            const PrimaryRay& ray = primary.rays[p];
+            for (const PhotonBeam& b : photons.beams) {
+                BeamRayHit hit;
+                if (!intersectBeamRay(ray.origin, ray.dir, ray.tMax, b, &hit)) continue;
+                ref += beamRadiance(hit, b, m.sigmaS, m.g, m.transmittance(hit.s), m.transmittance(hit.t));
+            }
+            if (ref.maxComponent() <= 0) {
+                EXPECT_EQ(fast.pixels[p].maxComponent(), 0.0f);
+                continue;
+            }
+            ++lit;
+            for (int c = 0; c < 3; ++c) maxRel = std::max(maxRel, std::abs(double(fast.pixels[p][c]) / ref[c] - 1.0));
+        }
+        EXPECT_GT(lit, 200);
+        EXPECT_LT(maxRel, 2e-5) << "variant " << variant;
+    }
+}

@@ -1,0 +1,291 @@
+#include "cpu/reference_tracer.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "core/error.h"
+#include "core/phase.h"
+#include "core/sampling.h"
+#include "cpu/free_flight.h"
+#include "cpu/surface_scattering.h"
+
+namespace tyndall {
+
+namespace {
+// Interface crossings neither scatter nor count as depth; this only stops pathological loops.
+constexpr int kMaxInterfaceCrossings = 256;
+
+float powerHeuristic(float pdfA, float pdfB) {
+    float a = pdfA * pdfA, b = pdfB * pdfB;
+    return a + b > 0 ? a / (a + b) : 0.0f;
+}
+}  // namespace
+
+void ReferenceSettings::validate() const {
+    if (width <= 0 || height <= 0 || width > 16384 || height > 16384)
+        throw Error("--size: width and height must be in 1..16384 (got " + std::to_string(width) + "x" +
+                    std::to_string(height) + ")");
+    if (samplesPerPixel == 0) throw Error("--spp must be positive");
+    if (maxDepth <= 0) throw Error("--max-depth must be positive");
+    if (rouletteDepth <= 0) throw Error("reference roulette depth must be positive");
+}
+
+nlohmann::json ReferenceSettings::toJson() const {
+    return {{"width", width},
+            {"height", height},
+            {"spp", samplesPerPixel},
+            {"seed", seed},
+            {"max_depth", maxDepth},
+            {"roulette_depth", rouletteDepth},
+            {"nee", nextEventEstimation},
+            {"equiangular", equiangular}};
+}
+
+ReferenceTracer::ReferenceTracer(const EmbreeScene& rt, const ReferenceSettings& settings)
+    : m_rt(rt),
+      m_scene(rt.scene()),
+      m_settings(settings),
+      m_lights(rt.scene()),
+      m_cameraMedium(rt.mediumAt(rt.scene().camera.position)) {
+    m_settings.validate();
+}
+
+ReferenceImage ReferenceTracer::render(const std::function<void(int)>& onRow) const {
+    const int w = m_settings.width, h = m_settings.height;
+    const uint32_t spp = m_settings.samplesPerPixel;
+    ReferenceImage out{Image(w, h), Image(w, h)};
+    std::mutex progressMutex;
+    int rowsDone = 0;
+    tbb::parallel_for(tbb::blocked_range<int>(0, h, 1), [&](const tbb::blocked_range<int>& rows) {
+        for (int y = rows.begin(); y < rows.end(); ++y) {
+            for (int x = 0; x < w; ++x) {
+                double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
+                for (uint32_t s = 0; s < spp; ++s) {
+                    Rgb L = sample(x, y, s);
+                    for (int c = 0; c < 3; ++c) {
+                        sum[c] += L[c];
+                        sum2[c] += double(L[c]) * L[c];
+                    }
+                }
+                for (int c = 0; c < 3; ++c) {
+                    double mean = sum[c] / spp;
+                    double var = spp > 1 ? std::max(0.0, (sum2[c] - spp * mean * mean) / (spp - 1)) : 0.0;
+                    out.mean.at(x, y)[c] = float(mean);
+                    out.varianceOfMean.at(x, y)[c] = float(var / spp);
+                }
+            }
+            if (onRow) {
+                std::lock_guard<std::mutex> lock(progressMutex);
+                onRow(++rowsDone);
+            }
+        }
+    });
+    return out;
+}
+
+Rgb ReferenceTracer::sample(int x, int y, uint32_t s) const {
+    const int w = m_settings.width, h = m_settings.height;
+    Rng rng = Rng::forKey(m_settings.seed, s, uint64_t(y) * w + x, StreamPurpose::ReferencePath);
+    // Same jitter convention as CameraTracer: film offset inside the pixel, then the lens sample.
+    float jx = rng.uniform(), jy = rng.uniform();
+    Vec2 lens{rng.uniform(), rng.uniform()};
+    Ray ray = m_scene.camera.generateRay(float(x) + jx, float(y) + jy, w, h, lens);
+    return radiance(ray, m_cameraMedium, rng);
+}
+
+Rgb ReferenceTracer::radiance(Ray ray, MediumId medium, Rng& rng) const {
+    const bool nee = m_settings.nextEventEstimation;
+    const bool equiangular = nee && m_settings.equiangular;
+    Rgb L, beta(1.0f);
+    float etaScale = 1.0f;      // undoes the 1/eta^2 radiance scaling for the roulette decision
+    int vertices = 0;           // scattering vertices so far
+    bool afterSpecular = true;  // no NEE-capable vertex since the camera or the last mirror/glass event
+    float lastPdf = 0;          // solid-angle pdf of the direction sampled at the last diffuse/medium vertex
+    Vec3 lastVertex;
+    int crossings = 0;
+    ray.tMin = 0.0f;
+    ray.tMax = kInfinity;
+
+    // After a diffuse or medium vertex sampled its continuation: roulette, then go on.
+    auto survives = [&]() {
+        if (vertices < m_settings.rouletteDepth) return true;
+        float q = std::min(1.0f, beta.maxComponent() * etaScale);
+        if (!(rng.uniform() < q)) return false;
+        beta *= 1.0f / q;
+        return true;
+    };
+
+    while (true) {
+        SurfaceHit hit;
+        bool surface = m_rt.intersect(ray, &hit);
+        float tHit = surface ? hit.t : kInfinity;
+
+        if (medium != kVacuum) {
+            const Medium& med = m_scene.media[medium];
+            float t0, t1;
+            if (m_rt.globalMediumInterval(Ray{ray.o, ray.d, 0.0f, tHit}, &t0, &t1) && t1 > t0) {
+                Ray seg{ray.at(t0), ray.d, 0.0f, t1 - t0};
+                if (equiangular && vertices < m_settings.maxDepth) L += beta * pointLightInScattering(seg, medium, rng);
+                FreeFlight ff = sampleFreeFlight(med, seg, seg.tMax, rng);
+                if (ff.scattered) {
+                    if (vertices >= m_settings.maxDepth) break;
+                    ++vertices;
+                    beta *= ff.weight;
+                    Vec3 x = seg.at(ff.t);
+                    if (nee) {
+                        DirectLightSample ls = m_lights.sampleDirect(x, rng);
+                        bool handled = equiangular && isPointLike(ls.source);  // by the segment estimate
+                        if (!handled && ls.pdf > 0 && !ls.incident.isBlack()) {
+                            float phase = hgPhase(dot(ray.d, ls.wi), med.g);
+                            Rgb tr = shadowTransmittance(x, ls, medium, rng);
+                            float mis = ls.delta ? 1.0f : powerHeuristic(ls.pdf, phase);
+                            L += beta * ls.incident * tr * (phase * mis / ls.pdf);
+                        }
+                    }
+                    Vec3 d = sampleHg(ray.d, med.g, rng.uniform(), rng.uniform());
+                    lastPdf = hgPhase(dot(ray.d, d), med.g);  // the phase weight itself is 1
+                    lastVertex = x;
+                    afterSpecular = false;
+                    if (beta.isBlack() || !survives()) break;
+                    ray = Ray{x, d};
+                    continue;
+                }
+                beta *= ff.weight;
+                if (beta.isBlack()) break;
+            }
+        }
+        if (!surface) break;
+
+        const TriangleMesh& mesh = m_scene.meshes[hit.mesh];
+        const Material& mat = m_scene.materials[mesh.material];
+        HitSide side = hitSide(hit, ray.d);
+        if (mat.isEmissive() && side.entering) {
+            float mis = 1.0f;
+            if (nee && !afterSpecular) {
+                int source = m_lights.emitterSource(hit.mesh, hit.triangle);
+                if (source >= 0) mis = powerHeuristic(lastPdf, m_lights.directPdf(size_t(source), lastVertex, hit.p));
+            }
+            L += beta * mat.emission * mis;
+        }
+
+        if (mat.type == MaterialType::Interface) {
+            if (++crossings > kMaxInterfaceCrossings) break;
+            medium = side.entering ? mesh.interiorMedium : mesh.exteriorMedium;
+            ray = Ray{m_rt.offsetOrigin(hit.p, hit.ng, ray.d), ray.d};
+            continue;
+        }
+        if (vertices >= m_settings.maxDepth) break;
+        ++vertices;
+
+        if (mat.type == MaterialType::Diffuse) {
+            if (nee) {
+                DirectLightSample ls = m_lights.sampleDirect(hit.p, rng);
+                float cosine = dot(ls.wi, side.nf);
+                if (ls.pdf > 0 && cosine > 0 && !ls.incident.isBlack()) {
+                    Rgb tr = shadowTransmittance(m_rt.offsetOrigin(hit.p, side.nf, ls.wi), ls, medium, rng);
+                    float bsdfPdf = cosine * kInvPi;
+                    float mis = ls.delta ? 1.0f : powerHeuristic(ls.pdf, bsdfPdf);
+                    L += beta * mat.albedo * ls.incident * tr * (kInvPi * cosine * mis / ls.pdf);
+                }
+            }
+            Vec3 d = Frame(side.nf).toWorld(sampleCosineHemisphere(rng.uniform(), rng.uniform()));
+            beta *= mat.albedo;  // (rho/pi) cos / (cos/pi)
+            lastPdf = std::max(dot(d, side.nf), 0.0f) * kInvPi;
+            lastVertex = hit.p;
+            afterSpecular = false;
+            if (beta.isBlack() || !survives()) break;
+            ray = Ray{m_rt.offsetOrigin(hit.p, side.nf, d), d};
+            continue;
+        }
+
+        SpecularEvent ev;
+        if (!sampleSpecular(mat, mesh, hit, ray.d, medium, rng.uniform(), TransportMode::Radiance, &ev)) break;
+        beta *= ev.weight;
+        if (ev.transmitted && mat.type == MaterialType::Dielectric) {
+            float etaRatio = side.entering ? 1.0f / mat.ior : mat.ior;  // eta_i / eta_t
+            etaScale /= etaRatio * etaRatio;
+        }
+        afterSpecular = true;
+        medium = ev.medium;
+        if (beta.isBlack() || !survives()) break;
+        ray = Ray{m_rt.offsetOrigin(hit.p, hit.ng, ev.d), ev.d};
+    }
+    return L;
+}
+
+bool ReferenceTracer::isPointLike(int source) const {
+    return source >= 0 && source < int(m_scene.lights.size()) && m_scene.lights[source].type != LightType::Directional;
+}
+
+Rgb ReferenceTracer::pointLightInScattering(const Ray& seg, MediumId medium, Rng& rng) const {
+    // The light choice is sampleDirect's (same pmf as the free-flight NEE that skips these lights).
+    size_t source = m_lights.chooseSource(rng.uniform());
+    float uDistance = rng.uniform();
+    if (!isPointLike(int(source))) return Rgb(0.0f);
+    const Light& light = m_scene.lights[source];
+    const Medium& med = m_scene.media[medium];
+    float tc = dot(light.position - seg.o, seg.d);  // closest approach of the line to the light
+    float h = length(seg.o + seg.d * tc - light.position);
+    if (!(h > 1e-7f)) return Rgb(0.0f);  // the line runs through the light: a set of measure zero
+    float thetaA = std::atan2(-tc, h), thetaB = std::atan2(seg.tMax - tc, h);
+    if (!(thetaB > thetaA)) return Rgb(0.0f);
+    float t = tc + h * std::tan(thetaA + uDistance * (thetaB - thetaA));
+    t = clampValue(t, 0.0f, seg.tMax);
+    float pdfT = h / ((thetaB - thetaA) * (h * h + (t - tc) * (t - tc)));
+    Vec3 x = seg.at(t);
+
+    DirectLightSample ls;
+    ls.source = int(source);
+    ls.delta = true;
+    ls.point = light.position;
+    Vec3 toLight = light.position - x;
+    float d2 = lengthSquared(toLight);
+    ls.distance = std::sqrt(d2);
+    ls.wi = toLight / ls.distance;
+    float falloff = light.type == LightType::Spot ? light.spotFalloff(dot(-ls.wi, light.direction)) : 1.0f;
+    if (!(falloff > 0) || !(d2 > 0)) return Rgb(0.0f);
+    ls.incident = light.intensity * (falloff / d2);
+    ls.pdf = m_lights.sourceProbability(source);
+
+    Rgb trCamera = estimateTransmittance(med, seg, t, rng);
+    if (trCamera.isBlack()) return Rgb(0.0f);
+    Rgb trLight = shadowTransmittance(x, ls, medium, rng);
+    float phase = hgPhase(dot(seg.d, ls.wi), med.g);
+    return trCamera * med.sigmaSAt(x) * ls.incident * trLight * (phase / (pdfT * ls.pdf));
+}
+
+Rgb ReferenceTracer::shadowTransmittance(const Vec3& origin, const DirectLightSample& light, MediumId medium,
+                                         Rng& rng) const {
+    const Vec3 d = light.wi;
+    const bool finite = std::isfinite(light.distance);
+    // Stop just short of an emissive triangle so the shadow ray does not hit the light itself.
+    const Vec3 target = light.delta ? light.point : m_rt.offsetOrigin(light.point, light.normal, -d);
+    Ray ray{origin, d, 0.0f, finite ? dot(target - origin, d) : kInfinity};
+    Rgb tr(1.0f);
+    for (int crossing = 0; crossing <= kMaxInterfaceCrossings; ++crossing) {
+        if (!(ray.tMax > 0)) return tr;
+        SurfaceHit hit;
+        bool surface = m_rt.intersect(ray, &hit);
+        float tEnd = surface ? hit.t : ray.tMax;
+        if (medium != kVacuum) {
+            float t0, t1;
+            if (m_rt.globalMediumInterval(Ray{ray.o, d, 0.0f, tEnd}, &t0, &t1) && t1 > t0) {
+                tr *= estimateTransmittance(m_scene.media[medium], Ray{ray.at(t0), d, 0.0f, t1 - t0}, t1 - t0, rng);
+                if (tr.isBlack()) return tr;
+            }
+        }
+        if (!surface) return tr;
+        const TriangleMesh& mesh = m_scene.meshes[hit.mesh];
+        if (m_scene.materials[mesh.material].type != MaterialType::Interface) return Rgb(0.0f);
+        medium = dot(d, hit.ng) < 0 ? mesh.interiorMedium : mesh.exteriorMedium;
+        ray.o = m_rt.offsetOrigin(hit.p, hit.ng, d);
+        ray.tMax = finite ? dot(target - ray.o, d) : kInfinity;
+    }
+    return Rgb(0.0f);
+}
+
+}  // namespace tyndall

@@ -1,0 +1,124 @@
+// Next-event light sampling (LightSampler::sampleDirect / directPdf / chooseSource): the choice
+// frequencies follow the power-proportional probabilities, the pdf a scattered path would use for
+// MIS equals the pdf of the sample, and the irradiance estimated from the samples matches
+// Lambert's closed form for a polygonal area light.
+#include "core/light_sampler.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "core/mesh_builders.h"
+
+namespace tyndall {
+namespace {
+
+/// A point light, a spot and a 1 x 1 emissive quad (two triangles) facing down at height 1.
+Scene makeLights() {
+    Scene s;
+    s.name = "lights";
+    s.source = "<test>";
+    Material lamp;
+    lamp.name = "lamp";
+    lamp.emission = Rgb(2.0f, 1.0f, 0.5f);
+    s.materials.push_back(lamp);
+    s.meshes.push_back(makeQuad("panel", {-0.2f, 1.0f, -0.4f}, {1.0f, 0, 0}, {0, 0, 1.0f}, 0));
+    Light point;
+    point.name = "point";
+    point.position = {0.0f, 2.0f, 0.0f};
+    point.intensity = Rgb(0.5f);
+    s.lights.push_back(point);
+    Light spot;
+    spot.name = "spot";
+    spot.type = LightType::Spot;
+    spot.position = {0.0f, 3.0f, 0.0f};
+    spot.direction = {0, -1, 0};
+    spot.cosOuterAngle = 0.8f;
+    spot.cosInnerAngle = 0.9f;
+    spot.intensity = Rgb(3.0f);
+    s.lights.push_back(spot);
+    s.finalize();
+    s.validate();
+    return s;
+}
+
+TEST(LightSampler, ChoiceFrequenciesFollowPower) {
+    Scene scene = makeLights();
+    LightSampler lights(scene);
+    ASSERT_EQ(lights.sourceCount(), 4u);
+    std::vector<int> counts(4, 0);
+    Rng rng = Rng::forKey(1, 0, 0, StreamPurpose::Test);
+    const int n = 200000;
+    for (int i = 0; i < n; ++i) counts[lights.chooseSource(rng.uniform())]++;
+    double chi2 = 0, total = 0;
+    for (size_t i = 0; i < 4; ++i) {
+        double p = lights.sourceProbability(i), expected = n * p;
+        EXPECT_NEAR(p, lights.sourcePower(i).luminance() / lights.totalPower().luminance(), 1e-6);
+        chi2 += (counts[i] - expected) * (counts[i] - expected) / expected;
+        total += p;
+    }
+    EXPECT_NEAR(total, 1.0, 1e-6);
+    EXPECT_LT(chi2, 16.3);  // chi-square, 3 degrees of freedom, p = 0.001
+}
+
+TEST(LightSampler, DirectSamplesAgreeWithDirectPdfAndLambertIrradiance) {
+    Scene scene = makeLights();
+    LightSampler lights(scene);
+    const Vec3 x(0.1f, 0.0f, 0.2f), n(0, 1, 0);
+    Rng rng = Rng::forKey(2, 0, 0, StreamPurpose::Test);
+    const int samples = 400000;
+    double sum = 0, sum2 = 0;
+    int areaSamples = 0;
+    for (int i = 0; i < samples; ++i) {
+        DirectLightSample s = lights.sampleDirect(x, rng);
+        ASSERT_GE(s.source, 0);
+        double e = 0;
+        if (s.source >= 2) {  // the panel's triangles
+            ++areaSamples;
+            ASSERT_FALSE(s.delta);
+            ASSERT_GT(s.pdf, 0.0f);
+            EXPECT_NEAR(lights.directPdf(size_t(s.source), x, s.point) / s.pdf, 1.0, 1e-4);
+            EXPECT_EQ(lights.emitterSource(0, uint32_t(s.source - 2)), s.source);
+            e = s.incident.r * std::max(0.0f, dot(s.wi, n)) / s.pdf;
+        } else {
+            ASSERT_TRUE(s.delta);
+            EXPECT_NEAR(s.pdf, lights.sourceProbability(size_t(s.source)), 1e-7);
+            float d = length(scene.lights[s.source].position - x);
+            float falloff = s.source == 1 ? scene.lights[1].spotFalloff(dot(-s.wi, scene.lights[1].direction)) : 1.0f;
+            EXPECT_NEAR(s.incident.r, scene.lights[s.source].intensity.r * falloff / (d * d), 1e-5);
+        }
+        sum += e;
+        sum2 += e * e;
+    }
+    EXPECT_GT(areaSamples, 0);
+    // Lambert: E = Le/2 sum_edges angle(r_i, r_i+1) dot(unit(r_i x r_i+1), n), vertices seen from x
+    // in the order that makes the polygon's normal point toward x (the panel faces down).
+    const TriangleMesh& panel = scene.meshes[0];
+    std::vector<Vec3> r;
+    for (int k : {0, 1, 2, 3}) r.push_back(normalize(panel.positions[k] - x));
+    double lambert = 0;
+    for (size_t i = 0; i < 4; ++i) {
+        Vec3 a = r[i], b = r[(i + 1) % 4];
+        double angle = std::acos(std::clamp(double(dot(a, b)), -1.0, 1.0));
+        lambert += angle * dot(normalize(cross(a, b)), n);
+    }
+    lambert = std::abs(lambert) * 0.5 * scene.materials[0].emission.r;
+    double mean = sum / samples, se = std::sqrt((sum2 / samples - mean * mean) / samples);
+    std::printf("irradiance from samples %.5f +- %.5f, Lambert %.5f\n", mean, se, lambert);
+    EXPECT_LT(se, 0.005 * lambert);
+    EXPECT_NEAR(mean, lambert, 4.0 * se);
+    // A point behind the panel gets nothing from it.
+    Rng rng2 = Rng::forKey(3, 0, 0, StreamPurpose::Test);
+    for (int i = 0; i < 1000; ++i) {
+        DirectLightSample s = lights.sampleDirect(Vec3(0.0f, 1.5f, 0.0f), rng2);
+        if (s.source >= 2) {
+            EXPECT_EQ(s.pdf, 0.0f);
+        }
+    }
+}
+
+}  // namespace
+}  // namespace tyndall
