@@ -17,9 +17,9 @@ enum class MajorantMode {
 };
 
 struct FreeFlightRate {
-    double samplesPerSecond = 0;  ///< collision distances sampled per second (all threads)
+    double samplesPerSecond = 0;         ///< collision distances sampled per second (all threads)
     double densityLookupsPerSample = 0;  ///< tentative collisions (density evaluations) per distance
-    uint64_t segments = 0;        ///< primary segments in grid media the samples were spread over
+    uint64_t segments = 0;               ///< primary segments in grid media the samples were spread over
 };
 
 /// Samples `samples` collision distances along pass 0's primary camera segments that run through

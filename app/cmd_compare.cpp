@@ -13,8 +13,8 @@
 #include "app/interrupt.h"
 #include "app/label_text.h"
 #include "core/accumulator.h"
-#include "core/error.h"
 #include "core/default_smoke_scene.h"
+#include "core/error.h"
 #include "cpu/progressive_render.h"
 #include "hybrid/pass_scheduler.h"
 
@@ -47,7 +47,8 @@ Half renderHalf(PassScheduler& scheduler, const Scene& scene, RenderSettings set
     bool tty = isatty(fileno(stderr));
     CallbackDisplay display([&](const Accumulator&, const RenderProgress& pr) {
         if (tty)
-            std::fprintf(stderr, "\r%s: pass %llu  %.1f s ", what, (unsigned long long)pr.passesDone, pr.elapsedSeconds);
+            std::fprintf(stderr, "\r%s: pass %llu  %.1f s ", what, (unsigned long long)pr.passesDone,
+                         pr.elapsedSeconds);
         return interruptRequested() ? DisplayCommand::Exit : DisplayCommand::Continue;
     });
     scheduler.bind(scene);
@@ -147,12 +148,12 @@ void addCompareCommand(CLI::App& app, int& exitCode) {
 
         double hetPerPass = het.seconds / std::max<uint64_t>(het.passes, 1);
         double homPerPass = hom.seconds / std::max<uint64_t>(hom.passes, 1);
-        std::printf("compared %s: %llu passes each; heterogeneous %.3f s/pass (%s), homogeneous (density %s) %.3f "
-                    "s/pass (%s) (ratio %.2f)%s -> %s, %s, %s\n",
-                    scene.name.c_str(), (unsigned long long)het.passes, hetPerPass, het.hybrid ? "hybrid" : "CPU",
-                    densities.c_str(), homPerPass, hom.hybrid ? "hybrid" : "CPU",
-                    hetPerPass / std::max(homPerPass, 1e-12), interruptRequested() ? " [interrupted]" : "",
-                    c.output.c_str(), hetPath.c_str(), homPath.c_str());
+        std::printf(
+            "compared %s: %llu passes each; heterogeneous %.3f s/pass (%s), homogeneous (density %s) %.3f "
+            "s/pass (%s) (ratio %.2f)%s -> %s, %s, %s\n",
+            scene.name.c_str(), (unsigned long long)het.passes, hetPerPass, het.hybrid ? "hybrid" : "CPU",
+            densities.c_str(), homPerPass, hom.hybrid ? "hybrid" : "CPU", hetPerPass / std::max(homPerPass, 1e-12),
+            interruptRequested() ? " [interrupted]" : "", c.output.c_str(), hetPath.c_str(), homPath.c_str());
         exitCode = interruptRequested() ? 130 : 0;
     });
 }

@@ -57,7 +57,9 @@ int labelWidth(const std::string& text, int scale) {
     int n = int(text.size());
     return (n > 0 ? n * kAdvance - 1 : 0) * scale + 2 * scale;
 }
-int labelHeight(int scale) { return (kGlyphH + 2) * scale; }
+int labelHeight(int scale) {
+    return (kGlyphH + 2) * scale;
+}
 
 void drawLabel(Image& image, int x, int y, const std::string& text, int scale, const Rgb& color, const Rgb& backdrop) {
     auto put = [&](int px, int py, const Rgb& c) {

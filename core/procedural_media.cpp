@@ -15,7 +15,9 @@ float lattice(int x, int y, int z, uint32_t seed) {
     return float(h >> 40) * 0x1p-24f;
 }
 
-float smooth(float t) { return t * t * (3.0f - 2.0f * t); }
+float smooth(float t) {
+    return t * t * (3.0f - 2.0f * t);
+}
 
 /// Value noise in [0, 1): smoothed trilinear blend of hashed lattice values.
 float valueNoise(const Vec3& p, uint32_t seed) {
@@ -42,7 +44,9 @@ float fbm(Vec3 p, uint32_t seed) {
     return sum / norm;
 }
 
-float smoothstep(float e0, float e1, float x) { return smooth(clampValue((x - e0) / (e1 - e0), 0.0f, 1.0f)); }
+float smoothstep(float e0, float e1, float x) {
+    return smooth(clampValue((x - e0) / (e1 - e0), 0.0f, 1.0f));
+}
 }  // namespace
 
 std::shared_ptr<const VdbDensityGrid> makeProceduralSmoke(const ProceduralSmoke& s) {

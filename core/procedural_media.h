@@ -31,9 +31,9 @@ std::shared_ptr<const VdbDensityGrid> makeProceduralSmoke(const ProceduralSmoke&
 struct RollingFog {
     Vec3 lo{-10.0f, 0.0f, -10.0f};  ///< world box the fog fills (its floor is the ground)
     Vec3 hi{10.0f, 3.0f, 10.0f};
-    float layerHeight = 1.2f;       ///< world units: mean thickness of the layer
-    float bankSize = 4.0f;          ///< world units: horizontal size of the rolling banks
-    float voxelSize = 0.1f;         ///< world units (cubic voxels)
+    float layerHeight = 1.2f;  ///< world units: mean thickness of the layer
+    float bankSize = 4.0f;     ///< world units: horizontal size of the rolling banks
+    float voxelSize = 0.1f;    ///< world units (cubic voxels)
     uint32_t seed = 11;
 };
 

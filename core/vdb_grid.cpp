@@ -26,7 +26,9 @@ using Accessor = openvdb::tree::ValueAccessor<const FloatTree, false>;
 std::atomic<uint64_t> g_nextGridId{1};
 
 /// Floor division for possibly negative integers.
-int64_t floorDiv(int64_t a, int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+int64_t floorDiv(int64_t a, int64_t b) {
+    return a >= 0 ? a / b : -((-a + b - 1) / b);
+}
 
 Affine3 affineFromOpenVdb(const openvdb::math::Mat4d& m) {
     // OpenVDB multiplies row vectors (p' = p M, translation in row 3); Affine3 acts on columns.
@@ -92,8 +94,9 @@ void initializeOpenVdb() {
     std::call_once(once, [] { openvdb::initialize(); });
 }
 
-std::shared_ptr<const VdbDensityGrid> makeVdbDensityGrid(openvdb::FloatGrid::ConstPtr grid, const Affine3& sceneTransform,
-                                                         float scale, const std::string& label, int majorantBlock) {
+std::shared_ptr<const VdbDensityGrid> makeVdbDensityGrid(openvdb::FloatGrid::ConstPtr grid,
+                                                         const Affine3& sceneTransform, float scale,
+                                                         const std::string& label, int majorantBlock) {
     auto fail = [&](const std::string& what) { throw Error(label + ": " + what); };
     if (!(scale >= 0) || !std::isfinite(scale)) fail("density scale must be a finite number >= 0");
     if (!grid->transform().isLinear())
@@ -110,7 +113,8 @@ std::shared_ptr<const VdbDensityGrid> makeVdbDensityGrid(openvdb::FloatGrid::Con
     impl->scale = scale;
     impl->indexToWorld = sceneTransform * affineFromOpenVdb(grid->transform().baseMap()->getAffineMap()->getMat4());
     float det = impl->indexToWorld.determinant();
-    if (!(std::abs(det) > 0) || !std::isfinite(det)) fail("index-to-world transform (with the scene transform) is singular");
+    if (!(std::abs(det) > 0) || !std::isfinite(det))
+        fail("index-to-world transform (with the scene transform) is singular");
     impl->worldToIndex = impl->indexToWorld.inverse();
 
     // One sweep over every stored value (active or not: trilinear sampling reads both).
@@ -169,9 +173,9 @@ std::shared_ptr<const VdbDensityGrid> makeVdbDensityGrid(openvdb::FloatGrid::Con
         B *= 2;
     }
     impl->majorantBlock = int(B);
-    Affine3 indexToCell = Affine3::scaleTranslate(Vec3(1.0f / float(B)),
-                                                  Vec3(-float(origin[0]) / float(B), -float(origin[1]) / float(B),
-                                                       -float(origin[2]) / float(B)));
+    Affine3 indexToCell = Affine3::scaleTranslate(
+        Vec3(1.0f / float(B)),
+        Vec3(-float(origin[0]) / float(B), -float(origin[1]) / float(B), -float(origin[2]) / float(B)));
     MajorantGrid maj(indexToCell * impl->worldToIndex, int(res[0]), int(res[1]), int(res[2]));
     for (auto it = grid->tree().cbeginValueAll(); it; ++it) {
         float v = *it;
@@ -242,8 +246,9 @@ std::shared_ptr<const VdbDensityGrid> VdbDensityGrid::load(const VdbGridSource& 
         if (!meta->isType<openvdb::FloatGrid>())
             throw Error(at + " holds " + meta->valueType() + " values; a density grid must hold float");
         if (meta->getGridClass() == openvdb::GRID_LEVEL_SET)
-            throw Error(at + " is a level set (signed distance), not a density; convert it to a fog volume "
-                             "(e.g. openvdb::tools::sdfToFogVolume or Houdini's VDB Convert)");
+            throw Error(at +
+                        " is a level set (signed distance), not a density; convert it to a fog volume "
+                        "(e.g. openvdb::tools::sdfToFogVolume or Houdini's VDB Convert)");
         base = file.readGrid(chosen);
         file.close();
     } catch (const Error&) {
@@ -285,19 +290,39 @@ float VdbDensityGrid::density(const Vec3& p) const {
     return std::max(v, 0.0f) * g.scale;
 }
 
-Bounds3 VdbDensityGrid::bounds() const { return m_impl->worldBounds; }
+Bounds3 VdbDensityGrid::bounds() const {
+    return m_impl->worldBounds;
+}
 float VdbDensityGrid::majorant(const Ray& ray) const {
     return m_impl->empty ? 0.0f : m_impl->majorants.maxAlong(ray, ray.tMin, ray.tMax);
 }
-const MajorantGrid* VdbDensityGrid::majorantGrid() const { return &m_impl->majorants; }
-float VdbDensityGrid::maxDensity() const { return m_impl->maxDensity; }
-float VdbDensityGrid::meanDensity() const { return m_impl->meanDensity; }
-const std::string& VdbDensityGrid::label() const { return m_impl->label; }
-const std::string& VdbDensityGrid::gridName() const { return m_impl->name; }
-uint64_t VdbDensityGrid::activeVoxelCount() const { return m_impl->activeVoxels; }
-int VdbDensityGrid::majorantBlock() const { return m_impl->majorantBlock; }
-const Affine3& VdbDensityGrid::indexToWorld() const { return m_impl->indexToWorld; }
-const Affine3& VdbDensityGrid::worldToIndex() const { return m_impl->worldToIndex; }
+const MajorantGrid* VdbDensityGrid::majorantGrid() const {
+    return &m_impl->majorants;
+}
+float VdbDensityGrid::maxDensity() const {
+    return m_impl->maxDensity;
+}
+float VdbDensityGrid::meanDensity() const {
+    return m_impl->meanDensity;
+}
+const std::string& VdbDensityGrid::label() const {
+    return m_impl->label;
+}
+const std::string& VdbDensityGrid::gridName() const {
+    return m_impl->name;
+}
+uint64_t VdbDensityGrid::activeVoxelCount() const {
+    return m_impl->activeVoxels;
+}
+int VdbDensityGrid::majorantBlock() const {
+    return m_impl->majorantBlock;
+}
+const Affine3& VdbDensityGrid::indexToWorld() const {
+    return m_impl->indexToWorld;
+}
+const Affine3& VdbDensityGrid::worldToIndex() const {
+    return m_impl->worldToIndex;
+}
 
 bool VdbDensityGrid::denseVolume(DensityVolume* out, size_t maxVoxels) const {
     const Impl& g = *m_impl;

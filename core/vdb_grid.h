@@ -34,10 +34,10 @@ namespace tyndall {
 /// Where a grid comes from (the scene format's medium key "density": {"file", "grid", "scale",
 /// "transform"}).
 struct VdbGridSource {
-    std::string file;         ///< path to a .vdb file
-    std::string grid;         ///< grid name; empty = "density" if present, else the first float grid
-    float scale = 1.0f;       ///< density multiplier, >= 0
-    Affine3 transform;        ///< scene transform applied after the file's index-to-world map
+    std::string file;    ///< path to a .vdb file
+    std::string grid;    ///< grid name; empty = "density" if present, else the first float grid
+    float scale = 1.0f;  ///< density multiplier, >= 0
+    Affine3 transform;   ///< scene transform applied after the file's index-to-world map
 };
 
 class VdbDensityGrid : public DensityGrid {

@@ -19,7 +19,8 @@ void initializeOpenVdb();
 /// the values. `label` prefixes error messages ("vdb file 'x': grid 'density'"). Throws Error for
 /// a frustum or singular transform, a positive background or a bad scale. May copy the grid to
 /// clamp negative values.
-std::shared_ptr<const VdbDensityGrid> makeVdbDensityGrid(openvdb::FloatGrid::ConstPtr grid, const Affine3& sceneTransform,
-                                                         float scale, const std::string& label, int majorantBlock);
+std::shared_ptr<const VdbDensityGrid> makeVdbDensityGrid(openvdb::FloatGrid::ConstPtr grid,
+                                                         const Affine3& sceneTransform, float scale,
+                                                         const std::string& label, int majorantBlock);
 
 }  // namespace tyndall

@@ -5,7 +5,9 @@
 namespace tyndall {
 
 namespace {
-float expSample(float sigma, float u) { return sigma > 0 ? -std::log(1.0f - u) / sigma : kInfinity; }  // u < 1
+float expSample(float sigma, float u) {
+    return sigma > 0 ? -std::log(1.0f - u) / sigma : kInfinity;
+}  // u < 1
 
 /// The majorant along [0, tEnd] of a ray through a density grid, as constant pieces: the grid's
 /// majorant grid walked cell by cell when it has one, else one piece with majorant(ray).

@@ -45,9 +45,12 @@ public:
     float profile(float x) const {
         if (x < 0 || x > 1) return 0.0f;
         switch (m_kind) {
-            case Kind::Constant: return kConstant;
-            case Kind::Ramp: return kRampA + kRampB * x;
-            case Kind::Slab: return x >= kSlab0 && x <= kSlab1 ? kSlab : 0.0f;
+            case Kind::Constant:
+                return kConstant;
+            case Kind::Ramp:
+                return kRampA + kRampB * x;
+            case Kind::Slab:
+                return x >= kSlab0 && x <= kSlab1 ? kSlab : 0.0f;
         }
         return 0.0f;
     }
@@ -61,9 +64,12 @@ public:
         };
         double a, b;
         switch (m_kind) {
-            case Kind::Constant: return clip(0, 1, &a, &b) ? kConstant * (b - a) : 0.0;
-            case Kind::Ramp: return clip(0, 1, &a, &b) ? kRampA * (b - a) + 0.5 * kRampB * (b * b - a * a) : 0.0;
-            case Kind::Slab: return clip(kSlab0, kSlab1, &a, &b) ? kSlab * (b - a) : 0.0;
+            case Kind::Constant:
+                return clip(0, 1, &a, &b) ? kConstant * (b - a) : 0.0;
+            case Kind::Ramp:
+                return clip(0, 1, &a, &b) ? kRampA * (b - a) + 0.5 * kRampB * (b * b - a * a) : 0.0;
+            case Kind::Slab:
+                return clip(kSlab0, kSlab1, &a, &b) ? kSlab * (b - a) : 0.0;
         }
         return 0.0;
     }
@@ -72,9 +78,12 @@ public:
         x1 = std::min(x1, 1.0f);
         if (x1 < x0) return 0.0f;
         switch (m_kind) {
-            case Kind::Constant: return kConstant;
-            case Kind::Ramp: return kRampA + kRampB * x1;
-            case Kind::Slab: return x1 >= kSlab0 && x0 <= kSlab1 ? kSlab : 0.0f;
+            case Kind::Constant:
+                return kConstant;
+            case Kind::Ramp:
+                return kRampA + kRampB * x1;
+            case Kind::Slab:
+                return x1 >= kSlab0 && x0 <= kSlab1 ? kSlab : 0.0f;
         }
         return 0.0f;
     }
@@ -95,9 +104,12 @@ private:
 
 inline const char* kindName(AnalyticDensity::Kind k) {
     switch (k) {
-        case AnalyticDensity::Kind::Constant: return "constant";
-        case AnalyticDensity::Kind::Ramp: return "ramp";
-        case AnalyticDensity::Kind::Slab: return "slab";
+        case AnalyticDensity::Kind::Constant:
+            return "constant";
+        case AnalyticDensity::Kind::Ramp:
+            return "ramp";
+        case AnalyticDensity::Kind::Slab:
+            return "slab";
     }
     return "?";
 }

@@ -51,8 +51,8 @@ TEST(CompareCommand, WritesLabelledHalvesAndOneExrPerHalf) {
     int exitCode = -1;
     app::addCompareCommand(app, exitCode);
     const std::string out = test::outputDir() + "/compare-test.exr";
-    std::vector<std::string> args = {"tyndall", "compare", "--size", "64x48", "--passes", "2", "--photons", "300",
-                                     "--gpu", "off", "-o", out};
+    std::vector<std::string> args = {"tyndall",   "compare", "--size", "64x48", "--passes", "2",
+                                     "--photons", "300",     "--gpu",  "off",   "-o",       out};
     std::vector<const char*> argv;
     for (const auto& a : args) argv.push_back(a.c_str());
     app.parse(int(argv.size()), const_cast<char**>(argv.data()));

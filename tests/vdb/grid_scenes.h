@@ -17,7 +17,7 @@ struct GridRoom {
     Vec3 lo{-1.0f}, hi{1.0f};  ///< the closed room (inward walls); its interior is the global medium
     Rgb wallAlbedo{0.0f};
     Vec3 light{0.0f, 0.5f, 0.0f};
-    Rgb intensity{1.0f};       ///< point light, W/sr
+    Rgb intensity{1.0f};  ///< point light, W/sr
     Vec3 eye{0.0f, 0.0f, 0.9f};
     Vec3 target{0.0f, 0.0f, 0.0f};
     float yFovDegrees = 50.0f;

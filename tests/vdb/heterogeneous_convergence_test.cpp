@@ -51,7 +51,8 @@ std::shared_ptr<const VdbDensityGrid> affineGrid(const AffineField& f) {
     for (int k = 0; k < n; ++k)
         for (int j = 0; j < n; ++j)
             for (int i = 0; i < n; ++i)
-                v[(size_t(k) * n + j) * n + i] = float(f.at(Vec3(-1.5f + 0.25f * i, -1.5f + 0.25f * j, -1.5f + 0.25f * k)));
+                v[(size_t(k) * n + j) * n + i] =
+                    float(f.at(Vec3(-1.5f + 0.25f * i, -1.5f + 0.25f * j, -1.5f + 0.25f * k)));
     return VdbDensityGrid::fromDense(dims, v, Affine3::scaleTranslate(Vec3(0.25f), Vec3(-1.5f)), "affine field");
 }
 
@@ -104,7 +105,8 @@ Image singleScatterReference(const SingleScatterSetup& s, const Scene& scene, in
             double v = 0;
             for (int j = 0; j < sub; ++j)
                 for (int i = 0; i < sub; ++i)
-                    v += singleScatter(s, scene.camera.generateRay(x + (i + 0.5f) / sub, y + (j + 0.5f) / sub, w, h, {}));
+                    v += singleScatter(s,
+                                       scene.camera.generateRay(x + (i + 0.5f) / sub, y + (j + 0.5f) / sub, w, h, {}));
             img.at(x, y) = Rgb(float(v / (sub * sub)));
         }
     return img;
@@ -216,8 +218,8 @@ TEST(HeterogeneousConvergence, SingleScatteringInAVdbGridMatchesQuadrature) {
     // passes; require 4, and a fall at every checkpoint.
     check(rmse.back() < 0.25 * rmse.front(), "relative RMSE does not fall with passes");
     for (size_t i = 1; i < rmse.size(); ++i)
-        check(rmse[i] < rmse[i - 1], "relative RMSE rose between checkpoints " + std::to_string(i - 1) + " and " +
-                                         std::to_string(i));
+        check(rmse[i] < rmse[i - 1],
+              "relative RMSE rose between checkpoints " + std::to_string(i - 1) + " and " + std::to_string(i));
     check(rmse.back() < 0.08, "relative RMSE after 256 passes " + std::to_string(rmse.back()));
     if (!ok) writeEvidence("vdb-single-scattering", acc.mean(), ref);
 }
@@ -276,13 +278,15 @@ TEST(HeterogeneousConvergence, ConstantVdbGridMatchesTheHomogeneousMediumPassFor
     double imageSe = std::sqrt((imageSumSq - kPasses * imageMean * imageMean) / (kPasses - 1) / kPasses);
     double imageZ = imageMean / imageSe;
     // Chi-square with 25 degrees of freedom: 99.99% point ~ 60.
-    std::printf("constant grid vs homogeneous: %d blocks, max |z| %.2f, sum z^2 %.1f; whole image z %.2f "
-                "(standard error %.2f%% of the image)\n",
-                nb, worst, chi2, imageZ, 100.0 * imageSe / (homTotal / kPasses));
+    std::printf(
+        "constant grid vs homogeneous: %d blocks, max |z| %.2f, sum z^2 %.1f; whole image z %.2f "
+        "(standard error %.2f%% of the image)\n",
+        nb, worst, chi2, imageZ, 100.0 * imageSe / (homTotal / kPasses));
     EXPECT_LT(worst, 4.5);
     EXPECT_LT(chi2, 60.0);
     EXPECT_LT(std::abs(imageZ), 4.0);
-    if (worst >= 4.5 || chi2 >= 60.0 || std::abs(imageZ) >= 4.0) writeEvidence("vdb-constant-vs-homogeneous", accHet.mean(), accHom.mean());
+    if (worst >= 4.5 || chi2 >= 60.0 || std::abs(imageZ) >= 4.0)
+        writeEvidence("vdb-constant-vs-homogeneous", accHet.mean(), accHom.mean());
 }
 
 }  // namespace

@@ -13,6 +13,8 @@
 //   "passed"): D < 1.95 / sqrt(M), the 0.1% critical value.
 // - Ratio tracking and the photon free flight (delta tracking): sample means within 4.5 sigma of
 //   Tr(tEnd) and 1 - Tr(tEnd), sigma from the sample variance / binomial formula.
+#include "core/transmittance.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -22,7 +24,6 @@
 
 #include "core/medium.h"
 #include "core/rng.h"
-#include "core/transmittance.h"
 #include "cpu/free_flight.h"
 #include "tests/test_util.h"
 #include "tests/vdb/analytic_density.h"
@@ -37,9 +38,12 @@ enum class Variant { TightMajorant, GlobalMajorant, Vdb };
 
 const char* variantName(Variant v) {
     switch (v) {
-        case Variant::TightMajorant: return "analytic_tight";
-        case Variant::GlobalMajorant: return "analytic_global";
-        case Variant::Vdb: return "vdb";
+        case Variant::TightMajorant:
+            return "analytic_tight";
+        case Variant::GlobalMajorant:
+            return "analytic_global";
+        case Variant::Vdb:
+            return "vdb";
     }
     return "?";
 }
@@ -73,10 +77,10 @@ protected:
         m_tauTable[0] = 0;
         for (int i = 1; i <= kTable; ++i) {
             double t0 = m_tEnd * double(i - 1) / kTable, t1 = m_tEnd * double(i) / kTable;
-            double depth = c.variant == Variant::Vdb
-                               ? test::numericOpticalDepth(*m_grid, m_ray, t0, t1, 8)
-                               : m_analytic->integral(m_ray.o.x + m_ray.d.x * t0, m_ray.o.x + m_ray.d.x * t1) /
-                                     m_ray.d.x;
+            double depth =
+                c.variant == Variant::Vdb
+                    ? test::numericOpticalDepth(*m_grid, m_ray, t0, t1, 8)
+                    : m_analytic->integral(m_ray.o.x + m_ray.d.x * t0, m_ray.o.x + m_ray.d.x * t1) / m_ray.d.x;
             m_tauTable[i] = m_tauTable[i - 1] + 1.5 * depth;
         }
     }
@@ -141,8 +145,12 @@ void StoredTransmittance::checkStoredSets(StoredSetSampler sampler) {
     EXPECT_LT(ks, 1.95 / std::sqrt(m)) << "KS statistic of the collision distances";
 }
 
-TEST_P(StoredTransmittance, AveragedOverPassesMatchesAnalytic) { checkStoredSets(batched); }
-TEST_P(StoredTransmittance, OneTrackerAtATimeMatchesAnalytic) { checkStoredSets(oneByOne); }
+TEST_P(StoredTransmittance, AveragedOverPassesMatchesAnalytic) {
+    checkStoredSets(batched);
+}
+TEST_P(StoredTransmittance, OneTrackerAtATimeMatchesAnalytic) {
+    checkStoredSets(oneByOne);
+}
 
 TEST_P(StoredTransmittance, RatioTrackingIsUnbiased) {
     constexpr int kSamples = 20000;
@@ -188,7 +196,8 @@ std::vector<Case> allCases() {
 
 INSTANTIATE_TEST_SUITE_P(Densities, StoredTransmittance, ::testing::ValuesIn(allCases()),
                          [](const ::testing::TestParamInfo<Case>& info) {
-                             return std::string(test::kindName(info.param.kind)) + "_" + variantName(info.param.variant);
+                             return std::string(test::kindName(info.param.kind)) + "_" +
+                                    variantName(info.param.variant);
                          });
 
 // The stored estimate is a step function of t that is exactly the fraction of distances beyond t.

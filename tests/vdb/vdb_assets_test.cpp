@@ -18,9 +18,11 @@
 namespace tyndall {
 namespace {
 
-std::string assetPath(const std::string& rel) { return test::assetsDir() + "/vdb/" + rel; }
+std::string assetPath(const std::string& rel) {
+    return test::assetsDir() + "/vdb/" + rel;
+}
 
-#define REQUIRE_ASSET(path)                                                                           \
+#define REQUIRE_ASSET(path) \
     if (!std::filesystem::exists(path)) GTEST_SKIP() << "asset " << (path) << " absent (../shared/assets)"
 
 VdbGridSource source(const std::string& file, const std::string& grid = "") {
@@ -51,7 +53,8 @@ openvdb::FloatGrid::Ptr readWithOpenVdb(const std::string& path, const std::stri
 
 /// Our density at the world position OpenVDB gives each active voxel's centre equals that voxel's
 /// value (times the scale, through the scene transform `xf`), for every active voxel.
-void expectVoxelCentresMatch(const VdbDensityGrid& grid, const openvdb::FloatGrid& ref, const Affine3& xf, float scale) {
+void expectVoxelCentresMatch(const VdbDensityGrid& grid, const openvdb::FloatGrid& ref, const Affine3& xf,
+                             float scale) {
     uint64_t n = 0;
     for (auto it = ref.cbeginValueOn(); it; ++it) {
         if (!it.isVoxelValue()) continue;
@@ -147,7 +150,7 @@ TEST(VdbAssets, Torus01NeedsItsGridName) {
     EXPECT_EQ(grid->activeVoxelCount(), 2450u);
     EXPECT_FLOAT_EQ(grid->maxDensity(), 100.0f);  // large densities: the majorant must follow
     EXPECT_GE(grid->majorantGrid()->maxValue(), 100.0f);
-    EXPECT_LT(grid->bounds().lo.x, 0.0f);         // negative index coordinates
+    EXPECT_LT(grid->bounds().lo.x, 0.0f);  // negative index coordinates
     expectBoundsNear(grid->bounds(), expectedBounds(*ref, Affine3()), 1e-4f);
     expectVoxelCentresMatch(*grid, *ref, Affine3(), 1.0f);
     // Without a name the first float grid is used, which here is the same one.

@@ -79,7 +79,8 @@ TEST(VdbGrid, DensityIsTrilinearInIndexSpaceUnderAnAnisotropicRotatedTransform) 
                -1.5f + rng.uniform() * (b.dims[2] + 2));
         Vec3 p = xf.point(x);
         double expected = b.trilinear(grid->worldToIndex().point(p));
-        ASSERT_NEAR(grid->density(p), expected, 1e-5 * (1 + expected)) << "index point " << x.x << " " << x.y << " " << x.z;
+        ASSERT_NEAR(grid->density(p), expected, 1e-5 * (1 + expected))
+            << "index point " << x.x << " " << x.y << " " << x.z;
         // Away from float round-off, the index point we generated is the one the grid uses.
         ASSERT_NEAR(b.trilinear(x), expected, 1e-3 * (1 + expected));
     }
@@ -272,7 +273,9 @@ TEST(VdbGrid, SparseGridsOverHugeRangesStayBounded) {
 
 // ---- The loader's errors, on files written by this test ----
 
-std::string outPath(const std::string& name) { return test::outputDir() + "/" + name; }
+std::string outPath(const std::string& name) {
+    return test::outputDir() + "/" + name;
+}
 
 VdbGridSource source(const std::string& file, const std::string& grid = "") {
     VdbGridSource s;
@@ -372,8 +375,8 @@ TEST(VdbGridLoad, PositiveBackgroundAndBadScaleAreRejected) {
     src.scale = 3.0f;
     src.transform = Affine3::scaleTranslate(Vec3(2.0f), Vec3(10, 0, 0));
     auto grid = VdbDensityGrid::load(src);
-    EXPECT_NEAR(grid->density(Vec3(10, 0, 0)), 3.0f, 1e-6f);     // voxel (0,0,0) moved by the scene transform
-    EXPECT_NEAR(grid->density(Vec3(11, 0, 0)), 1.5f, 1e-6f);     // half a (scaled) voxel away
+    EXPECT_NEAR(grid->density(Vec3(10, 0, 0)), 3.0f, 1e-6f);  // voxel (0,0,0) moved by the scene transform
+    EXPECT_NEAR(grid->density(Vec3(11, 0, 0)), 1.5f, 1e-6f);  // half a (scaled) voxel away
     EXPECT_NEAR(grid->bounds().lo.x, 8.0f, 1e-5f);
     EXPECT_NEAR(grid->bounds().hi.x, 12.0f, 1e-5f);
 }
