@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <regex>
 
 #include "core/default_scene.h"
@@ -23,7 +24,9 @@ CLI::Validator nonNegativeInteger() {
 
 void addSceneAndOutputOptions(CLI::App* cmd, CommonOptions& o, const std::string& defaultOutput) {
     o.output = defaultOutput;
+    o.command = cmd;
     cmd->add_option("scene", o.scene, "Scene file (.json, .gltf, .glb); omitted = the built-in default scene");
+    cmd->add_option("--camera", o.camera, "Camera by name or index (default: the scene's first camera)");
     cmd->add_option("-o,--output", o.output, "Output image: .exr (linear, settings in metadata) or .png (tone-mapped)")
         ->capture_default_str();
     cmd->add_option("--size", o.size, "Image size WxH in pixels")->capture_default_str();
@@ -72,10 +75,42 @@ void finishOptions(CommonOptions& o) {
     o.settings.validate();
 }
 
-Scene loadScene(const std::string& path) {
-    Scene scene = path.empty() ? makeDefaultScene() : loadSceneFile(path);
-    scene.validate();
-    return scene;
+namespace {
+/// The render settings given explicitly on the command line, as RenderSettings JSON keys.
+nlohmann::json explicitSettings(const CommonOptions& o) {
+    static const std::pair<const char*, const char*> kOptionKeys[] = {
+        {"--passes", "passes"},   {"--time", "time"},     {"--photons", "photons"},
+        {"--alpha", "alpha"},     {"--radius", "radius"}, {"--surface-radius", "surface_radius"},
+        {"--radius-offset", "radius_offset"}, {"--free-flights", "free_flights"}, {"--seed", "seed"},
+        {"--threads", "threads"}, {"--gpu", "gpu"}};
+    nlohmann::json all = o.settings.toJson(), given = nlohmann::json::object();
+    auto isGiven = [&](const char* name) {
+        const CLI::Option* opt = o.command ? o.command->get_option_no_throw(name) : nullptr;
+        return opt && opt->count() > 0;
+    };
+    for (const auto& [option, key] : kOptionKeys)
+        if (isGiven(option)) given[key] = all[key];
+    if (isGiven("--size")) given["width"] = all["width"], given["height"] = all["height"];
+    if (isGiven("--passes") || isGiven("--time")) given["passes"] = all["passes"], given["time"] = all["time"];
+    return given;
+}
+}  // namespace
+
+Scene loadScene(CommonOptions& o) {
+    if (o.scene.empty()) {
+        Scene scene = makeDefaultScene();
+        if (!o.camera.empty() && o.camera != "0" && o.camera != "default")
+            throw Error("--camera " + o.camera + ": the built-in default scene has one camera, 0 'default'");
+        scene.validate();
+        return scene;
+    }
+    SceneLoadOptions options;
+    options.camera = o.camera;
+    SceneFile file = loadSceneFile(o.scene, options);
+    RenderSettings fromFile = RenderSettings::fromJson(file.render, file.renderWhere);
+    o.settings = RenderSettings::fromJson(explicitSettings(o), "command line", fromFile);
+    o.settings.validate();
+    return std::move(file.scene);
 }
 
 void checkOutputWritable(const std::string& path) {

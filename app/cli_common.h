@@ -13,24 +13,28 @@ namespace tyndall::app {
 
 struct CommonOptions {
     std::string scene;          ///< empty = built-in default scene
+    std::string camera;         ///< --camera NAME|INDEX; empty = the scene's first camera
     std::string output;
     std::string size = "512x512";
     float exposure = 1.0f;
     RenderSettings settings;
+    CLI::App* command = nullptr;  ///< the subcommand, to tell options given from defaults
 };
 
 /// Rejects "-3" for unsigned options (CLI11 would wrap it to 2^64 - 3) with a plain message.
 CLI::Validator nonNegativeInteger();
 
-/// Adds [SCENE] --size --seed --threads -o --exposure.
+/// Adds [SCENE] --camera --size --seed --threads -o --exposure.
 void addSceneAndOutputOptions(CLI::App* cmd, CommonOptions& o, const std::string& defaultOutput);
 /// Adds the PPB options: --passes --time --photons --alpha --radius --surface-radius.
 void addPpbOptions(CLI::App* cmd, CommonOptions& o);
 
 /// Parses --size into the settings and validates them; throws Error naming the bad option.
 void finishOptions(CommonOptions& o);
-/// The scene named on the command line, or the built-in default; finalized and validated.
-Scene loadScene(const std::string& path);
+/// The scene named on the command line (or the built-in default), finalized and validated, with
+/// the camera --camera selects. The scene file's "render" block replaces the settings' defaults;
+/// options given on the command line win over it (o.settings is updated and re-validated).
+Scene loadScene(CommonOptions& o);
 /// Throws Error (naming the file) when `path` cannot be written, before anything is rendered.
 void checkOutputWritable(const std::string& path);
 /// Caps TBB (and Embree through it) at `threads` workers for the life of the returned object.

@@ -49,7 +49,7 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
     cmd->callback([o, &exitCode]() {
         finishOptions(o->common);
         const RenderSettings& s = o->common.settings;
-        Scene scene = loadScene(o->common.scene);
+        Scene scene = loadScene(o->common);
         ThreadLimit threads(s.threads);
         PassRenderer renderer(scene, s);
         unsigned hw = s.threads > 0 ? unsigned(s.threads) : std::thread::hardware_concurrency();

@@ -113,7 +113,10 @@ void addCompareCommand(CLI::App& app, int& exitCode) {
         checkOutputWritable(hetPath);
         checkOutputWritable(homPath);
 
-        Scene scene = c.scene.empty() ? makeDefaultSmokeScene() : loadScene(c.scene);
+        // loadScene checks --camera and applies the file's render block; the built-in case then
+        // swaps the default scene for its smoke variant (same camera).
+        Scene scene = loadScene(c);
+        if (c.scene.empty()) scene = makeDefaultSmokeScene();
         scene.validate();
         std::vector<float> used;
         Scene twin = makeHomogeneousTwin(scene, o->density, &used);

@@ -45,14 +45,14 @@ void addReferenceCommand(CLI::App& app, int& exitCode) {
     cmd->add_flag("--no-nee", o->noNee, "Disable light sampling (only emissive surfaces hit by paths contribute)");
     cmd->callback([o, &exitCode]() {
         finishOptions(o->common);
+        checkOutputWritable(o->common.output);
+        Scene scene = loadScene(o->common);  // also applies the scene file's render block (size, seed)
         ReferenceSettings& s = o->reference;
         s.width = o->common.settings.width;
         s.height = o->common.settings.height;
         s.seed = o->common.settings.seed;
         s.nextEventEstimation = !o->noNee;
         s.validate();
-        checkOutputWritable(o->common.output);
-        Scene scene = loadScene(o->common.scene);
         ThreadLimit threads(o->common.settings.threads);
         auto start = std::chrono::steady_clock::now();
         EmbreeScene rt(scene);

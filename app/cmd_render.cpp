@@ -39,7 +39,7 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
     cmd->callback([o, &exitCode]() {
         finishOptions(*o);
         checkOutputWritable(o->output);
-        Scene scene = loadScene(o->scene);
+        Scene scene = loadScene(*o);
         ThreadLimit threads(o->settings.threads);
         PassScheduler scheduler(parseGpuMode(o->settings.gpu));
         PassRenderer renderer(scene, o->settings);

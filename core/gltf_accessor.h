@@ -1,0 +1,24 @@
+#pragma once
+// Bounds-checked reading of glTF accessors (tinygltf parses the JSON but does not check that an
+// accessor fits its buffer view and buffer, nor index ranges): every offset, stride, count and
+// index is checked before any byte is read, and any mismatch throws Error naming `where` and the
+// accessor. Handles all component types (normalised integers included, so KHR_mesh_quantization
+// works), byte strides, accessors without a buffer view (zeros) and sparse accessors.
+// Internal to core/: includes tiny_gltf.h.
+#include <tiny_gltf.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace tyndall {
+
+/// Accessor `index` as `components` floats per element (count * components values).
+/// `components`: 1, 2, 3 or 4 (SCALAR, VEC2, VEC3, VEC4); other accessor types throw.
+std::vector<float> readGltfFloats(const tinygltf::Model& model, int index, int components, const std::string& where,
+                                  size_t maxElements);
+/// Accessor `index` as vertex indices (SCALAR of unsigned byte, short or int).
+std::vector<uint32_t> readGltfIndices(const tinygltf::Model& model, int index, const std::string& where,
+                                      size_t maxElements);
+
+}  // namespace tyndall

@@ -1,0 +1,90 @@
+#include "core/gltf_material_mapping.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "core/error.h"
+
+namespace tyndall {
+
+namespace {
+void checkUnit(const std::string& where, const char* what, float v) {
+    if (!(v >= 0.0f && v <= 1.0f)) {
+        std::ostringstream s;
+        s << where << ": " << what << " must lie in [0, 1], got " << v;
+        throw Error(s.str());
+    }
+}
+void checkUnit(const std::string& where, const char* what, const Rgb& c) {
+    for (int i = 0; i < 3; ++i) checkUnit(where, what, c[i]);
+}
+}  // namespace
+
+GltfMaterialMapping mapGltfMaterial(const GltfMaterialInput& in) {
+    const std::string& at = in.where;
+    checkUnit(at, "baseColorFactor", in.baseColor);
+    checkUnit(at, "baseColorFactor alpha", in.alpha);
+    checkUnit(at, "metallicFactor", in.metallic);
+    checkUnit(at, "roughnessFactor", in.roughness);
+    checkUnit(at, "emissiveFactor", in.emissive);
+    checkUnit(at, "KHR_materials_transmission transmissionFactor", in.transmission);
+    if (!(in.emissiveStrength >= 0.0f) || !std::isfinite(in.emissiveStrength))
+        throw Error(at + ": KHR_materials_emissive_strength emissiveStrength must be a finite number >= 0");
+    if (!(in.ior >= 1.0f) || !std::isfinite(in.ior))
+        throw Error(at + ": KHR_materials_ior ior must be a finite number >= 1");
+    if (in.hasVolume) {
+        if (!(in.attenuationDistance > 0.0f))
+            throw Error(at + ": KHR_materials_volume attenuationDistance must be > 0");
+        checkUnit(at, "KHR_materials_volume attenuationColor", in.attenuationColor);
+        if (!(in.thickness >= 0.0f) || !std::isfinite(in.thickness))
+            throw Error(at + ": KHR_materials_volume thicknessFactor must be a finite number >= 0");
+    }
+
+    GltfMaterialMapping out;
+    Material& m = out.material;
+    m.name = in.name;
+    auto note = [&](const std::string& kind, const std::string& what) {
+        out.notes.push_back({kind, at + ": " + what});
+    };
+
+    if (in.transmission > 0.0f && in.transmission < 0.5f) {
+        note("partial transmission", "transmissionFactor < 0.5 rendered as opaque");
+    }
+    if (in.transmission >= 0.5f) {
+        m.type = MaterialType::Dielectric;
+        m.albedo = in.baseColor;
+        m.ior = in.ior;
+        if (in.transmission < 1.0f)
+            note("partial transmission", "transmissionFactor >= 0.5 rendered as fully transmissive");
+        if (in.roughness > 0.05f) note("rough transmission", "rough transmission rendered as smooth glass");
+    } else if (in.metallic >= 0.5f && in.roughness <= 0.5f) {
+        m.type = MaterialType::Mirror;
+        m.albedo = in.baseColor;
+        if (in.roughness > 0.05f) note("rough metal", "rough metal rendered as a perfect mirror");
+    } else {
+        m.type = MaterialType::Diffuse;
+        m.albedo = in.baseColor;
+        if (in.metallic >= 0.5f) note("rough metal", "rough metal (roughness > 0.5) rendered as diffuse");
+    }
+    m.emission = in.emissive * in.emissiveStrength;
+
+    if (in.hasVolume) {
+        if (m.type != MaterialType::Dielectric) {
+            note("volume without transmission", "KHR_materials_volume ignored: the material is not transmissive");
+        } else if (std::isfinite(in.attenuationDistance)) {
+            Medium med;
+            med.name = in.name + " volume";
+            med.sigmaS = Rgb(0.0f);
+            med.g = 0.0f;
+            for (int c = 0; c < 3; ++c)  // a colour of 0 would absorb infinitely: clamp
+                med.sigmaA[c] = -std::log(std::max(in.attenuationColor[c], 1e-6f)) / in.attenuationDistance;
+            out.interior = med;
+        }
+    }
+    if (in.alpha < 1.0f || in.alphaMode != "OPAQUE")
+        note("alpha", "alpha (alphaMode " + in.alphaMode + ") ignored: rendered opaque");
+    for (const std::string& t : in.textures) note("texture " + t, t + " ignored: the factor alone is used");
+    return out;
+}
+
+}  // namespace tyndall

@@ -1,0 +1,31 @@
+#pragma once
+// The Tyndall scene description (.json, docs/scene-format.md) -> SceneDraft. Internal to core/;
+// the public entry point is loadSceneFile (scene_file.h). Each element kind is read by one
+// function so the format stays easy to extend (heterogeneous media add keys in readMedium).
+#include <string>
+
+#include "core/json_reader.h"
+#include "core/scene_assembly.h"
+
+namespace tyndall {
+
+/// Reads a whole scene description. `render` receives the "render" block (checked).
+SceneDraft readSceneJson(const std::string& text, const std::string& file, const std::string& baseDir,
+                         const SceneLoadOptions& options, WarnOnce& warn, SceneFile* render);
+
+/// One entry of "materials". Keys: name, type, albedo, ior, emission.
+Material readMaterial(JsonObject& obj);
+/// One entry of "media"; the caller reads the placement ("inside") first, this reads the rest and
+/// finishes the object. Keys: name, sigma_s, sigma_a, g; "density" is reserved for heterogeneous
+/// media (the OpenVDB issue adds it here).
+Medium readMedium(JsonObject& obj);
+/// One entry of "lights". Keys depend on "type" (point, spot, directional).
+Light readLight(JsonObject& obj, const std::string& defaultName);
+/// One entry of "cameras".
+NamedCamera readCamera(JsonObject& obj, const std::string& defaultName);
+/// One entry of "shapes" (procedural meshes, scene_shapes.cpp), material already resolved.
+/// `trianglesSoFar` is checked against options.maxTriangles before anything is built.
+TriangleMesh readShape(JsonObject& obj, const std::string& defaultName, int material, size_t trianglesSoFar,
+                       const SceneLoadOptions& options);
+
+}  // namespace tyndall

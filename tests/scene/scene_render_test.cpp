@@ -1,0 +1,81 @@
+// Loaded scenes render: every third-party glTF model in ../shared/assets/gltf and every scene in
+// scenes/ gives a finite, non-black image after a few small passes.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+
+#include "core/image_io.h"
+#include "cpu/progressive_render.h"
+#include "tests/scene/scene_test_util.h"
+
+namespace tyndall {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Mean luminance of a few passes at size x size; fails the test on a non-finite pixel.
+double renderMeanLuminance(const Scene& scene, int size, int passes, uint32_t photons, const std::string& evidence) {
+    RenderSettings rs;
+    rs.width = rs.height = size;
+    rs.passes = uint64_t(passes);
+    rs.photonsPerPass = photons;
+    PassRenderer renderer(scene, rs);
+    Accumulator acc(size, size);
+    renderProgressive(renderer, acc, 0);
+    Image img = acc.mean();
+    double sum = 0;
+    bool finite = true;
+    for (const Rgb& p : img.pixels) {
+        finite &= isFinite(p);
+        sum += p.luminance();
+    }
+    double mean = sum / double(img.pixels.size());
+    if (!finite || !(mean > 0)) writeImage(test::outputDir() + "/" + evidence + ".exr", img);
+    EXPECT_TRUE(finite) << scene.source << ": non-finite pixels (image in test-output/" << evidence << ".exr)";
+    return mean;
+}
+
+std::vector<fs::path> filesWithExtension(const fs::path& dir, std::initializer_list<const char*> exts) {
+    std::vector<fs::path> out;
+    for (const auto& e : fs::recursive_directory_iterator(dir))
+        for (const char* x : exts)
+            if (e.is_regular_file() && e.path().extension() == x) out.push_back(e.path());
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+TEST(GltfAssets, EveryModelLoadsAndRenders) {
+    fs::path dir = fs::path(test::assetsDir()) / "gltf";
+    if (!fs::is_directory(dir)) GTEST_SKIP() << "no third-party glTF assets at " << dir << " (../shared/assets absent)";
+    std::vector<fs::path> files = filesWithExtension(dir, {".gltf", ".glb"});
+    ASSERT_FALSE(files.empty());
+    for (const fs::path& f : files) {
+        SCOPED_TRACE(f.string());
+        std::vector<std::string> warnings;
+        SceneLoadOptions o;
+        o.warn = [&](const std::string& w) { warnings.push_back(w); };
+        SceneFile sf = loadSceneFile(f.string(), o);
+        EXPECT_GT(sf.scene.triangleCount(), 0u);
+        double mean = renderMeanLuminance(sf.scene, 24, 2, 2000, "asset-" + f.stem().string());
+        EXPECT_GT(mean, 0.0) << "black image (" << warnings.size() << " warnings)";
+    }
+}
+
+TEST(SceneLibrary, EveryScenesFileLoadsAndRenders) {
+    std::vector<fs::path> files = filesWithExtension(fs::path(TYNDALL_SOURCE_DIR) / "scenes", {".json"});
+    ASSERT_GE(files.size(), 1u);
+    for (const fs::path& f : files) {
+        SCOPED_TRACE(f.string());
+        std::vector<std::string> warnings;
+        SceneLoadOptions o;
+        o.warn = [&](const std::string& w) { warnings.push_back(w); };
+        SceneFile sf = loadSceneFile(f.string(), o);
+        EXPECT_TRUE(warnings.empty()) << "the library's own scenes load without warnings: " << warnings.front();
+        RenderSettings::fromJson(sf.render, sf.renderWhere).validate();
+        EXPECT_GT(renderMeanLuminance(sf.scene, 24, 1, 2000, "library-" + f.stem().string()), 0.0);
+    }
+}
+
+}  // namespace
+}  // namespace tyndall
