@@ -49,12 +49,41 @@ float smoothstep(float e0, float e1, float x) {
 }
 }  // namespace
 
+namespace {
+constexpr float kWobble = 0.25f;  // lateral drift of the smoke column's axis
+
+float smokeReach(const ProceduralSmoke& s) { return s.topRadius + kWobble + 2.0f * s.voxelSize; }
+
+void smokeDims(const ProceduralSmoke& s, int64_t dims[3]) {
+    const double reach = smokeReach(s);
+    dims[0] = dims[2] = int64_t(std::ceil(2.0 * reach / s.voxelSize)) + 1;
+    dims[1] = int64_t(std::ceil(double(s.height) / s.voxelSize)) + 1;
+}
+
+void fogDims(const RollingFog& f, int64_t dims[3]) {
+    for (int a = 0; a < 3; ++a) dims[a] = int64_t(std::ceil(double(f.hi[a] - f.lo[a]) / f.voxelSize)) + 1;
+}
+}  // namespace
+
+uint64_t voxelCount(const ProceduralSmoke& s) {
+    int64_t d[3];
+    smokeDims(s, d);
+    return uint64_t(d[0]) * uint64_t(d[1]) * uint64_t(d[2]);
+}
+
+uint64_t voxelCount(const RollingFog& f) {
+    int64_t d[3];
+    fogDims(f, d);
+    return uint64_t(d[0]) * uint64_t(d[1]) * uint64_t(d[2]);
+}
+
 std::shared_ptr<const VdbDensityGrid> makeProceduralSmoke(const ProceduralSmoke& s) {
-    const float wobble = 0.25f;  // lateral drift of the column axis
-    const float reach = s.topRadius + wobble + 2.0f * s.voxelSize;
+    const float wobble = kWobble;
+    const float reach = smokeReach(s);
     const Vec3 lo = s.base + Vec3(-reach, 0.0f, -reach);
-    const int dims[3] = {int(std::ceil(2.0f * reach / s.voxelSize)) + 1, int(std::ceil(s.height / s.voxelSize)) + 1,
-                         int(std::ceil(2.0f * reach / s.voxelSize)) + 1};
+    int64_t d64[3];
+    smokeDims(s, d64);
+    const int dims[3] = {int(d64[0]), int(d64[1]), int(d64[2])};
     std::vector<float> values(size_t(dims[0]) * dims[1] * dims[2], 0.0f);
     for (int k = 0; k < dims[2]; ++k)
         for (int j = 0; j < dims[1]; ++j) {
@@ -71,8 +100,8 @@ std::shared_ptr<const VdbDensityGrid> makeProceduralSmoke(const ProceduralSmoke&
                 float n = fbm(q * s.noiseFrequency, s.seed);
                 float edge = radius * (0.7f + 0.6f * n);
                 float profile = 1.0f - smoothstep(0.45f * edge, edge, r);
-                float d = vertical * profile * smoothstep(0.32f, 0.62f, n);
-                values[(size_t(k) * dims[1] + j) * dims[0] + i] = d > 1e-3f ? d : 0.0f;
+                float d = vertical * profile * smoothstep(0.32f, 0.62f, n) * s.densityScale;
+                values[(size_t(k) * dims[1] + j) * dims[0] + i] = d > 1e-3f * s.densityScale ? d : 0.0f;
             }
         }
     Affine3 indexToWorld = Affine3::scaleTranslate(Vec3(s.voxelSize), lo);
@@ -80,9 +109,9 @@ std::shared_ptr<const VdbDensityGrid> makeProceduralSmoke(const ProceduralSmoke&
 }
 
 std::shared_ptr<const VdbDensityGrid> makeRollingFog(const RollingFog& f) {
-    const Vec3 size = f.hi - f.lo;
-    const int dims[3] = {int(std::ceil(size.x / f.voxelSize)) + 1, int(std::ceil(size.y / f.voxelSize)) + 1,
-                         int(std::ceil(size.z / f.voxelSize)) + 1};
+    int64_t d64[3];
+    fogDims(f, d64);
+    const int dims[3] = {int(d64[0]), int(d64[1]), int(d64[2])};
     std::vector<float> values(size_t(dims[0]) * dims[1] * dims[2], 0.0f);
     const float inv = 1.0f / f.bankSize;
     for (int k = 0; k < dims[2]; ++k)
@@ -99,7 +128,7 @@ std::shared_ptr<const VdbDensityGrid> makeRollingFog(const RollingFog& f) {
                 if (profile <= 0) break;
                 float wisps = fbm(Vec3(x * 2.5f * inv, y * 3.0f / f.layerHeight, z * 1.5f * inv), f.seed + 101);
                 float d = profile * (0.35f + 0.65f * smoothstep(0.35f, 0.75f, wisps));
-                values[(size_t(k) * dims[1] + j) * dims[0] + i] = d > 1e-3f ? d : 0.0f;
+                values[(size_t(k) * dims[1] + j) * dims[0] + i] = d > 1e-3f ? d * f.densityScale : 0.0f;
             }
         }
     Affine3 indexToWorld = Affine3::scaleTranslate(Vec3(f.voxelSize), f.lo);

@@ -6,7 +6,7 @@
 //   without a scene;
 // - rolling fog: a ground-hugging layer whose thickness and density roll in long horizontal
 //   banks (the street lamp's heterogeneous variant).
-// Both are fog volumes with values in [0, 1]; scale them with the medium's coefficients.
+// Both are fog volumes with values in [0, densityScale] (1 by default).
 #include <cstdint>
 #include <memory>
 
@@ -22,6 +22,7 @@ struct ProceduralSmoke {
     float topRadius = 0.85f;        ///< column radius at the top
     float voxelSize = 0.03f;        ///< world units (cubic voxels)
     float noiseFrequency = 2.2f;    ///< base noise frequency, 1 / world unit
+    float densityScale = 1.0f;      ///< multiplies every value (so values lie in [0, densityScale])
     uint32_t seed = 7;
 };
 
@@ -34,8 +35,14 @@ struct RollingFog {
     float layerHeight = 1.2f;  ///< world units: mean thickness of the layer
     float bankSize = 4.0f;     ///< world units: horizontal size of the rolling banks
     float voxelSize = 0.1f;    ///< world units (cubic voxels)
+    float densityScale = 1.0f; ///< multiplies every value (so values lie in [0, densityScale])
     uint32_t seed = 11;
 };
+
+/// Voxels a procedural grid with these parameters would hold (checked by scene loading before
+/// building one).
+uint64_t voxelCount(const ProceduralSmoke& params);
+uint64_t voxelCount(const RollingFog& params);
 
 /// Builds the fog layer as an OpenVDB fog volume (values in [0, 1]) wrapped as a density grid.
 std::shared_ptr<const VdbDensityGrid> makeRollingFog(const RollingFog& params = {});
