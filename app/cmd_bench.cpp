@@ -5,8 +5,10 @@
 #include <thread>
 
 #include "app/bench_cpu.h"
+#include "app/bench_media.h"
 #include "app/bench_hybrid.h"
 #include "app/cli_common.h"
+#include "core/default_smoke_scene.h"
 
 namespace tyndall::app {
 
@@ -16,6 +18,7 @@ struct BenchOptions {
     int passes = 10;
     uint64_t rays = 4000000;
     uint64_t queries = 200000;
+    uint64_t freeFlights = 2000000;
     bool hybrid = true;
 };
 
@@ -40,6 +43,8 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
         ->capture_default_str();
     cmd->add_option("--rays", o->rays, "Rays for the raw Embree baseline")->capture_default_str();
     cmd->add_option("--queries", o->queries, "Beam gather queries per BVH kind")->capture_default_str();
+    cmd->add_option("--free-flights", o->freeFlights, "Free-flight distances sampled per majorant kind")
+        ->capture_default_str();
     cmd->add_flag("!--no-hybrid", o->hybrid, "Skip the hybrid (GL splat) figures");
     cmd->callback([o, &exitCode]() {
         finishOptions(o->common);
@@ -90,6 +95,53 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                   ratio(pr.totals.splatSeconds / pr.passes, perPass, "of a pass"));
         printRate("beams per pass", double(pr.totals.beams) / pr.passes, "beams");
         if (o->hybrid) printHybridBench(measureHybrid(renderer, o->passes));
+
+        // Heterogeneous media: the built-in smoke scene against this (fog) scene, or a scene's own
+        // grid media against their homogeneous twin.
+        bool builtIn = o->common.scene.empty();
+        Scene het = builtIn ? makeDefaultSmokeScene() : scene;
+        bool anyGrid = false;
+        for (const Medium& m : het.media) anyGrid |= !m.homogeneous();
+        if (anyGrid) {
+            std::vector<float> twinDensity;
+            Scene twin = makeHomogeneousTwin(het, -1.0f, &twinDensity);
+            PassRenderer hetRenderer(het, s), twinRenderer(twin, s);
+            std::printf("heterogeneous media (%s)\n", builtIn ? "built-in smoke scene; baseline: the fog scene above"
+                                                               : "this scene's grids; baseline: their homogeneous twin");
+            PassRate hp = measurePasses(hetRenderer, o->passes);
+            PassRate tp = measurePasses(twinRenderer, o->passes);
+            double base = builtIn ? pr.passesPerSecond : tp.passesPerSecond;
+            double perPassRatio = base / hp.passesPerSecond;
+            printRate("passes: grid medium", hp.passesPerSecond, "passes/s");
+            char twinName[64];
+            std::snprintf(twinName, sizeof twinName, "passes: homogeneous twin (%.3g)", twinDensity.front());
+            printRate(twinName, tp.passesPerSecond, "passes/s");
+            printRate("time per pass, grid / baseline", perPassRatio, "x",
+                      perPassRatio <= 2.0 ? "(target <= 2: met)" : "(target <= 2: NOT met)");
+            printRate("  photon stage", hp.totals.photonSeconds / hp.passes * 1e3, "ms/pass");
+            printRate("  camera stage", hp.totals.cameraSeconds / hp.passes * 1e3, "ms/pass");
+            printRate("  primary splat stage", hp.totals.splatSeconds / hp.passes * 1e3, "ms/pass");
+            FreeFlightRate grid = measureFreeFlights(hetRenderer, o->freeFlights, MajorantMode::Grid);
+            FreeFlightRate seg = measureFreeFlights(hetRenderer, o->freeFlights, MajorantMode::Segment);
+            FreeFlightRate glob = measureFreeFlights(hetRenderer, o->freeFlights, MajorantMode::Global);
+            auto lookups = [](const FreeFlightRate& r) {
+                char buf[64];
+                std::snprintf(buf, sizeof buf, "(%.2f density lookups each)", r.densityLookupsPerSample);
+                return std::string(buf);
+            };
+            FreeFlightRate sets = measureFreeFlights(hetRenderer, o->freeFlights, MajorantMode::Grid, s.freeFlightSamples);
+            printRate("free flights: majorant grid (DDA)", grid.samplesPerSecond / 1e6, "M samples/s", lookups(grid));
+            char setName[64];
+            std::snprintf(setName, sizeof setName, "free flights: sets of %d (as passes)", s.freeFlightSamples);
+            printRate(setName, sets.samplesPerSecond / 1e6, "M samples/s",
+                      ratio(sets.samplesPerSecond, grid.samplesPerSecond, "one at a time"));
+            printRate("free flights: one bound per segment", seg.samplesPerSecond / 1e6, "M samples/s",
+                      ratio(seg.samplesPerSecond, grid.samplesPerSecond, "majorant grid ") + lookups(seg));
+            printRate("free flights: global maximum", glob.samplesPerSecond / 1e6, "M samples/s",
+                      ratio(glob.samplesPerSecond, grid.samplesPerSecond, "majorant grid ") + lookups(glob));
+            printRate("free flights per pass (camera)", double(s.width) * s.height * s.freeFlightSamples / 1e6,
+                      "M samples", "(n per pixel, plus n per beam)");
+        }
         exitCode = 0;
     });
 }

@@ -6,6 +6,7 @@
 #include <exception>
 
 #include "app/cmd_bench.h"
+#include "app/cmd_compare.h"
 #include "app/cmd_reference.h"
 #include "app/cmd_render.h"
 #include "core/error.h"
@@ -17,6 +18,7 @@ int main(int argc, char** argv) {
     int exitCode = 0;
     tyndall::app::addRenderCommand(app, exitCode);
     tyndall::app::addBenchCommand(app, exitCode);
+    tyndall::app::addCompareCommand(app, exitCode);
     tyndall::app::addReferenceCommand(app, exitCode);
     try {
         app.parse(argc, argv);

@@ -1,10 +1,14 @@
 #pragma once
 // A scalar density field in world space for heterogeneous media (OpenVDB grids implement it in
-// core/vdb_grid.*; tests use analytic fields). Density is dimensionless and multiplies the
+// core/vdb_grid.*; tests use analytic fields). Density is dimensionless, >= 0, and multiplies the
 // medium's coefficients. Implementations must be safe to call from many threads at once.
+//
+// Tracking (cpu/free_flight.cpp) bounds the density along a ray by majorantGrid() when the grid
+// has one (piecewise-constant, tight) and by majorant(ray) otherwise (one value per segment).
 #include <cstddef>
 
 #include "core/density_volume.h"
+#include "core/majorant_grid.h"
 #include "core/math.h"
 
 namespace tyndall {
@@ -14,12 +18,14 @@ public:
     virtual ~DensityGrid() = default;
     /// Density at world position `p`; 0 outside bounds().
     virtual float density(const Vec3& p) const = 0;
-    /// World-space box outside which the density is zero.
+    /// World-space box outside which the density is zero (empty for an empty grid).
     virtual Bounds3 bounds() const = 0;
     /// An upper bound on density(p) over the ray segment ray.o + t ray.d, t in [tMin, tMax]
     /// (a majorant for delta tracking). The default is the global maximum.
     virtual float majorant(const Ray& ray) const { return maxDensity(); }
-    /// Upper bound on density over the whole grid.
+    /// A piecewise-constant majorant (see core/majorant_grid.h), or null for none.
+    virtual const MajorantGrid* majorantGrid() const { return nullptr; }
+    /// Upper bound on density over the whole grid (0 for an empty grid).
     virtual float maxDensity() const = 0;
     /// Mean density over the active region (for the homogeneous twin of `tyndall compare`).
     virtual float meanDensity() const = 0;

@@ -76,19 +76,25 @@ Material readMaterial(JsonObject& obj) {
     return m;
 }
 
-Medium readMedium(JsonObject& obj) {
+Medium readMedium(JsonObject& obj, const std::string& baseDir, const SceneLoadOptions& options) {
     Medium m;
     m.name = obj.require("name").string();
     m.sigmaS = obj.rgb("sigma_s", Rgb(0.0f));
     m.sigmaA = obj.rgb("sigma_a", Rgb(0.0f));
     m.g = float(obj.number("g", 0.0, -0.999, 0.999));
-    if (auto density = obj.get("density"))
-        density->fail(
-            "heterogeneous media (\"density\": {file, grid, scale, transform}) are not supported yet; "
-            "see the heterogeneous-media issue");
+    auto density = obj.get("density");
     obj.finish();
     if (m.sigmaT().maxComponent() <= 0.0f)
         obj.fail("medium '" + m.name + "' has sigma_s + sigma_a = 0: it would be vacuum");
+    if (density) {
+        Rgb t = m.sigmaT();
+        if (std::abs(t.r - t.g) > 1e-5f * t.r || std::abs(t.r - t.b) > 1e-5f * t.r)
+            obj.fail("medium '" + m.name +
+                     "' has a density grid, which needs grey extinction (sigma_s + sigma_a equal in r, g, b); "
+                     "put the colour in the albedo");
+        JsonObject d = density->object();
+        m.density = readDensity(d, baseDir, options);
+    }
     return m;
 }
 
@@ -206,7 +212,7 @@ SceneDraft readSceneJson(const std::string& text, const std::string& file, const
         for (const JsonValue& v : list->elements()) {
             JsonObject obj = v.object();
             auto inside = obj.get("inside");
-            Medium m = readMedium(obj);
+            Medium m = readMedium(obj, baseDir, options);
             for (const Medium& other : scene.media)
                 if (other.name == m.name) v.fail("medium '" + m.name + "' is defined twice");
             scene.media.push_back(m);

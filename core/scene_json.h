@@ -2,10 +2,13 @@
 // The Tyndall scene description (.json, docs/scene-format.md) -> SceneDraft. Internal to core/;
 // the public entry point is loadSceneFile (scene_file.h). Each element kind is read by one
 // function so the format stays easy to extend (heterogeneous media add keys in readMedium).
+#include <memory>
 #include <string>
 
+#include "core/density_grid.h"
 #include "core/json_reader.h"
 #include "core/scene_assembly.h"
+#include "core/transform.h"
 
 namespace tyndall {
 
@@ -16,9 +19,17 @@ SceneDraft readSceneJson(const std::string& text, const std::string& file, const
 /// One entry of "materials". Keys: name, type, albedo, ior, emission.
 Material readMaterial(JsonObject& obj);
 /// One entry of "media"; the caller reads the placement ("inside") first, this reads the rest and
-/// finishes the object. Keys: name, sigma_s, sigma_a, g; "density" is reserved for heterogeneous
-/// media (the OpenVDB issue adds it here).
-Medium readMedium(JsonObject& obj);
+/// finishes the object. Keys: name, sigma_s, sigma_a, g, density (readDensity). `baseDir` resolves
+/// relative grid files.
+Medium readMedium(JsonObject& obj, const std::string& baseDir, const SceneLoadOptions& options);
+/// A medium's "density" object (scene_density.cpp, docs/scene-format.md): an OpenVDB grid from a
+/// file ("file", "grid", "scale", "transform") or a procedural one ("procedural": "smoke" or
+/// "rolling_fog" with its parameters, "scale"). Errors name the JSON place.
+std::shared_ptr<const DensityGrid> readDensity(JsonObject& obj, const std::string& baseDir,
+                                               const SceneLoadOptions& options);
+/// "transform": {"scale": s | [sx, sy, sz], "rotate": {"axis": [x, y, z], "degrees": d},
+/// "translate": [x, y, z]}, applied in that order (shapes and density grids).
+Affine readTransform(JsonObject& obj);
 /// One entry of "lights". Keys depend on "type" (point, spot, directional).
 Light readLight(JsonObject& obj, const std::string& defaultName);
 /// One entry of "cameras".

@@ -13,30 +13,6 @@ namespace {
 
 constexpr double kDegrees = 3.14159265358979323846 / 180.0;
 
-/// "transform": {"scale": s | [sx, sy, sz], "rotate": {"axis": [x, y, z], "degrees": d},
-/// "translate": [x, y, z]}, applied in that order (scale, then rotate, then translate).
-Affine readTransform(JsonObject& obj) {
-    Affine t;
-    if (auto s = obj.get("scale")) {
-        Vec3 k = s->isNumber() ? Vec3(float(s->number())) : s->vec3();
-        if (k.x == 0 || k.y == 0 || k.z == 0) s->fail("scale factors must be non-zero");
-        t = Affine::scaling(k.x, k.y, k.z);
-    }
-    if (auto r = obj.get("rotate")) {
-        JsonObject rot = r->object();
-        Vec3 axis = rot.require("axis").direction();
-        double degrees = rot.require("degrees").number();
-        rot.finish();
-        t = Affine::rotationAxisAngle(axis, degrees) * t;
-    }
-    if (auto tr = obj.get("translate")) {
-        Vec3 d = tr->vec3();
-        t = Affine::translation(d.x, d.y, d.z) * t;
-    }
-    obj.finish();
-    return t;
-}
-
 int subdivisions(JsonObject& obj, int fallback) {
     return int(obj.integer("subdivisions", fallback, 0, 8));
 }
@@ -80,6 +56,28 @@ void readPair(JsonObject& obj, const char* key, int fallback, int hi, int* a, in
 }
 
 }  // namespace
+
+Affine readTransform(JsonObject& obj) {
+    Affine t;
+    if (auto s = obj.get("scale")) {
+        Vec3 k = s->isNumber() ? Vec3(float(s->number())) : s->vec3();
+        if (k.x == 0 || k.y == 0 || k.z == 0) s->fail("scale factors must be non-zero");
+        t = Affine::scaling(k.x, k.y, k.z);
+    }
+    if (auto r = obj.get("rotate")) {
+        JsonObject rot = r->object();
+        Vec3 axis = rot.require("axis").direction();
+        double degrees = rot.require("degrees").number();
+        rot.finish();
+        t = Affine::rotationAxisAngle(axis, degrees) * t;
+    }
+    if (auto tr = obj.get("translate")) {
+        Vec3 d = tr->vec3();
+        t = Affine::translation(d.x, d.y, d.z) * t;
+    }
+    obj.finish();
+    return t;
+}
 
 TriangleMesh readShape(JsonObject& obj, const std::string& defaultName, int material, size_t trianglesSoFar,
                        const SceneLoadOptions& options) {

@@ -87,9 +87,7 @@ CameraPassResult CameraTracer::trace(uint64_t pass, const PhotonMap& photons, co
                     const Medium& med = m_scene.media[medium];
                     Ray seg{ray.at(t0), ray.d, 0.0f, t1 - t0};
                     float* ff = depth == 0 && nff > 0 ? &result.primary.freeFlights[pixel * nff] : tls.freeFlights.data();
-                    if (!med.homogeneous())
-                        for (int k = 0; k < nff; ++k)
-                            ff[k] = sampleCollisionDistance(med, seg, seg.tMax, depth == 0 ? jitter : rng);
+                    if (!med.homogeneous()) sampleCollisionDistances(med, seg, seg.tMax, depth == 0 ? jitter : rng, nff, ff);
                     if (depth == 0) {
                         result.primary.rays[pixel] = PrimaryRay{seg.o, seg.tMax, seg.d, medium};
                     } else {

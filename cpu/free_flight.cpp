@@ -5,7 +5,68 @@
 namespace tyndall {
 
 namespace {
-float expSample(float sigma, float u) { return sigma > 0 ? -std::log(1.0f - u) / sigma : kInfinity; }  // u < 1
+float expSample(float sigma, float u) {
+    return sigma > 0 ? -std::log(1.0f - u) / sigma : kInfinity;
+}  // u < 1
+
+/// The majorant along [0, tEnd] of a ray through a density grid, as constant pieces: the grid's
+/// majorant grid walked cell by cell when it has one, else one piece with majorant(ray).
+class MajorantPieces {
+public:
+    MajorantPieces(const DensityGrid& grid, const Ray& ray, float tEnd) {
+        if (const MajorantGrid* mg = grid.majorantGrid()) {
+            m_walk = mg->walk(ray, 0.0f, tEnd);
+            m_useWalk = true;
+        } else {
+            m_single = grid.majorant(Ray{ray.o, ray.d, 0.0f, tEnd});
+            m_tEnd = tEnd;
+        }
+    }
+    bool next(float* t0, float* t1, float* majorant) {
+        if (m_useWalk) return m_walk.next(t0, t1, majorant);
+        if (m_done) return false;
+        m_done = true;
+        *t0 = 0.0f;
+        *t1 = m_tEnd;
+        *majorant = m_single;
+        return true;
+    }
+
+private:
+    MajorantGrid::Walk m_walk;
+    bool m_useWalk = false;
+    bool m_done = false;
+    float m_single = 0, m_tEnd = 0;
+};
+
+/// Delta tracking: tentative collisions of a Poisson process at rate majorant * sigma_t, each real
+/// with probability density / majorant. One exponential optical-depth target carries across
+/// piece boundaries (memorylessness), so a ray costs one log per tentative collision.
+/// Returns the distance of the first real collision in [0, tEnd), or +infinity.
+float deltaTrack(const Medium& medium, const Ray& ray, float tEnd, Rng& rng) {
+    const DensityGrid& grid = *medium.density;
+    const float sigmaT = medium.sigmaT().r;
+    if (!(sigmaT > 0)) return kInfinity;
+    MajorantPieces pieces(grid, ray, tEnd);
+    float tau = -std::log(1.0f - rng.uniform());
+    float t0, t1, maj;
+    while (pieces.next(&t0, &t1, &maj)) {
+        const float mu = maj * sigmaT;
+        if (!(mu > 0)) continue;
+        float t = t0;
+        while (true) {
+            float dt = tau / mu;
+            if (!(t + dt < t1)) {
+                tau = std::max(0.0f, tau - mu * (t1 - t));
+                break;
+            }
+            t += dt;
+            if (rng.uniform() * maj < grid.density(ray.at(t))) return t;
+            tau = -std::log(1.0f - rng.uniform());
+        }
+    }
+    return kInfinity;
+}
 }  // namespace
 
 FreeFlight sampleFreeFlight(const Medium& medium, const Ray& ray, float tEnd, Rng& rng) {
@@ -28,23 +89,16 @@ FreeFlight sampleFreeFlight(const Medium& medium, const Ray& ray, float tEnd, Rn
         }
         return ff;
     }
-    // Delta tracking: tentative collisions at the majorant rate, real with probability density/majorant.
-    float sigmaT = medium.sigmaT().r;
-    float majorantDensity = medium.density->majorant(Ray{ray.o, ray.d, 0.0f, tEnd});
-    float mu = majorantDensity * sigmaT;
-    float t = 0;
-    while (true) {
-        t += expSample(mu, rng.uniform());
-        if (!(t < tEnd)) break;
-        float density = medium.density->density(ray.at(t));
-        if (rng.uniform() * majorantDensity < density) {
-            ff.scattered = true;
-            ff.t = t;
-            ff.weight = medium.albedo();
-            return ff;
-        }
+    // A real collision scatters with weight sigma_s / sigma_t = the albedo (grey extinction);
+    // passing has probability Tr(tEnd) and weight 1.
+    float t = deltaTrack(medium, ray, tEnd, rng);
+    if (t < tEnd) {
+        ff.scattered = true;
+        ff.t = t;
+        ff.weight = medium.albedo();
+    } else {
+        ff.t = tEnd;
     }
-    ff.t = tEnd;
     return ff;
 }
 
@@ -53,28 +107,78 @@ float sampleCollisionDistance(const Medium& medium, const Ray& ray, float tEnd, 
         float t = expSample(medium.sigmaT().r, rng.uniform());
         return t < tEnd ? t : kInfinity;
     }
-    float sigmaT = medium.sigmaT().r;
-    float majorantDensity = medium.density->majorant(Ray{ray.o, ray.d, 0.0f, tEnd});
-    float mu = majorantDensity * sigmaT;
-    float t = 0;
-    while (true) {
-        t += expSample(mu, rng.uniform());
-        if (!(t < tEnd)) return kInfinity;
-        if (rng.uniform() * majorantDensity < medium.density->density(ray.at(t))) return t;
+    return deltaTrack(medium, ray, tEnd, rng);
+}
+
+void sampleCollisionDistances(const Medium& medium, const Ray& ray, float tEnd, Rng& rng, int n, float* out) {
+    n = std::min(n, kMaxFreeFlights);
+    if (medium.homogeneous()) {
+        for (int k = 0; k < n; ++k) out[k] = sampleCollisionDistance(medium, ray, tEnd, rng);
+        return;
+    }
+    // n delta trackers advanced piece by piece: the same process as n separate calls (each
+    // tracker has its own optical-depth targets), with one walk of the majorant grid.
+    const DensityGrid& grid = *medium.density;
+    const float sigmaT = medium.sigmaT().r;
+    float tau[kMaxFreeFlights];
+    int live[kMaxFreeFlights];
+    int active = 0;
+    for (int k = 0; k < n; ++k) {
+        out[k] = kInfinity;
+        tau[k] = -std::log(1.0f - rng.uniform());
+        live[active++] = k;
+    }
+    if (!(sigmaT > 0)) return;
+    MajorantPieces pieces(grid, ray, tEnd);
+    float t0, t1, maj;
+    while (active > 0 && pieces.next(&t0, &t1, &maj)) {
+        const float mu = maj * sigmaT;
+        if (!(mu > 0)) continue;
+        for (int i = 0; i < active;) {
+            const int k = live[i];
+            float t = t0;
+            bool collided = false;
+            while (true) {
+                float dt = tau[k] / mu;
+                if (!(t + dt < t1)) {
+                    tau[k] = std::max(0.0f, tau[k] - mu * (t1 - t));
+                    break;
+                }
+                t += dt;
+                if (rng.uniform() * maj < grid.density(ray.at(t))) {
+                    out[k] = t;
+                    collided = true;
+                    break;
+                }
+                tau[k] = -std::log(1.0f - rng.uniform());
+            }
+            if (collided) {
+                live[i] = live[--active];
+            } else {
+                ++i;
+            }
+        }
     }
 }
 
 Rgb estimateTransmittance(const Medium& medium, const Ray& ray, float tEnd, Rng& rng) {
     if (medium.homogeneous()) return medium.transmittance(tEnd);
     // Ratio tracking (Novak et al. 2014): product of (1 - density/majorant) at tentative collisions.
-    float sigmaT = medium.sigmaT().r;
-    float majorantDensity = medium.density->majorant(Ray{ray.o, ray.d, 0.0f, tEnd});
-    float mu = majorantDensity * sigmaT;
-    float tr = 1.0f, t = 0;
-    while (tr > 0) {
-        t += expSample(mu, rng.uniform());
-        if (!(t < tEnd)) break;
-        tr *= 1.0f - medium.density->density(ray.at(t)) / majorantDensity;
+    const DensityGrid& grid = *medium.density;
+    const float sigmaT = medium.sigmaT().r;
+    if (!(sigmaT > 0)) return Rgb(1.0f);
+    MajorantPieces pieces(grid, ray, tEnd);
+    float tr = 1.0f;
+    float t0, t1, maj;
+    while (tr > 0 && pieces.next(&t0, &t1, &maj)) {
+        const float mu = maj * sigmaT;
+        if (!(mu > 0)) continue;
+        float t = t0;
+        while (tr > 0) {
+            t += expSample(mu, rng.uniform());
+            if (!(t < t1)) break;
+            tr *= 1.0f - grid.density(ray.at(t)) / maj;
+        }
     }
     return Rgb(std::max(tr, 0.0f));
 }

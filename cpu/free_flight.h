@@ -1,8 +1,10 @@
 #pragma once
 // Free-flight sampling in a medium, for photon paths, the reference path tracer and the stored
 // transmittance distances. Homogeneous media sample analytically with spectral MIS over the
-// three channels; density-grid media use delta (Woodcock) tracking against the grid's majorant.
-// No ray marching anywhere: every estimate here is unbiased.
+// three channels; density-grid media use delta (Woodcock) tracking against the grid's majorant:
+// piecewise constant along the ray when the grid has a majorant grid (a DDA over its coarse
+// cells), else one value per segment. No ray marching anywhere: every estimate here is unbiased.
+// Randomness comes only from the caller's keyed stream `rng`.
 #include "core/medium.h"
 #include "core/rng.h"
 
@@ -23,6 +25,12 @@ FreeFlight sampleFreeFlight(const Medium& medium, const Ray& ray, float tEnd, Rn
 /// it passes tEnd: one sample of the stored step transmittance, Tr(t) = P(distance > t). Needs grey
 /// extinction for grid media (channel 0 is used for homogeneous ones).
 float sampleCollisionDistance(const Medium& medium, const Ray& ray, float tEnd, Rng& rng);
+
+/// `n` (<= kMaxFreeFlights) independent collision distances along one segment, each distributed as
+/// sampleCollisionDistance's: the stored set of one beam or one pixel. Grid media walk the
+/// majorant grid once for all n trackers.
+constexpr int kMaxFreeFlights = 64;
+void sampleCollisionDistances(const Medium& medium, const Ray& ray, float tEnd, Rng& rng, int n, float* out);
 
 /// Transmittance estimate over [0, tEnd]: analytic for homogeneous media, a ratio-tracking
 /// estimate (unbiased) for grid media.

@@ -99,10 +99,11 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
                 beam.power = power;
                 beam.medium = medium;
                 out.beams.push_back(beam);
-                if (out.freeFlightsPerBeam > 0) {
-                    for (int k = 0; k < out.freeFlightsPerBeam; ++k)
-                        out.freeFlights.push_back(med.homogeneous() ? kInfinity
-                                                                    : sampleCollisionDistance(med, seg, seg.tMax, rng));
+                if (const int n = out.freeFlightsPerBeam; n > 0) {
+                    // Homogeneous beams in a scene with grid media keep analytic transmittance.
+                    size_t at = out.freeFlights.size();
+                    out.freeFlights.resize(at + size_t(n), kInfinity);
+                    if (!med.homogeneous()) sampleCollisionDistances(med, seg, seg.tMax, rng, n, &out.freeFlights[at]);
                 }
                 FreeFlight ff = sampleFreeFlight(med, seg, seg.tMax, rng);
                 power *= ff.weight;

@@ -146,7 +146,7 @@ TEST(SceneErrors, StructuralMistakes) {
     expectError("unused-medium.json", j.dump(), "medium 'unused'", "is not used");
     j = validScene();
     j["media"][0]["density"] = {{"file", "smoke.vdb"}, {"grid", "density"}};
-    expectError("density.json", j.dump(), "/media/0/density", "heterogeneous-media issue");
+    expectError("density.json", j.dump(), "/media/0/density/file", "no such file");  // more in tests/vdb
     j = validScene();
     j["shapes"][1].erase("radius");
     expectError("missing-key.json", j.dump(), "/shapes/1", "missing required key 'radius'");

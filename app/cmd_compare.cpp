@@ -1,0 +1,164 @@
+#include "app/cmd_compare.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "app/cli_common.h"
+#include "app/interrupt.h"
+#include "app/label_text.h"
+#include "core/accumulator.h"
+#include "core/default_smoke_scene.h"
+#include "core/error.h"
+#include "cpu/progressive_render.h"
+#include "hybrid/pass_scheduler.h"
+
+namespace tyndall::app {
+
+namespace {
+struct CompareOptions {
+    CommonOptions common;
+    float density = -1.0f;  // < 0: each grid's mean over its active region
+};
+
+struct Half {
+    Image image;
+    uint64_t passes = 0;
+    double seconds = 0;
+    bool hybrid = false;
+};
+
+/// Renders `scene` progressively through `scheduler` (GL splat or CPU); `passes` > 0 forces that
+/// many passes (the twin matches the heterogeneous half's count even when that one ran on a time
+/// budget or was interrupted).
+Half renderHalf(PassScheduler& scheduler, const Scene& scene, RenderSettings settings, uint64_t passes,
+                const char* what) {
+    if (passes > 0) {
+        settings.passes = passes;
+        settings.timeBudget = 0;
+    }
+    PassRenderer renderer(scene, settings);
+    Accumulator acc(settings.width, settings.height);
+    bool tty = isatty(fileno(stderr));
+    CallbackDisplay display([&](const Accumulator&, const RenderProgress& pr) {
+        if (tty)
+            std::fprintf(stderr, "\r%s: pass %llu  %.1f s ", what, (unsigned long long)pr.passesDone,
+                         pr.elapsedSeconds);
+        return interruptRequested() ? DisplayCommand::Exit : DisplayCommand::Continue;
+    });
+    scheduler.bind(scene);
+    if (!scheduler.notice().empty()) std::fprintf(stderr, "tyndall: %s\n", scheduler.notice().c_str());
+    RenderProgress p = scheduler.run(renderer, acc, 0, display);
+    if (tty) std::fprintf(stderr, "\n");
+    return {acc.mean(), acc.passCount(), p.elapsedSeconds, scheduler.hybrid()};
+}
+
+std::string withSuffix(const std::string& path, const std::string& suffix) {
+    std::filesystem::path p(path);
+    return (p.parent_path() / (p.stem().string() + suffix)).string();
+}
+
+std::string formatDensity(float d) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.4g", d);
+    return buf;
+}
+
+/// The two halves side by side with a dark gap, each labelled at its top-left (clipped to its half;
+/// `shortLabel` when the full one does not fit).
+Image sideBySide(const Image& left, const Image& right, const std::string (&labels)[2],
+                 const std::string (&shortLabels)[2]) {
+    const int w = left.width, h = left.height, gap = std::max(2, w / 128);
+    const int scale = std::max(1, h / 256), margin = 2 * scale;
+    Image out(2 * w + gap, h);
+    const Image* halves[2] = {&left, &right};
+    for (int i = 0; i < 2; ++i) {
+        Image half = *halves[i];
+        const std::string& text = labelWidth(labels[i], scale) + 2 * margin <= w ? labels[i] : shortLabels[i];
+        // Linear values: glyphs at 20 saturate to white under the PNG tone curve at any sane exposure.
+        drawLabel(half, margin, margin, text, scale, Rgb(20.0f), Rgb(0.0f));
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) out.at(i * (w + gap) + x, y) = half.at(x, y);
+    }
+    return out;
+}
+}  // namespace
+
+void addCompareCommand(CLI::App& app, int& exitCode) {
+    auto o = std::make_shared<CompareOptions>();
+    CLI::App* cmd = app.add_subcommand(
+        "compare",
+        "Render a scene's density-grid medium next to its homogeneous twin (same albedo and g, constant density), "
+        "same passes and photons; writes one labelled side-by-side image plus one EXR per half");
+    addSceneAndOutputOptions(cmd, o->common, "compare.png");
+    addPpbOptions(cmd, o->common);
+    cmd->add_option("--gpu", o->common.settings.gpu,
+                    "Primary-beam splatting on OpenGL: auto, on or off (as for `tyndall render`)")
+        ->capture_default_str();
+    cmd->add_option("--density", o->density,
+                    "Density of the homogeneous twin (default: each grid's mean over its active voxels)");
+    cmd->callback([o, &exitCode]() {
+        CommonOptions& c = o->common;
+        finishOptions(c);
+        if (o->density != -1.0f && !(o->density >= 0.0f && std::isfinite(o->density)))
+            throw Error("--density must be a finite number >= 0");
+        const std::string hetPath = withSuffix(c.output, "-heterogeneous.exr");
+        const std::string homPath = withSuffix(c.output, "-homogeneous.exr");
+        checkOutputWritable(c.output);
+        checkOutputWritable(hetPath);
+        checkOutputWritable(homPath);
+
+        // loadScene checks --camera and applies the file's render block; the built-in case then
+        // swaps the default scene for its smoke variant (same camera).
+        Scene scene = loadScene(c);
+        if (c.scene.empty()) scene = makeDefaultSmokeScene();
+        scene.validate();
+        std::vector<float> used;
+        Scene twin = makeHomogeneousTwin(scene, o->density, &used);
+        twin.validate();
+
+        ThreadLimit threads(c.settings.threads);
+        PassScheduler scheduler(parseGpuMode(c.settings.gpu));
+        installInterruptHandler();
+        Half het = renderHalf(scheduler, scene, c.settings, 0, "heterogeneous");
+        Half hom = renderHalf(scheduler, twin, c.settings, het.passes, "homogeneous");
+
+        std::string densities;
+        for (size_t i = 0; i < used.size(); ++i) densities += (i ? "," : "") + formatDensity(used[i]);
+        nlohmann::json settings = c.settings.toJson();
+        ImageMetadata meta = {{"Software", "tyndall compare"},
+                              {"tyndall:scene", scene.source},
+                              {"tyndall:settings", settings.dump()},
+                              {"tyndall:passes", std::to_string(het.passes)},
+                              {"tyndall:twin_density", densities}};
+        auto withHalf = [&](const char* half) {
+            ImageMetadata m = meta;
+            m.push_back({"tyndall:half", half});
+            return m;
+        };
+        writeImage(hetPath, het.image, withHalf("heterogeneous"));
+        writeImage(homPath, hom.image, withHalf("homogeneous"));
+        const std::string labels[2] = {
+            "heterogeneous (OpenVDB grid)",
+            (o->density >= 0 ? "homogeneous, density " : "homogeneous, mean density ") + densities};
+        const std::string shortLabels[2] = {"heterogeneous", "homogeneous"};
+        writeImage(c.output, sideBySide(het.image, hom.image, labels, shortLabels), meta, c.exposure);
+
+        double hetPerPass = het.seconds / std::max<uint64_t>(het.passes, 1);
+        double homPerPass = hom.seconds / std::max<uint64_t>(hom.passes, 1);
+        std::printf(
+            "compared %s: %llu passes each; heterogeneous %.3f s/pass (%s), homogeneous (density %s) %.3f "
+            "s/pass (%s) (ratio %.2f)%s -> %s, %s, %s\n",
+            scene.name.c_str(), (unsigned long long)het.passes, hetPerPass, het.hybrid ? "hybrid" : "CPU",
+            densities.c_str(), homPerPass, hom.hybrid ? "hybrid" : "CPU", hetPerPass / std::max(homPerPass, 1e-12),
+            interruptRequested() ? " [interrupted]" : "", c.output.c_str(), hetPath.c_str(), homPath.c_str());
+        exitCode = interruptRequested() ? 130 : 0;
+    });
+}
+
+}  // namespace tyndall::app

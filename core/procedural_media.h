@@ -1,0 +1,50 @@
+#pragma once
+// Procedural density grids made with OpenVDB at start-up (no file needed), deterministic for a
+// given seed so every process that builds one gets the same voxels:
+// - smoke: a rising, widening column with fractal value noise carved into it; the density grid
+//   of the built-in heterogeneous scene (core/default_smoke_scene.h) and of `tyndall compare`
+//   without a scene;
+// - rolling fog: a ground-hugging layer whose thickness and density roll in long horizontal
+//   banks (the street lamp's heterogeneous variant).
+// Both are fog volumes with values in [0, densityScale] (1 by default).
+#include <cstdint>
+#include <memory>
+
+#include "core/math.h"
+#include "core/vdb_grid.h"
+
+namespace tyndall {
+
+struct ProceduralSmoke {
+    Vec3 base{0.45f, 0.0f, -1.3f};  ///< world position of the plume's foot (on the floor)
+    float height = 2.7f;            ///< world units from the foot to where the plume has faded
+    float baseRadius = 0.3f;        ///< column radius at the foot
+    float topRadius = 0.85f;        ///< column radius at the top
+    float voxelSize = 0.03f;        ///< world units (cubic voxels)
+    float noiseFrequency = 2.2f;    ///< base noise frequency, 1 / world unit
+    float densityScale = 1.0f;      ///< multiplies every value (so values lie in [0, densityScale])
+    uint32_t seed = 7;
+};
+
+/// Builds the plume as an OpenVDB fog volume (values in [0, 1]) wrapped as a density grid.
+std::shared_ptr<const VdbDensityGrid> makeProceduralSmoke(const ProceduralSmoke& params = {});
+
+struct RollingFog {
+    Vec3 lo{-10.0f, 0.0f, -10.0f};  ///< world box the fog fills (its floor is the ground)
+    Vec3 hi{10.0f, 3.0f, 10.0f};
+    float layerHeight = 1.2f;  ///< world units: mean thickness of the layer
+    float bankSize = 4.0f;     ///< world units: horizontal size of the rolling banks
+    float voxelSize = 0.1f;    ///< world units (cubic voxels)
+    float densityScale = 1.0f; ///< multiplies every value (so values lie in [0, densityScale])
+    uint32_t seed = 11;
+};
+
+/// Voxels a procedural grid with these parameters would hold (checked by scene loading before
+/// building one).
+uint64_t voxelCount(const ProceduralSmoke& params);
+uint64_t voxelCount(const RollingFog& params);
+
+/// Builds the fog layer as an OpenVDB fog volume (values in [0, 1]) wrapped as a density grid.
+std::shared_ptr<const VdbDensityGrid> makeRollingFog(const RollingFog& params = {});
+
+}  // namespace tyndall

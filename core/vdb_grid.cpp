@@ -1,0 +1,354 @@
+#include "core/vdb_grid.h"
+
+#include <openvdb/io/File.h>
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/ChangeBackground.h>
+#include <openvdb/tools/Interpolation.h>
+
+#include <atomic>
+#include <cmath>
+#include <filesystem>
+#include <mutex>
+#include <optional>
+#include <sstream>
+
+#include "core/error.h"
+#include "core/vdb_grid_openvdb.h"
+
+namespace tyndall {
+
+namespace {
+using FloatTree = openvdb::FloatTree;
+// Unregistered ("unsafe") accessor: the tree is never modified after construction, so skipping
+// OpenVDB's accessor registry (a concurrent hash map) is safe and much cheaper.
+using Accessor = openvdb::tree::ValueAccessor<const FloatTree, false>;
+
+std::atomic<uint64_t> g_nextGridId{1};
+
+/// Floor division for possibly negative integers.
+int64_t floorDiv(int64_t a, int64_t b) {
+    return a >= 0 ? a / b : -((-a + b - 1) / b);
+}
+
+Affine3 affineFromOpenVdb(const openvdb::math::Mat4d& m) {
+    // OpenVDB multiplies row vectors (p' = p M, translation in row 3); Affine3 acts on columns.
+    Affine3 a;
+    for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) a.m[i][j] = float(m(j, i));
+        a.m[i][3] = float(m(3, i));
+    }
+    return a;
+}
+
+openvdb::math::Mat4d affineToOpenVdb(const Affine3& a) {
+    openvdb::math::Mat4d m = openvdb::math::Mat4d::identity();
+    for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) m(j, i) = a.m[i][j];
+        m(3, i) = a.m[i][3];
+    }
+    return m;
+}
+}  // namespace
+
+struct VdbDensityGrid::Impl {
+    openvdb::FloatGrid::ConstPtr grid;
+    uint64_t id = 0;
+    std::string label;
+    std::string name;
+    float scale = 1.0f;
+    Affine3 indexToWorld, worldToIndex;
+    bool empty = true;
+    openvdb::CoordBBox positiveBox;  // index bounds of the voxels holding a value > 0
+    Bounds3 worldBounds;
+    MajorantGrid majorants;
+    float maxDensity = 0;
+    float meanDensity = 0;
+    uint64_t activeVoxels = 0;
+    int majorantBlock = 0;
+};
+
+namespace {
+// Per-thread accessors, a few grids deep (a scene rarely has more than one or two grid media).
+struct AccessorCache {
+    static constexpr int kSlots = 4;
+    uint64_t ids[kSlots] = {0, 0, 0, 0};
+    std::optional<Accessor> accessors[kSlots];
+    int next = 0;
+};
+thread_local AccessorCache t_accessors;
+
+Accessor& accessorFor(const VdbDensityGrid::Impl& g) {
+    AccessorCache& c = t_accessors;
+    for (int i = 0; i < AccessorCache::kSlots; ++i)
+        if (c.ids[i] == g.id) return *c.accessors[i];
+    int i = c.next;
+    c.next = (c.next + 1) % AccessorCache::kSlots;
+    c.ids[i] = g.id;
+    c.accessors[i].emplace(g.grid->tree());
+    return *c.accessors[i];
+}
+}  // namespace
+
+void initializeOpenVdb() {
+    static std::once_flag once;
+    std::call_once(once, [] { openvdb::initialize(); });
+}
+
+std::shared_ptr<const VdbDensityGrid> makeVdbDensityGrid(openvdb::FloatGrid::ConstPtr grid,
+                                                         const Affine3& sceneTransform, float scale,
+                                                         const std::string& label, int majorantBlock) {
+    auto fail = [&](const std::string& what) { throw Error(label + ": " + what); };
+    if (!(scale >= 0) || !std::isfinite(scale)) fail("density scale must be a finite number >= 0");
+    if (!grid->transform().isLinear())
+        fail("has a non-linear (frustum) transform; only affine index-to-world transforms are supported");
+    if (grid->background() > 0.0f)
+        fail("background value is " + std::to_string(grid->background()) +
+             " > 0; a density grid must be 0 outside its voxels (a fog volume)");
+    if (majorantBlock < 1) fail("majorant block size must be >= 1");
+
+    auto impl = std::make_unique<VdbDensityGrid::Impl>();
+    impl->id = g_nextGridId.fetch_add(1);
+    impl->label = label;
+    impl->name = grid->getName();
+    impl->scale = scale;
+    impl->indexToWorld = sceneTransform * affineFromOpenVdb(grid->transform().baseMap()->getAffineMap()->getMat4());
+    float det = impl->indexToWorld.determinant();
+    if (!(std::abs(det) > 0) || !std::isfinite(det))
+        fail("index-to-world transform (with the scene transform) is singular");
+    impl->worldToIndex = impl->indexToWorld.inverse();
+
+    // One sweep over every stored value (active or not: trilinear sampling reads both).
+    bool negative = grid->background() < 0.0f;
+    double activeSum = 0;
+    float maxValue = 0;
+    openvdb::CoordBBox box;
+    for (auto it = grid->tree().cbeginValueAll(); it; ++it) {
+        float v = *it;
+        if (it.isValueOn()) {
+            uint64_t n = it.getVoxelCount();
+            impl->activeVoxels += n;
+            activeSum += double(std::max(v, 0.0f)) * double(n);
+        }
+        if (v < 0) negative = true;
+        if (!(v > 0)) continue;
+        openvdb::CoordBBox b;
+        it.getBoundingBox(b);
+        box.expand(b);
+        maxValue = std::max(maxValue, v);
+    }
+    if (!std::isfinite(maxValue) || !std::isfinite(activeSum)) fail("holds non-finite values");
+    if (negative) {
+        // Negative density means nothing physical: clamp so that every consumer sees the same field.
+        openvdb::FloatGrid::Ptr copy = grid->deepCopy();
+        for (auto it = copy->tree().beginValueAll(); it; ++it)
+            if (*it < 0) it.setValue(0.0f);
+        openvdb::tools::changeBackground(copy->tree(), 0.0f);
+        grid = copy;
+    }
+    impl->grid = grid;
+    impl->maxDensity = maxValue * scale;
+    impl->meanDensity = impl->activeVoxels > 0 ? float(activeSum / double(impl->activeVoxels)) * scale : 0.0f;
+    impl->empty = box.empty();
+    if (impl->empty) return std::make_shared<const VdbDensityGrid>(std::move(impl));
+    impl->positiveBox = box;
+
+    // Trilinear support: one voxel beyond the positive voxels on every side.
+    const openvdb::Coord lo = box.min(), hi = box.max();
+    Bounds3 support;
+    support.lo = Vec3(float(lo.x() - 1), float(lo.y() - 1), float(lo.z() - 1));
+    support.hi = Vec3(float(hi.x() + 1), float(hi.y() + 1), float(hi.z() + 1));
+    impl->worldBounds = transformBounds(impl->indexToWorld, support);
+
+    // Majorant cells: cell c covers index [O + cB, O + (c+1)B] with O = lo - 1. A point there
+    // interpolates voxels O + cB .. O + (c+1)B + 1; one more voxel each side absorbs rounding.
+    // Sparse grids spanning a huge index range get coarser cells (a bounded majorant grid).
+    int64_t B = majorantBlock;
+    int64_t origin[3], res[3];
+    while (true) {
+        for (int a = 0; a < 3; ++a) {
+            origin[a] = int64_t(lo[a]) - 1;
+            res[a] = std::max<int64_t>(1, (int64_t(hi[a]) - int64_t(lo[a]) + 2 + B - 1) / B);
+        }
+        if (res[0] * res[1] * res[2] <= VdbDensityGrid::kMaxMajorantCells) break;
+        B *= 2;
+    }
+    impl->majorantBlock = int(B);
+    Affine3 indexToCell = Affine3::scaleTranslate(
+        Vec3(1.0f / float(B)),
+        Vec3(-float(origin[0]) / float(B), -float(origin[1]) / float(B), -float(origin[2]) / float(B)));
+    MajorantGrid maj(indexToCell * impl->worldToIndex, int(res[0]), int(res[1]), int(res[2]));
+    for (auto it = grid->tree().cbeginValueAll(); it; ++it) {
+        float v = *it;
+        if (!(v > 0)) continue;
+        openvdb::CoordBBox b;
+        it.getBoundingBox(b);
+        int64_t c0[3], c1[3];
+        for (int a = 0; a < 3; ++a) {
+            int64_t first = int64_t(b.min()[a]) - origin[a], last = int64_t(b.max()[a]) - origin[a];
+            c0[a] = std::max<int64_t>(0, -floorDiv(-(first - 2 - B), B));  // ceil((first - 2 - B) / B)
+            c1[a] = std::min<int64_t>(res[a] - 1, floorDiv(last + 1, B));
+        }
+        // A relative margin of 1e-5 covers the rounding of the float trilinear blend.
+        float bound = v * scale * (1.0f + 1e-5f);
+        for (int64_t k = c0[2]; k <= c1[2]; ++k)
+            for (int64_t j = c0[1]; j <= c1[1]; ++j)
+                for (int64_t i = c0[0]; i <= c1[0]; ++i) {
+                    float& cell = maj.at(int(i), int(j), int(k));
+                    cell = std::max(cell, bound);
+                }
+    }
+    maj.finish();
+    impl->majorants = std::move(maj);
+    return std::make_shared<const VdbDensityGrid>(std::move(impl));
+}
+
+VdbDensityGrid::VdbDensityGrid(std::unique_ptr<Impl> impl) : m_impl(std::move(impl)) {}
+VdbDensityGrid::~VdbDensityGrid() = default;
+
+std::shared_ptr<const VdbDensityGrid> VdbDensityGrid::load(const VdbGridSource& source) {
+    initializeOpenVdb();
+    const std::string where = "vdb file '" + source.file + "'";
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(source.file, ec)) throw Error(where + ": no such file");
+    openvdb::GridBase::Ptr base;
+    std::string chosen;
+    try {
+        openvdb::io::File file(source.file);
+        file.open(false);
+        openvdb::GridPtrVecPtr grids = file.readAllGridMetadata();
+        std::ostringstream list;
+        for (size_t i = 0; i < grids->size(); ++i)
+            list << (i ? ", " : "") << "'" << (*grids)[i]->getName() << "' (" << (*grids)[i]->valueType() << ")";
+        std::string available = grids->empty() ? "the file holds no grids" : "grids in the file: " + list.str();
+        auto find = [&](const std::string& name) -> openvdb::GridBase::Ptr {
+            for (const auto& g : *grids)
+                if (g->getName() == name) return g;
+            return nullptr;
+        };
+        openvdb::GridBase::Ptr meta;
+        if (!source.grid.empty()) {
+            meta = find(source.grid);
+            if (!meta) throw Error(where + ": no grid named '" + source.grid + "' (" + available + ")");
+        } else {
+            meta = find("density");
+            if (!meta || !meta->isType<openvdb::FloatGrid>()) {
+                meta = nullptr;
+                for (const auto& g : *grids)
+                    if (g->isType<openvdb::FloatGrid>()) {
+                        meta = g;
+                        break;
+                    }
+            }
+            if (!meta) throw Error(where + ": no float grid to use as density (" + available + ")");
+        }
+        chosen = meta->getName();
+        const std::string at = where + ": grid '" + chosen + "'";
+        if (!meta->isType<openvdb::FloatGrid>())
+            throw Error(at + " holds " + meta->valueType() + " values; a density grid must hold float");
+        if (meta->getGridClass() == openvdb::GRID_LEVEL_SET)
+            throw Error(at +
+                        " is a level set (signed distance), not a density; convert it to a fog volume "
+                        "(e.g. openvdb::tools::sdfToFogVolume or Houdini's VDB Convert)");
+        base = file.readGrid(chosen);
+        file.close();
+    } catch (const Error&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw Error(where + ": cannot be read as an OpenVDB file (" + e.what() + ")");
+    }
+    return makeVdbDensityGrid(openvdb::gridConstPtrCast<openvdb::FloatGrid>(base), source.transform, source.scale,
+                              where + ": grid '" + chosen + "'", kMajorantBlock);
+}
+
+std::shared_ptr<const VdbDensityGrid> VdbDensityGrid::fromDense(const int dims[3], const std::vector<float>& values,
+                                                                const Affine3& indexToWorld, const std::string& label,
+                                                                int majorantBlock) {
+    initializeOpenVdb();
+    if (dims[0] < 0 || dims[1] < 0 || dims[2] < 0 || values.size() != size_t(dims[0]) * dims[1] * dims[2])
+        throw Error(label + ": dense block size does not match its dimensions");
+    auto grid = openvdb::FloatGrid::create(0.0f);
+    grid->setName("density");
+    grid->setGridClass(openvdb::GRID_FOG_VOLUME);
+    if (!(std::abs(indexToWorld.determinant()) > 0)) throw Error(label + ": index-to-world transform is singular");
+    grid->setTransform(openvdb::math::Transform::createLinearTransform(affineToOpenVdb(indexToWorld)));
+    auto acc = grid->getAccessor();
+    for (int k = 0; k < dims[2]; ++k)
+        for (int j = 0; j < dims[1]; ++j)
+            for (int i = 0; i < dims[0]; ++i) {
+                float v = values[(size_t(k) * dims[1] + j) * dims[0] + i];
+                if (v > 0) acc.setValue(openvdb::Coord(i, j, k), v);
+            }
+    grid->tree().prune();
+    return makeVdbDensityGrid(grid, Affine3(), 1.0f, label, majorantBlock);
+}
+
+float VdbDensityGrid::density(const Vec3& p) const {
+    const Impl& g = *m_impl;
+    if (g.empty || !g.worldBounds.contains(p)) return 0.0f;
+    Vec3 x = g.worldToIndex.point(p);
+    float v = openvdb::tools::BoxSampler::sample(accessorFor(g), openvdb::Vec3R(x.x, x.y, x.z));
+    return std::max(v, 0.0f) * g.scale;
+}
+
+Bounds3 VdbDensityGrid::bounds() const {
+    return m_impl->worldBounds;
+}
+float VdbDensityGrid::majorant(const Ray& ray) const {
+    return m_impl->empty ? 0.0f : m_impl->majorants.maxAlong(ray, ray.tMin, ray.tMax);
+}
+const MajorantGrid* VdbDensityGrid::majorantGrid() const {
+    return &m_impl->majorants;
+}
+float VdbDensityGrid::maxDensity() const {
+    return m_impl->maxDensity;
+}
+float VdbDensityGrid::meanDensity() const {
+    return m_impl->meanDensity;
+}
+const std::string& VdbDensityGrid::label() const {
+    return m_impl->label;
+}
+const std::string& VdbDensityGrid::gridName() const {
+    return m_impl->name;
+}
+uint64_t VdbDensityGrid::activeVoxelCount() const {
+    return m_impl->activeVoxels;
+}
+int VdbDensityGrid::majorantBlock() const {
+    return m_impl->majorantBlock;
+}
+const Affine3& VdbDensityGrid::indexToWorld() const {
+    return m_impl->indexToWorld;
+}
+const Affine3& VdbDensityGrid::worldToIndex() const {
+    return m_impl->worldToIndex;
+}
+
+bool VdbDensityGrid::denseVolume(DensityVolume* out, size_t maxVoxels) const {
+    const Impl& g = *m_impl;
+    *out = DensityVolume();
+    if (g.empty) return true;  // no lattice points: 0 everywhere
+    // The positive voxels plus a zero border (the trilinear support), lattice point (0,0,0) at
+    // index lo; the scale folded into the values.
+    const openvdb::Coord lo = g.positiveBox.min() - openvdb::Coord(1), hi = g.positiveBox.max() + openvdb::Coord(1);
+    const uint64_t nx = uint64_t(hi.x() - lo.x() + 1), ny = uint64_t(hi.y() - lo.y() + 1),
+                   nz = uint64_t(hi.z() - lo.z() + 1);
+    if (nx * ny * nz > uint64_t(maxVoxels)) return false;
+    out->nx = int(nx);
+    out->ny = int(ny);
+    out->nz = int(nz);
+    out->voxels.resize(out->voxelCount());
+    Accessor& acc = accessorFor(g);
+    size_t n = 0;
+    for (int k = lo.z(); k <= hi.z(); ++k)
+        for (int j = lo.y(); j <= hi.y(); ++j)
+            for (int i = lo.x(); i <= hi.x(); ++i)
+                out->voxels[n++] = std::max(acc.getValue(openvdb::Coord(i, j, k)), 0.0f) * g.scale;
+    Affine3 shift = Affine3::scaleTranslate(Vec3(1.0f), Vec3(-float(lo.x()), -float(lo.y()), -float(lo.z())));
+    Affine3 w = shift * g.worldToIndex;
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 4; ++c) out->worldToIndex[r][c] = w.m[r][c];
+    return true;
+}
+
+}  // namespace tyndall

@@ -1,0 +1,117 @@
+// `tyndall compare`: the homogeneous twin keeps albedo and g and takes the grid's mean density; the
+// command writes one side-by-side image with labels and one EXR per half, with equal pass counts;
+// a scene without a grid medium is a clear error. Also the bitmap label font.
+#include <gtest/gtest.h>
+
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "app/cmd_compare.h"
+#include "app/label_text.h"
+#include "core/default_scene.h"
+#include "core/default_smoke_scene.h"
+#include "core/error.h"
+#include "core/image_io.h"
+#include "tests/test_util.h"
+
+namespace tyndall {
+namespace {
+
+TEST(HomogeneousTwin, KeepsAlbedoAndGAndUsesTheMeanDensity) {
+    Scene smoke = makeDefaultSmokeScene();
+    const Medium& grid = smoke.media[smoke.globalMedium];
+    ASSERT_FALSE(grid.homogeneous());
+    std::vector<float> used;
+    Scene twin = makeHomogeneousTwin(smoke, -1.0f, &used);
+    const Medium& hom = twin.media[twin.globalMedium];
+    ASSERT_TRUE(hom.homogeneous());
+    ASSERT_EQ(used.size(), 1u);
+    EXPECT_FLOAT_EQ(used[0], grid.density->meanDensity());
+    EXPECT_GT(used[0], 0.0f);
+    EXPECT_LT(used[0], grid.density->maxDensity());
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(hom.albedo()[c], grid.albedo()[c], 1e-6f);
+        EXPECT_NEAR(hom.sigmaT()[c], grid.sigmaT()[c] * used[0], 1e-6f);
+    }
+    EXPECT_EQ(hom.g, grid.g);
+    // The scene is otherwise the same.
+    EXPECT_EQ(twin.meshes.size(), smoke.meshes.size());
+    EXPECT_EQ(twin.lights.size(), smoke.lights.size());
+    // An explicit density.
+    Scene fixed = makeHomogeneousTwin(smoke, 0.5f);
+    EXPECT_NEAR(fixed.media[fixed.globalMedium].sigmaS.r, grid.sigmaS.r * 0.5f, 1e-6f);
+    // Nothing to compare in a scene without grids.
+    EXPECT_THROW(makeHomogeneousTwin(makeDefaultScene()), Error);
+}
+
+TEST(CompareCommand, WritesLabelledHalvesAndOneExrPerHalf) {
+    CLI::App app;
+    int exitCode = -1;
+    app::addCompareCommand(app, exitCode);
+    const std::string out = test::outputDir() + "/compare-test.exr";
+    std::vector<std::string> args = {"tyndall",   "compare", "--size", "64x48", "--passes", "2",
+                                     "--photons", "300",     "--gpu",  "off",   "-o",       out};
+    std::vector<const char*> argv;
+    for (const auto& a : args) argv.push_back(a.c_str());
+    app.parse(int(argv.size()), const_cast<char**>(argv.data()));
+    EXPECT_EQ(exitCode, 0);
+
+    Image both = readImage(out);
+    Image het = readImage(test::outputDir() + "/compare-test-heterogeneous.exr");
+    Image hom = readImage(test::outputDir() + "/compare-test-homogeneous.exr");
+    ASSERT_EQ(het.width, 64);
+    ASSERT_EQ(het.height, 48);
+    ASSERT_EQ(hom.width, 64);
+    const int gap = both.width - 2 * 64;
+    EXPECT_GE(gap, 2);
+    ASSERT_EQ(both.height, 48);
+    // Outside the label boxes the halves are the per-half images; the gap is black.
+    const int labelBottom = 2 + app::labelHeight(1);
+    for (int y = labelBottom; y < 48; ++y)
+        for (int x = 0; x < 64; ++x) {
+            ASSERT_EQ(both.at(x, y).g, het.at(x, y).g);
+            ASSERT_EQ(both.at(64 + gap + x, y).g, hom.at(x, y).g);
+        }
+    for (int y = 0; y < 48; ++y) ASSERT_EQ(both.at(64, y).g, 0.0f);
+    // Label glyphs are drawn (value 20) inside each half's label box.
+    int lit[2] = {0, 0};
+    for (int y = 0; y < labelBottom; ++y)
+        for (int x = 0; x < 64; ++x) {
+            lit[0] += both.at(x, y).g == 20.0f;
+            lit[1] += both.at(64 + gap + x, y).g == 20.0f;
+        }
+    EXPECT_GT(lit[0], 20);
+    EXPECT_GT(lit[1], 20);
+    // The two media differ: the images are not the same.
+    double diff = 0;
+    for (size_t i = 0; i < het.pixels.size(); ++i) diff += std::abs(het.pixels[i].g - hom.pixels[i].g);
+    EXPECT_GT(diff, 0.0);
+}
+
+TEST(LabelText, DrawsGlyphsInsideItsBox) {
+    Image img(80, 20);
+    app::drawLabel(img, 3, 2, "Ab 1.5", 1, Rgb(1.0f), Rgb(0.25f));
+    const int w = app::labelWidth("Ab 1.5", 1), h = app::labelHeight(1);
+    EXPECT_EQ(w, 6 * 6 - 1 + 2);
+    EXPECT_EQ(h, 9);
+    int on = 0;
+    for (int y = 0; y < 20; ++y)
+        for (int x = 0; x < 80; ++x) {
+            bool inside = x >= 3 && x < 3 + w && y >= 2 && y < 2 + h;
+            if (!inside) {
+                ASSERT_EQ(img.at(x, y).g, 0.0f) << x << "," << y;
+            }
+            on += img.at(x, y).g == 1.0f;
+        }
+    EXPECT_GT(on, 30);
+    // 'A' starts with its top row 0x0E: pixels 1..3 of the first glyph row.
+    EXPECT_EQ(img.at(3 + 1 + 0, 3).g, 0.25f);
+    EXPECT_EQ(img.at(3 + 1 + 1, 3).g, 1.0f);
+    // Clipping at the image edge is safe.
+    app::drawLabel(img, 70, 15, "CLIPPED", 2, Rgb(1.0f), Rgb(0.0f));
+}
+
+}  // namespace
+}  // namespace tyndall

@@ -1,0 +1,154 @@
+// The scene format's "density" key (docs/scene-format.md): file grids with grid name, scale and
+// transform, procedural grids, and one-line errors naming the JSON place (and the file and grid).
+#include <gtest/gtest.h>
+#include <openvdb/io/File.h>
+#include <openvdb/openvdb.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "core/default_smoke_scene.h"
+#include "core/error.h"
+#include "core/scene_file.h"
+#include "core/vdb_grid.h"
+#include "tests/test_util.h"
+
+namespace tyndall {
+namespace {
+
+using json = nlohmann::json;
+
+std::string dir() {
+    std::string d = test::outputDir() + "/scene-density";
+    std::filesystem::create_directories(d);
+    return d;
+}
+
+std::string write(const std::string& name, const std::string& text) {
+    std::string path = dir() + "/" + name;
+    std::ofstream(path) << text;
+    return path;
+}
+
+/// A one-voxel grid named "smoke" (value 2 at index (0,0,0)) in the scene folder.
+void writeOneVoxelGrid() {
+    openvdb::initialize();
+    auto g = openvdb::FloatGrid::create(0.0f);
+    g->setName("smoke");
+    g->tree().setValue(openvdb::Coord(0, 0, 0), 2.0f);
+    openvdb::io::File(dir() + "/one-voxel.vdb").write({g});
+}
+
+json sceneWith(const json& density, const json& medium = {{"sigma_s", 1.0}, {"sigma_a", 0.2}}) {
+    json j = json::parse(R"({
+      "materials": [{"name": "white"}],
+      "shapes": [{"type": "box", "name": "room", "material": "white", "min": [-3, -3, -3], "max": [3, 3, 3], "inward": true}],
+      "lights": [{"type": "point", "position": [0, 2, 0], "intensity": 1}],
+      "cameras": [{"position": [0, 0, 2.5], "target": [0, 0, 0]}],
+      "global_medium": "smoke"
+    })");
+    json m = medium;
+    m["name"] = "smoke";
+    m["density"] = density;
+    j["media"] = json::array({m});
+    return j;
+}
+
+std::string errorOf(const std::string& name, const json& j) {
+    try {
+        loadSceneFile(write(name, j.dump()));
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(SceneDensity, FileGridWithNameScaleAndTransform) {
+    writeOneVoxelGrid();
+    json t = {{"scale", 0.5}, {"translate", {1, 0, 0}}};
+    SceneFile f = loadSceneFile(
+        write("file-grid.json", sceneWith({{"file", "one-voxel.vdb"}, {"grid", "smoke"}, {"scale", 3}, {"transform", t}}).dump()));
+    const Medium& m = f.scene.media[f.scene.globalMedium];
+    ASSERT_FALSE(m.homogeneous());
+    // Voxel (0,0,0) lands at x = 1 (scaled by 0.5, moved by 1); value 2 x scale 3.
+    EXPECT_NEAR(m.density->density(Vec3(1, 0, 0)), 6.0f, 1e-5f);
+    EXPECT_NEAR(m.density->density(Vec3(1.25f, 0, 0)), 3.0f, 1e-5f);  // half a (scaled) voxel away
+    EXPECT_EQ(m.density->density(Vec3(0, 0, 0)), 0.0f);
+}
+
+TEST(SceneDensity, ProceduralSmokeFileMatchesTheBuiltInSmokeScene) {
+    SceneFile f = loadSceneFile(std::string(TYNDALL_SOURCE_DIR) + "/scenes/caustic-box-smoke.json");
+    Scene builtIn = makeDefaultSmokeScene();
+    const Medium& a = f.scene.media[f.scene.globalMedium];
+    const Medium& b = builtIn.media[builtIn.globalMedium];
+    EXPECT_EQ(a.sigmaS.r, b.sigmaS.r);
+    EXPECT_EQ(a.sigmaA.b, b.sigmaA.b);
+    EXPECT_EQ(a.g, b.g);
+    ASSERT_FALSE(a.homogeneous());
+    EXPECT_EQ(a.density->meanDensity(), b.density->meanDensity());
+    EXPECT_EQ(a.density->maxDensity(), b.density->maxDensity());
+    for (Vec3 p : {Vec3(0.45f, 1.0f, -1.3f), Vec3(0.2f, 2.0f, -1.0f), Vec3(0.7f, 0.5f, -1.5f)})
+        EXPECT_EQ(a.density->density(p), b.density->density(p));
+    EXPECT_EQ(f.scene.meshes.size(), builtIn.meshes.size());
+}
+
+TEST(SceneDensity, ProceduralRollingFogWithScale) {
+    json d = {{"procedural", "rolling_fog"}, {"min", {-3, -3, -3}}, {"max", {3, 0, 3}}, {"scale", 2}, {"seed", 5}};
+    SceneFile f = loadSceneFile(write("fog.json", sceneWith(d).dump()));
+    const DensityGrid& g = *f.scene.media[0].density;
+    EXPECT_GT(g.maxDensity(), 1.0f);  // scaled past 1
+    EXPECT_LE(g.maxDensity(), 2.0f);
+    EXPECT_GT(g.density(Vec3(0, -2.9f, 0)) + g.density(Vec3(1, -2.9f, 1)) + g.density(Vec3(-1, -2.9f, 2)), 0.0f);
+}
+
+TEST(SceneDensity, ErrorsNameThePlace) {
+    writeOneVoxelGrid();
+    struct Case {
+        const char* name;
+        json scene;
+        const char* place;
+        const char* what;
+    };
+    const Case cases[] = {
+        {"missing-file", sceneWith({{"file", "nope.vdb"}}), "/media/0/density/file", "no such file"},
+        {"missing-grid", sceneWith({{"file", "one-voxel.vdb"}, {"grid", "density"}}), "/media/0/density/file",
+         "no grid named 'density' (grids in the file: 'smoke' (float))"},
+        {"neither", sceneWith(json::object()), "/media/0/density", "exactly one of 'file'"},
+        {"both", sceneWith({{"file", "one-voxel.vdb"}, {"procedural", "smoke"}}), "/media/0/density", "exactly one"},
+        {"unknown-kind", sceneWith({{"procedural", "clouds"}}), "/media/0/density/procedural", "\"rolling_fog\""},
+        {"transform-on-procedural", sceneWith({{"procedural", "smoke"}, {"transform", {{"scale", 2}}}}),
+         "/media/0/density", "apply to file grids"},
+        {"typo", sceneWith({{"procedural", "smoke"}, {"hieght", 2}}), "/media/0/density", "hieght"},
+        {"negative-scale", sceneWith({{"procedural", "smoke"}, {"scale", -1}}), "/media/0/density/scale", "in [0, 1e+06]"},
+        {"too-many-voxels", sceneWith({{"procedural", "rolling_fog"}, {"voxel_size", 0.001}}), "/media/0/density",
+         "raise voxel_size"},
+        {"colour-extinction", sceneWith({{"procedural", "smoke"}}, {{"sigma_s", {1, 0.5, 0.2}}}), "/media/0",
+         "grey extinction"},
+    };
+    for (const Case& c : cases) {
+        std::string err = errorOf(std::string(c.name) + ".json", c.scene);
+        SCOPED_TRACE(std::string(c.name) + ": " + err);
+        ASSERT_FALSE(err.empty()) << "no error";
+        EXPECT_NE(err.find(std::string(c.name) + ".json"), std::string::npos) << "names the scene file";
+        EXPECT_NE(err.find(c.place), std::string::npos) << "names the place";
+        EXPECT_NE(err.find(c.what), std::string::npos) << "says what";
+        EXPECT_EQ(err.find('\n'), std::string::npos) << "one line";
+    }
+}
+
+TEST(SceneDensity, ExternalFilesCanBeDisabled) {
+    writeOneVoxelGrid();
+    SceneLoadOptions o;
+    o.allowExternalFiles = false;
+    try {
+        loadSceneFile(write("no-external.json", sceneWith({{"file", "one-voxel.vdb"}}).dump()), o);
+        FAIL() << "an external grid file was read";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("disabled"), std::string::npos) << e.what();
+    }
+}
+
+}  // namespace
+}  // namespace tyndall
