@@ -134,4 +134,67 @@ inline std::string writeTestFile(const std::string& name, const std::string& tex
     return path;
 }
 
+/// Field-by-field equality of two scenes (within `tol` for floats), density grids excepted.
+inline void expectSameScene(const Scene& a, const Scene& b, float tol) {
+    auto near3 = [&](const Vec3& x, const Vec3& y, const std::string& what) {
+        EXPECT_NEAR(x.x, y.x, tol) << what;
+        EXPECT_NEAR(x.y, y.y, tol) << what;
+        EXPECT_NEAR(x.z, y.z, tol) << what;
+    };
+    auto nearRgb = [&](const Rgb& x, const Rgb& y, const std::string& what) {
+        EXPECT_NEAR(x.r, y.r, tol) << what;
+        EXPECT_NEAR(x.g, y.g, tol) << what;
+        EXPECT_NEAR(x.b, y.b, tol) << what;
+    };
+    EXPECT_EQ(a.name, b.name);
+    ASSERT_EQ(a.materials.size(), b.materials.size());
+    for (size_t i = 0; i < a.materials.size(); ++i) {
+        const Material &x = a.materials[i], &y = b.materials[i];
+        EXPECT_EQ(x.name, y.name);
+        EXPECT_EQ(x.type, y.type) << x.name;
+        nearRgb(x.albedo, y.albedo, x.name);
+        nearRgb(x.emission, y.emission, x.name);
+        EXPECT_NEAR(x.ior, y.ior, tol) << x.name;
+    }
+    ASSERT_EQ(a.media.size(), b.media.size());
+    for (size_t i = 0; i < a.media.size(); ++i) {
+        EXPECT_EQ(a.media[i].name, b.media[i].name);
+        nearRgb(a.media[i].sigmaS, b.media[i].sigmaS, a.media[i].name);
+        nearRgb(a.media[i].sigmaA, b.media[i].sigmaA, a.media[i].name);
+        EXPECT_NEAR(a.media[i].g, b.media[i].g, tol);
+    }
+    EXPECT_EQ(a.globalMedium, b.globalMedium);
+    ASSERT_EQ(a.meshes.size(), b.meshes.size());
+    for (size_t i = 0; i < a.meshes.size(); ++i) {
+        const TriangleMesh &x = a.meshes[i], &y = b.meshes[i];
+        EXPECT_EQ(x.name, y.name);
+        EXPECT_EQ(x.material, y.material) << x.name;
+        EXPECT_EQ(x.interiorMedium, y.interiorMedium) << x.name;
+        EXPECT_EQ(x.exteriorMedium, y.exteriorMedium) << x.name;
+        EXPECT_EQ(x.indices, y.indices) << x.name;
+        ASSERT_EQ(x.positions.size(), y.positions.size()) << x.name;
+        ASSERT_EQ(x.normals.size(), y.normals.size()) << x.name;
+        for (size_t k = 0; k < x.positions.size(); ++k) near3(x.positions[k], y.positions[k], x.name);
+        for (size_t k = 0; k < x.normals.size(); ++k) near3(x.normals[k], y.normals[k], x.name);
+    }
+    ASSERT_EQ(a.lights.size(), b.lights.size());
+    for (size_t i = 0; i < a.lights.size(); ++i) {
+        const Light &x = a.lights[i], &y = b.lights[i];
+        EXPECT_EQ(x.name, y.name);
+        EXPECT_EQ(x.type, y.type) << x.name;
+        near3(x.position, y.position, x.name);
+        near3(x.direction, y.direction, x.name);
+        nearRgb(x.intensity, y.intensity, x.name);
+        EXPECT_NEAR(x.cosInnerAngle, y.cosInnerAngle, tol) << x.name;
+        EXPECT_NEAR(x.cosOuterAngle, y.cosOuterAngle, tol) << x.name;
+    }
+    near3(a.camera.position, b.camera.position, "camera");
+    near3(a.camera.forward, b.camera.forward, "camera");
+    near3(a.camera.up, b.camera.up, "camera");
+    EXPECT_NEAR(a.camera.yFov, b.camera.yFov, tol);
+    EXPECT_NEAR(a.camera.lensRadius, b.camera.lensRadius, tol);
+    EXPECT_NEAR(a.camera.focusDistance, b.camera.focusDistance, tol);
+    EXPECT_EQ(a.emitters.size(), b.emitters.size());
+}
+
 }  // namespace tyndall::test

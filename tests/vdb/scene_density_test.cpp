@@ -14,6 +14,7 @@
 #include "core/scene_file.h"
 #include "core/vdb_grid.h"
 #include "tests/test_util.h"
+#include "tests/scene/scene_test_util.h"
 
 namespace tyndall {
 namespace {
@@ -91,7 +92,7 @@ TEST(SceneDensity, ProceduralSmokeFileMatchesTheBuiltInSmokeScene) {
     EXPECT_EQ(a.density->maxDensity(), b.density->maxDensity());
     for (Vec3 p : {Vec3(0.45f, 1.0f, -1.3f), Vec3(0.2f, 2.0f, -1.0f), Vec3(0.7f, 0.5f, -1.5f)})
         EXPECT_EQ(a.density->density(p), b.density->density(p));
-    EXPECT_EQ(f.scene.meshes.size(), builtIn.meshes.size());
+    test::expectSameScene(f.scene, builtIn, 1e-6f);  // everything else: materials, meshes, lights, camera
 }
 
 TEST(SceneDensity, ProceduralRollingFogWithScale) {
