@@ -11,6 +11,11 @@ namespace tyndall::app {
 /// scene bounds and uniform random directions, rtcIntersect1 in parallel. Rays per second.
 double measureRawRayRate(const EmbreeScene& rt, uint64_t count);
 
+/// Embree's raw closest-hit throughput on the photon tracer's own rays: the origins and directions
+/// of the beams of `passes` photon passes (in a fog-filled scene nearly every photon ray starts a
+/// beam), replayed through rtcIntersect1 in parallel. Rays per second.
+double measureReplayedPhotonRayRate(const PassRenderer& renderer, int passes);
+
 struct PhotonRate {
     double pathsPerSecond = 0, beamsPerSecond = 0, raysPerSecond = 0;
 };

@@ -65,7 +65,12 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
         printRate("photon paths", ph.pathsPerSecond / 1e3, "k paths/s");
         printRate("photon beams stored", ph.beamsPerSecond / 1e3, "k beams/s");
         printRate("photon rays", ph.raysPerSecond / 1e6, "M rays/s",
-                  ratio(ph.raysPerSecond, raw, "raw ray rate (target >= 0.50x)"));
+                  ratio(ph.raysPerSecond, raw, "raw random-ray rate (target >= 0.50x)"));
+        double replayed = measureReplayedPhotonRayRate(renderer, 4);
+        printRate("Embree raw, photon rays replayed", replayed / 1e6, "M rays/s",
+                  ratio(replayed, raw, "raw random-ray rate"));
+        printRate("photon rays vs their raw replay", ph.raysPerSecond / replayed, "x",
+                  "(tracing overhead: sampling, beams, surface photons)");
 
         std::printf("beam gather (secondary segments; queries along this pass's primary segments)\n");
         GatherRate user = measureBeamGather(renderer, BeamBvh::Kind::UserGeometry, o->queries);

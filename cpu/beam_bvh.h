@@ -5,10 +5,11 @@
 // `tyndall bench` can measure both (see docs/performance.md for which is faster):
 //   UserGeometry: one user primitive per beam (AABB of the cylinder, our own intersector);
 //   FlatCurves:   Embree flat linear curves (ray-facing ribbons of half-width r) with a filter that
-//                 applies the exact test and rejects the hit so traversal continues.
+//                 applies the exact test and rejects the hit so traversal continues. The default:
+//                 1.3x the user geometry's queries/s on the default scene (docs/performance.md).
 // Long beams have huge, mostly empty bounding boxes, so each beam is split along its axis into
-// at most 8 pieces no shorter than `pieceLength` (one BVH primitive each); a piece reports a beam only when
-// the closest point t_v falls inside the piece, so every beam is found once.
+// at most 8 pieces no shorter than `pieceLength` (one BVH primitive each); a piece reports a beam
+// only when the closest point t_v falls inside the piece, so every beam is found once.
 // Thread-safe queries after construction.
 #include <embree3/rtcore.h>
 
@@ -30,7 +31,7 @@ public:
 
     /// Keeps a reference to `beams`: they must outlive the BVH. `pieceLength` <= 0 picks 16x the
     /// largest beam radius.
-    BeamBvh(const EmbreeDevice& device, const std::vector<PhotonBeam>& beams, Kind kind = Kind::UserGeometry,
+    BeamBvh(const EmbreeDevice& device, const std::vector<PhotonBeam>& beams, Kind kind = Kind::FlatCurves,
             float pieceLength = 0.0f);
     ~BeamBvh();
     BeamBvh(const BeamBvh&) = delete;

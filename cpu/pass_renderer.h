@@ -36,7 +36,7 @@ struct PassStats {
 
 class PassRenderer {
 public:
-    PassRenderer(const Scene& scene, const RenderSettings& settings, BeamBvh::Kind beamBvh = BeamBvh::Kind::UserGeometry);
+    PassRenderer(const Scene& scene, const RenderSettings& settings, BeamBvh::Kind beamBvh = BeamBvh::Kind::FlatCurves);
 
     PhotonMap tracePhotons(uint64_t pass) const;
     CameraPassResult traceCamera(uint64_t pass, const PhotonMap& photons) const;

@@ -72,8 +72,8 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
     Rgb power = e.power / float(count);
     const float startMax = power.maxComponent();
     if (!(startMax > 0)) return;
-    const float beamRadius = m_radii.beamRadiusOf(globalPath);
-    const float surfaceRadius = m_radii.surfaceRadiusOf(globalPath);
+    float beamRadius, surfaceRadius;
+    m_radii.radiiOf(globalPath, &beamRadius, &surfaceRadius);
 
     MediumId medium = e.light >= 0 ? m_lightMedium[e.light] : m_scene.meshes[e.emitterMesh].exteriorMedium;
     Ray ray = e.ray;

@@ -6,6 +6,7 @@
 //
 // Deterministic: path k of pass i draws from Rng::forKey(seed, i, k, PhotonPath) and the output
 // is in path order, whatever the thread count.
+#include <cmath>
 #include <vector>
 
 #include "core/light_sampler.h"
@@ -25,6 +26,12 @@ struct RadiusSetup {
     static RadiusSetup resolve(const RenderSettings& settings, const Scene& scene);
     float beamRadiusOf(uint64_t path) const { return float(beamRadius * schedule.beamFactor(path)); }
     float surfaceRadiusOf(uint64_t path) const { return float(surfaceRadius * schedule.surfaceFactor(path)); }
+    /// Both radii of photon path `path` from one evaluation of the schedule.
+    void radiiOf(uint64_t path, float* beam, float* surface) const {
+        double f = schedule.beamFactor(path);
+        *beam = float(beamRadius * f);
+        *surface = float(surfaceRadius * std::sqrt(f));
+    }
 };
 
 class PhotonTracer {
