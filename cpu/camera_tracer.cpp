@@ -82,10 +82,9 @@ CameraPassResult CameraTracer::trace(uint64_t pass, const PhotonMap& photons, co
                 bool surface = m_rt.intersect(ray, &hit);
                 tls.stats.rays++;
                 float tHit = surface ? hit.t : kInfinity;
-                float t0, t1;
-                if (medium != kVacuum && m_rt.globalMediumInterval(Ray{ray.o, ray.d, 0.0f, tHit}, &t0, &t1) && t1 > t0) {
+                Ray seg;
+                if (medium != kVacuum && m_rt.mediumSegment(ray.o, ray.d, tHit, &seg)) {
                     const Medium& med = m_scene.media[medium];
-                    Ray seg{ray.at(t0), ray.d, 0.0f, t1 - t0};
                     float* ff = depth == 0 && nff > 0 ? &result.primary.freeFlights[pixel * nff] : tls.freeFlights.data();
                     if (!med.homogeneous()) sampleCollisionDistances(med, seg, seg.tMax, depth == 0 ? jitter : rng, nff, ff);
                     if (depth == 0) {

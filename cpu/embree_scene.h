@@ -52,6 +52,15 @@ public:
     /// Ray-parameter interval [t0, t1] where the global medium exists: the scene bounds, so that a
     /// ray escaping into an unbounded fog stops at the scene's edge. Returns false if none.
     bool globalMediumInterval(const Ray& ray, float* t0, float* t1) const;
+    /// The stretch of o + t d, t in [0, tEnd] (tEnd: the next surface, or infinity), that lies in
+    /// the medium the ray is in, as a segment with its own origin: {o + t0 d, d, 0, t1 - t0}.
+    /// False when it is empty. Every stage that walks media starts here.
+    bool mediumSegment(const Vec3& o, const Vec3& d, float tEnd, Ray* segment) const {
+        float t0, t1;
+        if (!globalMediumInterval(Ray{o, d, 0.0f, tEnd}, &t0, &t1) || !(t1 > t0)) return false;
+        *segment = Ray{o + d * t0, d, 0.0f, t1 - t0};
+        return true;
+    }
 
     /// Origin for a ray leaving surface point `p` with normal `ng` in direction `d`, offset to
     /// the side `d` goes so it does not hit the surface it starts on.

@@ -88,9 +88,8 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
 
         if (medium != kVacuum) {
             const Medium& med = m_scene.media[medium];
-            float t0, t1;
-            if (m_rt.globalMediumInterval(Ray{ray.o, ray.d, 0.0f, tHit}, &t0, &t1) && t1 > t0) {
-                Ray seg{ray.at(t0), ray.d, 0.0f, t1 - t0};
+            Ray seg;
+            if (m_rt.mediumSegment(ray.o, ray.d, tHit, &seg)) {
                 PhotonBeam beam;
                 beam.origin = seg.o;
                 beam.dir = seg.d;

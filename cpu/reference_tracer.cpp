@@ -126,9 +126,8 @@ Rgb ReferenceTracer::radiance(Ray ray, MediumId medium, Rng& rng) const {
 
         if (medium != kVacuum) {
             const Medium& med = m_scene.media[medium];
-            float t0, t1;
-            if (m_rt.globalMediumInterval(Ray{ray.o, ray.d, 0.0f, tHit}, &t0, &t1) && t1 > t0) {
-                Ray seg{ray.at(t0), ray.d, 0.0f, t1 - t0};
+            Ray seg;
+            if (m_rt.mediumSegment(ray.o, ray.d, tHit, &seg)) {
                 if (equiangular && vertices < m_settings.maxDepth) L += beta * pointLightInScattering(seg, medium, rng);
                 FreeFlight ff = sampleFreeFlight(med, seg, seg.tMax, rng);
                 if (ff.scattered) {
@@ -272,9 +271,9 @@ Rgb ReferenceTracer::shadowTransmittance(const Vec3& origin, const DirectLightSa
         bool surface = m_rt.intersect(ray, &hit);
         float tEnd = surface ? hit.t : ray.tMax;
         if (medium != kVacuum) {
-            float t0, t1;
-            if (m_rt.globalMediumInterval(Ray{ray.o, d, 0.0f, tEnd}, &t0, &t1) && t1 > t0) {
-                tr *= estimateTransmittance(m_scene.media[medium], Ray{ray.at(t0), d, 0.0f, t1 - t0}, t1 - t0, rng);
+            Ray seg;
+            if (m_rt.mediumSegment(ray.o, d, tEnd, &seg)) {
+                tr *= estimateTransmittance(m_scene.media[medium], seg, seg.tMax, rng);
                 if (tr.isBlack()) return tr;
             }
         }

@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "core/image.h"
+
 namespace tyndall::test {
 
 inline std::string assetsDir() { return TYNDALL_ASSETS_DIR; }
@@ -22,6 +24,15 @@ inline MeanVar meanVar(const std::vector<double>& xs) {
     for (double x : xs) r.var += (x - r.mean) * (x - r.mean);
     r.var /= double(xs.size() > 1 ? xs.size() - 1 : 1);
     return r;
+}
+
+/// Bit-for-bit equality of two images (determinism tests).
+inline bool identicalImages(const Image& a, const Image& b) {
+    if (a.pixels.size() != b.pixels.size()) return false;
+    for (size_t i = 0; i < a.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c)
+            if (a.pixels[i][c] != b.pixels[i][c]) return false;
+    return true;
 }
 
 /// Least-squares slope of y against x.

@@ -7,18 +7,9 @@
 #include "core/default_scene.h"
 #include "cpu/pass_renderer.h"
 #include "tests/test_scenes.h"
+#include "tests/test_util.h"
 
 using namespace tyndall;
-
-namespace {
-bool identical(const Image& a, const Image& b) {
-    if (a.pixels.size() != b.pixels.size()) return false;
-    for (size_t i = 0; i < a.pixels.size(); ++i)
-        for (int c = 0; c < 3; ++c)
-            if (a.pixels[i][c] != b.pixels[i][c]) return false;
-    return true;
-}
-}  // namespace
 
 TEST(Determinism, PassImagesDoNotDependOnThreadsOrOrder) {
     Scene scene = makeDefaultScene();
@@ -36,12 +27,12 @@ TEST(Determinism, PassImagesDoNotDependOnThreadsOrOrder) {
         (void)renderer.renderPass(7);  // a different order first
         pass3One = renderer.renderPass(3);
     }
-    EXPECT_TRUE(identical(pass3Many, pass3One));
-    EXPECT_FALSE(identical(pass3Many, pass7Many));
+    EXPECT_TRUE(test::identicalImages(pass3Many, pass3One));
+    EXPECT_FALSE(test::identicalImages(pass3Many, pass7Many));
     RenderSettings other = s;
     other.seed = 78;
     PassRenderer renderer2(scene, other);
-    EXPECT_FALSE(identical(pass3Many, renderer2.renderPass(3)));
+    EXPECT_FALSE(test::identicalImages(pass3Many, renderer2.renderPass(3)));
 }
 
 TEST(Determinism, RadiusShrinksPerPhotonPathInTheRenderer) {

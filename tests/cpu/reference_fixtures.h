@@ -1,8 +1,11 @@
 #pragma once
 // Scenes and helpers shared by the reference-tracer tests (self-checks, analytic scene,
 // PPB-versus-reference consistency).
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -12,6 +15,7 @@
 #include "core/mesh_builders.h"
 #include "core/scene.h"
 #include "cpu/pass_renderer.h"
+#include "cpu/reference_tracer.h"
 
 namespace tyndall::test {
 
@@ -137,6 +141,106 @@ inline Image absDifference(const Image& a, const Image& b) {
     for (size_t i = 0; i < a.pixels.size(); ++i)
         for (int c = 0; c < 3; ++c) d.pixels[i][c] = std::abs(a.pixels[i][c] - b.pixels[i][c]);
     return d;
+}
+
+/// relMSE of a PPB image against a reference image: mean over pixels and channels of
+/// (ppb - ref)^2 / (ref^2 + eps), eps = (0.1 mean(ref))^2 so dark pixels do not dominate, with
+/// the reference's own variance (its share of that expectation) kept apart.
+struct RelMse {
+    double raw = 0;           ///< against the (noisy) reference
+    double referenceVar = 0;  ///< the reference's own share of it
+    double corrected() const { return raw - referenceVar; }
+};
+
+inline RelMse relMse(const Image& ppb, const ReferenceImage& ref) {
+    double mean = 0;
+    for (const Rgb& p : ref.mean.pixels) mean += p.r + p.g + p.b;
+    mean /= 3.0 * ref.mean.pixels.size();
+    const double eps = 0.01 * mean * mean;
+    RelMse r;
+    for (size_t i = 0; i < ppb.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            double x = ref.mean.pixels[i][c], d = ppb.pixels[i][c] - x;
+            r.raw += d * d / (x * x + eps);
+            r.referenceVar += ref.varianceOfMean.pixels[i][c] / (x * x + eps);
+        }
+    double n = 3.0 * ppb.pixels.size();
+    r.raw /= n;
+    r.referenceVar /= n;
+    return r;
+}
+
+inline double regionMean(const Image& img, int x0, int y0, int x1, int y1) {
+    double sum = 0;
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) sum += img.at(x, y).r + img.at(x, y).g + img.at(x, y).b;
+    return sum / (3.0 * (x1 - x0) * (y1 - y0));
+}
+
+struct ConsistencyBounds {
+    double finalRelMse;                 ///< relMSE after 64 passes
+    double imageMean = 0.03;            ///< |PPB/reference - 1| of the image mean
+    double quadrantMean = 0.06;         ///< same for each 16 x 16 quadrant
+};
+
+/// The consistency check shared by the homogeneous and the VDB tests: at 32 x 32, a 4096-spp
+/// reference against PPB with 2000 photon paths per pass. relMSE must fall by at least a quarter
+/// from 4 to 16 and from 16 to 64 passes (for alpha = 0.5 the variance alone halves per 4x
+/// passes) and end below `bounds.finalRelMse`; the reference's variance must be well below what
+/// it judges; image and quadrant means must agree (they expose normalisation errors the relMSE's
+/// noise hides). On failure the PPB, reference and error images go to the test output folder as
+/// `<evidence>_ppb.exr` etc.
+inline void expectPpbConvergesToReference(const Scene& scene, const ConsistencyBounds& bounds, uint64_t referenceSeed,
+                                          uint64_t ppbSeed, const std::string& evidence) {
+    const int size = 32;
+    ReferenceSettings rs;
+    rs.width = rs.height = size;
+    rs.samplesPerPixel = 4096;
+    rs.seed = referenceSeed;
+    EmbreeScene rt(scene);
+    ReferenceImage ref = ReferenceTracer(rt, rs).render();
+
+    RenderSettings ps;
+    ps.width = ps.height = size;
+    ps.photonsPerPass = 2000;
+    ps.alpha = 0.5;
+    ps.seed = ppbSeed;
+    PassRenderer renderer(scene, ps);
+    Accumulator acc(size, size);
+    const uint64_t checkpoints[] = {4, 16, 64};
+    std::vector<RelMse> errors;
+    for (uint64_t pass = 0; pass < 64; ++pass) {
+        acc.addPass(renderer.renderPass(pass));
+        if (pass + 1 == checkpoints[errors.size()]) {
+            errors.push_back(relMse(acc.mean(), ref));
+            std::printf("%3llu passes: relMSE %.5f (raw %.5f, reference variance %.5f)\n",
+                        (unsigned long long)(pass + 1), errors.back().corrected(), errors.back().raw,
+                        errors.back().referenceVar);
+        }
+    }
+    EXPECT_LT(errors.back().referenceVar, 0.3 * errors.back().corrected()) << "reference too noisy to judge PPB";
+    EXPECT_LT(errors[1].corrected(), 0.75 * errors[0].corrected()) << "relMSE did not fall from 4 to 16 passes";
+    EXPECT_LT(errors[2].corrected(), 0.75 * errors[1].corrected()) << "relMSE did not fall from 16 to 64 passes";
+    EXPECT_LT(errors[2].corrected(), bounds.finalRelMse) << "relMSE after 64 passes";
+
+    Image ppb = acc.mean();
+    double ratio = regionMean(ppb, 0, 0, size, size) / regionMean(ref.mean, 0, 0, size, size);
+    std::printf("image mean PPB / reference: %.4f\n", ratio);
+    EXPECT_NEAR(ratio, 1.0, bounds.imageMean) << "image means";
+    const int half = size / 2;
+    for (int qy = 0; qy < 2; ++qy)
+        for (int qx = 0; qx < 2; ++qx) {
+            int x0 = qx * half, y0 = qy * half;
+            double q =
+                regionMean(ppb, x0, y0, x0 + half, y0 + half) / regionMean(ref.mean, x0, y0, x0 + half, y0 + half);
+            std::printf("quadrant (%d, %d) mean PPB / reference: %.4f\n", qx, qy, q);
+            EXPECT_NEAR(q, 1.0, bounds.quadrantMean) << "quadrant (" << qx << ", " << qy << ") means";
+        }
+    if (::testing::Test::HasFailure()) {
+        writeEvidence(evidence + "_ppb", ppb);
+        writeEvidence(evidence + "_reference", ref.mean);
+        writeEvidence(evidence + "_error", absDifference(ppb, ref.mean));
+    }
 }
 
 }  // namespace tyndall::test

@@ -7,17 +7,10 @@
 
 #include "core/default_smoke_scene.h"
 #include "cpu/pass_renderer.h"
+#include "tests/test_util.h"
 
 namespace tyndall {
 namespace {
-
-bool identical(const Image& a, const Image& b) {
-    if (a.pixels.size() != b.pixels.size()) return false;
-    for (size_t i = 0; i < a.pixels.size(); ++i)
-        for (int c = 0; c < 3; ++c)
-            if (a.pixels[i][c] != b.pixels[i][c]) return false;
-    return true;
-}
 
 TEST(HeterogeneousDeterminism, FreeFlightsAndPassImagesDoNotDependOnThreads) {
     Scene scene = makeDefaultSmokeScene();
@@ -46,8 +39,8 @@ TEST(HeterogeneousDeterminism, FreeFlightsAndPassImagesDoNotDependOnThreads) {
     ASSERT_EQ(many.beams.size(), one.beams.size());
     for (size_t i = 0; i < many.beams.size(); ++i) ASSERT_EQ(many.beams[i].tMax, one.beams[i].tMax) << i;
     EXPECT_EQ(camMany.primary.freeFlights, camOne.primary.freeFlights);
-    EXPECT_TRUE(identical(camMany.radiance, camOne.radiance));
-    EXPECT_TRUE(identical(imgMany, imgOne));
+    EXPECT_TRUE(test::identicalImages(camMany.radiance, camOne.radiance));
+    EXPECT_TRUE(test::identicalImages(imgMany, imgOne));
     // The smoke really is sampled: some primary distances are finite, some beams stop inside.
     size_t finite = 0;
     for (float d : camMany.primary.freeFlights) finite += std::isfinite(d) ? 1 : 0;

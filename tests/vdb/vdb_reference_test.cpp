@@ -54,34 +54,6 @@ std::shared_ptr<const VdbDensityGrid> smokeBlobs() {
     return VdbDensityGrid::fromDense(dims, v, Affine3::scaleTranslate(Vec3(voxel), lo), "smoke blobs");
 }
 
-struct RelMse {
-    double raw = 0, referenceVar = 0;
-    double corrected() const { return raw - referenceVar; }
-};
-
-RelMse relMse(const Image& ppb, const ReferenceImage& ref) {
-    double mean = 0;
-    for (const Rgb& p : ref.mean.pixels) mean += p.r + p.g + p.b;
-    mean /= 3.0 * ref.mean.pixels.size();
-    const double eps = 0.01 * mean * mean;
-    RelMse r;
-    for (size_t i = 0; i < ppb.pixels.size(); ++i)
-        for (int c = 0; c < 3; ++c) {
-            double x = ref.mean.pixels[i][c], d = ppb.pixels[i][c] - x;
-            r.raw += d * d / (x * x + eps);
-            r.referenceVar += ref.varianceOfMean.pixels[i][c] / (x * x + eps);
-        }
-    r.raw /= 3.0 * ppb.pixels.size();
-    r.referenceVar /= 3.0 * ppb.pixels.size();
-    return r;
-}
-
-double regionMean(const Image& img, int x0, int y0, int x1, int y1) {
-    double sum = 0;
-    for (int y = y0; y < y1; ++y)
-        for (int x = x0; x < x1; ++x) sum += img.at(x, y).r + img.at(x, y).g + img.at(x, y).b;
-    return sum / (3.0 * (x1 - x0) * (y1 - y0));
-}
 
 TEST(VdbReference, PpbInAVdbSmokeRoomConvergesToTheReference) {
     Scene scene = test::makeConsistencyScene();
@@ -92,54 +64,8 @@ TEST(VdbReference, PpbInAVdbSmokeRoomConvergesToTheReference) {
     smoke.density = smokeBlobs();
     scene.validate();
 
-    const int size = 32;
-    ReferenceSettings rs;
-    rs.width = rs.height = size;
-    rs.samplesPerPixel = 4096;
-    rs.seed = 505;
-    EmbreeScene rt(scene);
-    ReferenceImage ref = ReferenceTracer(rt, rs).render();
-
-    RenderSettings ps;
-    ps.width = ps.height = size;
-    ps.photonsPerPass = 2000;
-    ps.seed = 606;
-    PassRenderer renderer(scene, ps);
-    Accumulator acc(size, size);
-    const uint64_t checkpoints[] = {4, 16, 64};
-    std::vector<RelMse> errors;
-    for (uint64_t pass = 0; pass < 64; ++pass) {
-        acc.addPass(renderer.renderPass(pass));
-        if (pass + 1 == checkpoints[errors.size()]) {
-            errors.push_back(relMse(acc.mean(), ref));
-            std::printf("%3llu passes: relMSE %.5f (raw %.5f, reference variance %.5f)\n",
-                        (unsigned long long)(pass + 1), errors.back().corrected(), errors.back().raw,
-                        errors.back().referenceVar);
-        }
-    }
-    EXPECT_LT(errors.back().referenceVar, 0.3 * errors.back().corrected()) << "reference too noisy to judge PPB";
-    EXPECT_LT(errors[1].corrected(), 0.75 * errors[0].corrected()) << "relMSE did not fall from 4 to 16 passes";
-    EXPECT_LT(errors[2].corrected(), 0.75 * errors[1].corrected()) << "relMSE did not fall from 16 to 64 passes";
-    EXPECT_LT(errors[2].corrected(), kFinalBound) << "relMSE after 64 passes";
-
-    Image ppb = acc.mean();
-    double ratio = regionMean(ppb, 0, 0, size, size) / regionMean(ref.mean, 0, 0, size, size);
-    std::printf("image mean PPB / reference: %.4f\n", ratio);
-    EXPECT_NEAR(ratio, 1.0, kImageMeanTolerance) << "image means";
-    const int half = size / 2;
-    for (int qy = 0; qy < 2; ++qy)
-        for (int qx = 0; qx < 2; ++qx) {
-            int x0 = qx * half, y0 = qy * half;
-            double q =
-                regionMean(ppb, x0, y0, x0 + half, y0 + half) / regionMean(ref.mean, x0, y0, x0 + half, y0 + half);
-            std::printf("quadrant (%d, %d) mean PPB / reference: %.4f\n", qx, qy, q);
-            EXPECT_NEAR(q, 1.0, kQuadrantMeanTolerance) << "quadrant (" << qx << ", " << qy << ") means";
-        }
-    if (::testing::Test::HasFailure()) {
-        test::writeEvidence("vdb_reference_ppb", ppb);
-        test::writeEvidence("vdb_reference_reference", ref.mean);
-        test::writeEvidence("vdb_reference_error", test::absDifference(ppb, ref.mean));
-    }
+    test::expectPpbConvergesToReference(scene, {kFinalBound, kImageMeanTolerance, kQuadrantMeanTolerance}, 505, 606,
+                                        "vdb_reference");
 }
 
 }  // namespace
