@@ -94,7 +94,7 @@ HybridBench measureHybrid(const PassRenderer& renderer, int passes) {
         c0 = processCpuSeconds();
         auto t2 = Clock::now();
         RasterStats raster;
-        renderer.splatPrimary(camera, photons, &raster);
+        renderer.splatPrimary(camera.primary, photons, &raster);
         double cpuSplatWall = since(t2), cpuSplatCpu = processCpuSeconds() - c0;
         if (i == 0) continue;  // warm-up
         b.cpuStageSeconds += cpuStage / passes;

@@ -10,8 +10,8 @@
 
 namespace tyndall {
 
-Rgb gatherBeams(const Scene& scene, const PhotonMap& photons, const std::vector<BeamHitRecord>& hits,
-                MediumId medium, const Vec3& o, const Vec3& d, const float* segmentFreeFlights, int n) {
+Rgb gatherBeams(const Scene& scene, const PhotonMap& photons, const std::vector<BeamHitRecord>& hits, MediumId medium,
+                const Vec3& o, const Vec3& d, const float* segmentFreeFlights, int n) {
     const Medium& med = scene.media[medium];
     Rgb sum;
     if (med.homogeneous()) {
@@ -39,7 +39,7 @@ Rgb gatherBeams(const Scene& scene, const PhotonMap& photons, const std::vector<
 }
 
 CameraTracer::CameraTracer(const EmbreeScene& rt, const RenderSettings& settings)
-    : m_rt(rt), m_scene(rt.scene()), m_settings(settings), m_cameraMedium(rt.mediumAt(rt.scene().camera.position)) {
+    : m_rt(rt), m_scene(rt.scene()), m_settings(settings) {
     for (const Medium& m : m_scene.media) m_anyHeterogeneous |= !m.homogeneous();
 }
 
@@ -51,17 +51,59 @@ struct ThreadScratch {
 };
 }  // namespace
 
-CameraPassResult CameraTracer::trace(uint64_t pass, const PhotonMap& photons, const BeamBvh& beams,
-                                     const SurfacePhotonGrid& surfacePhotons) const {
+PrimaryPass CameraTracer::tracePrimary(uint64_t pass) const {
     const int w = m_settings.width, h = m_settings.height;
     const int nff = m_anyHeterogeneous ? m_settings.freeFlightSamples : 0;
-    CameraPassResult result;
-    result.radiance = Image(w, h);
-    result.primary.width = w;
-    result.primary.height = h;
-    result.primary.rays.resize(size_t(w) * h);
-    result.primary.freeFlightsPerRay = nff;
-    result.primary.freeFlights.assign(size_t(w) * h * nff, kInfinity);
+    const Camera& camera = m_scene.camera;
+    const MediumId cameraMedium = m_rt.mediumAt(camera.position);
+    PrimaryPass out;
+    out.pass = pass;
+    PrimarySegments& primary = out.segments;
+    primary.width = w;
+    primary.height = h;
+    primary.rays.resize(size_t(w) * h);
+    primary.freeFlightsPerRay = nff;
+    primary.freeFlights.assign(size_t(w) * h * nff, kInfinity);
+    out.hits.resize(size_t(w) * h);
+
+    tbb::parallel_for(0, h, [&](int y) {
+        for (int x = 0; x < w; ++x) {
+            const uint64_t pixel = uint64_t(y) * w + x;
+            Rng jitter = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::PixelJitter);
+            float jx = jitter.uniform(), jy = jitter.uniform();
+            Vec2 lens{jitter.uniform(), jitter.uniform()};
+            Ray ray = camera.generateRay(float(x) + jx, float(y) + jy, w, h, lens);
+            PrimaryHit& ph = out.hits[pixel];
+            ph.medium = cameraMedium;
+            ph.throughput = Rgb(1.0f);
+            ph.surface = m_rt.intersect(ray, &ph.hit);
+            float tHit = ph.surface ? ph.hit.t : kInfinity;
+            Ray seg;
+            if (cameraMedium != kVacuum && m_rt.mediumSegment(ray.o, ray.d, tHit, &seg)) {
+                const Medium& med = m_scene.media[cameraMedium];
+                primary.rays[pixel] = PrimaryRay{seg.o, seg.tMax, seg.d, cameraMedium};
+                if (med.homogeneous()) {
+                    ph.throughput = med.transmittance(seg.tMax);
+                } else {
+                    float* ff = &primary.freeFlights[pixel * nff];
+                    sampleCollisionDistances(med, seg, seg.tMax, jitter, nff, ff);
+                    ph.throughput = Rgb(storedTransmittance(ff, nff, seg.tMax));
+                }
+            } else {
+                primary.rays[pixel] = PrimaryRay{ray.o, 0.0f, ray.d, kVacuum};
+            }
+        }
+    });
+    out.rays = uint64_t(w) * h;
+    return out;
+}
+
+Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& photons, const BeamBvh& beams,
+                                   const SurfacePhotonGrid& surfacePhotons, CameraPassStats* stats) const {
+    const int w = m_settings.width, h = m_settings.height;
+    const int nff = m_anyHeterogeneous ? m_settings.freeFlightSamples : 0;
+    const uint64_t pass = primary.pass;
+    Image radiance(w, h);
     tbb::enumerable_thread_specific<ThreadScratch> scratch;
 
     tbb::parallel_for(0, h, [&](int y) {
@@ -69,61 +111,68 @@ CameraPassResult CameraTracer::trace(uint64_t pass, const PhotonMap& photons, co
         tls.freeFlights.resize(std::max(nff, 1));
         for (int x = 0; x < w; ++x) {
             const uint64_t pixel = uint64_t(y) * w + x;
-            Rng jitter = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::PixelJitter);
+            const PrimaryHit& ph = primary.hits[pixel];
+            Rgb throughput = ph.throughput, L;
+            if (!ph.surface || throughput.isBlack()) continue;
             Rng rng = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::CameraPath);
-            float jx = jitter.uniform(), jy = jitter.uniform();
-            Vec2 lens{jitter.uniform(), jitter.uniform()};
-            Ray ray = m_scene.camera.generateRay(float(x) + jx, float(y) + jy, w, h, lens);
-            MediumId medium = m_cameraMedium;
-            Rgb throughput(1.0f), L;
+            MediumId medium = ph.medium;
+            SurfaceHit hit = ph.hit;
+            Vec3 dir = primary.segments.rays[pixel].dir;
 
-            for (int depth = 0; depth <= m_settings.maxCameraBounces; ++depth) {
-                SurfaceHit hit;
-                bool surface = m_rt.intersect(ray, &hit);
-                tls.stats.rays++;
-                float tHit = surface ? hit.t : kInfinity;
-                Ray seg;
-                if (medium != kVacuum && m_rt.mediumSegment(ray.o, ray.d, tHit, &seg)) {
-                    const Medium& med = m_scene.media[medium];
-                    float* ff = depth == 0 && nff > 0 ? &result.primary.freeFlights[pixel * nff] : tls.freeFlights.data();
-                    if (!med.homogeneous()) sampleCollisionDistances(med, seg, seg.tMax, depth == 0 ? jitter : rng, nff, ff);
-                    if (depth == 0) {
-                        result.primary.rays[pixel] = PrimaryRay{seg.o, seg.tMax, seg.d, medium};
-                    } else {
-                        beams.query(seg.o, seg.d, seg.tMax, tls.hits);
-                        tls.stats.beamQueries++;
-                        tls.stats.beamHits += tls.hits.size();
-                        L += throughput * gatherBeams(m_scene, photons, tls.hits, medium, seg.o, seg.d, ff, nff);
-                    }
-                    throughput *= med.homogeneous() ? med.transmittance(seg.tMax)
-                                                    : Rgb(storedTransmittance(ff, nff, seg.tMax));
-                } else if (depth == 0) {
-                    result.primary.rays[pixel] = PrimaryRay{ray.o, 0.0f, ray.d, kVacuum};
-                }
-                if (!surface || throughput.isBlack()) break;
-
+            for (int depth = 0;;) {
                 const TriangleMesh& mesh = m_scene.meshes[hit.mesh];
                 const Material& mat = m_scene.materials[mesh.material];
-                HitSide side = hitSide(hit, ray.d);
+                HitSide side = hitSide(hit, dir);
                 if (mat.isEmissive() && side.entering) L += throughput * mat.emission;
                 if (mat.type == MaterialType::Diffuse) {
                     L += throughput * mat.albedo * kInvPi * surfacePhotons.density(hit.p, side.nf);
                     break;
                 }
                 SpecularEvent ev;
-                if (!sampleSpecular(mat, mesh, hit, ray.d, medium, rng.uniform(), TransportMode::Radiance, &ev)) break;
+                if (!sampleSpecular(mat, mesh, hit, dir, medium, rng.uniform(), TransportMode::Radiance, &ev)) break;
                 throughput *= ev.weight;
                 medium = ev.medium;
-                ray = Ray{m_rt.offsetOrigin(hit.p, hit.ng, ev.d), ev.d};
+                Ray ray{m_rt.offsetOrigin(hit.p, hit.ng, ev.d), ev.d};
+                dir = ray.d;
+                if (++depth > m_settings.maxCameraBounces) break;
+
+                bool surface = m_rt.intersect(ray, &hit);
+                tls.stats.rays++;
+                float tHit = surface ? hit.t : kInfinity;
+                Ray seg;
+                if (medium != kVacuum && m_rt.mediumSegment(ray.o, ray.d, tHit, &seg)) {
+                    const Medium& med = m_scene.media[medium];
+                    float* ff = tls.freeFlights.data();
+                    if (!med.homogeneous()) sampleCollisionDistances(med, seg, seg.tMax, rng, nff, ff);
+                    beams.query(seg.o, seg.d, seg.tMax, tls.hits);
+                    tls.stats.beamQueries++;
+                    tls.stats.beamHits += tls.hits.size();
+                    L += throughput * gatherBeams(m_scene, photons, tls.hits, medium, seg.o, seg.d, ff, nff);
+                    throughput *=
+                        med.homogeneous() ? med.transmittance(seg.tMax) : Rgb(storedTransmittance(ff, nff, seg.tMax));
+                }
+                if (!surface || throughput.isBlack()) break;
             }
-            result.radiance.at(x, y) = L;
+            radiance.at(x, y) = L;
         }
     });
-    for (const ThreadScratch& s : scratch) {
-        result.stats.rays += s.stats.rays;
-        result.stats.beamQueries += s.stats.beamQueries;
-        result.stats.beamHits += s.stats.beamHits;
+    if (stats) {
+        for (const ThreadScratch& s : scratch) {
+            stats->rays += s.stats.rays;
+            stats->beamQueries += s.stats.beamQueries;
+            stats->beamHits += s.stats.beamHits;
+        }
     }
+    return radiance;
+}
+
+CameraPassResult CameraTracer::trace(uint64_t pass, const PhotonMap& photons, const BeamBvh& beams,
+                                     const SurfacePhotonGrid& surfacePhotons) const {
+    PrimaryPass primary = tracePrimary(pass);
+    CameraPassResult result;
+    result.stats.rays = primary.rays;
+    result.radiance = traceSecondary(primary, photons, beams, surfacePhotons, &result.stats);
+    result.primary = std::move(primary.segments);
     return result;
 }
 

@@ -1,13 +1,20 @@
 #pragma once
-// Camera paths (PPB step 2 and the CPU half of step 3/4): one jittered path per pixel per pass.
-// The first segment (camera -> first surface) is the primary segment: it is only recorded here,
-// and its medium radiance is added by a beam splatter (CPU rasterizer or GL). The path continues
-// through mirrors and glass (Fresnel choice); every later segment inside a medium gathers the
-// pass's beams through the BeamBvh; a diffuse hit ends the path with the surface-photon estimate;
-// emissive surfaces add their emission.
+// Camera paths (PPB step 2 and the CPU half of step 3/4): one jittered path per pixel per pass,
+// in two stages so a scheduler can splat the primary segments while the CPU does the rest:
+//   tracePrimary(i)                         the first segment (camera -> first surface) of every
+//                                           pixel: recorded for a beam splatter (CPU rasterizer or
+//                                           GL), which adds its medium radiance; needs no photons
+//   traceSecondary(i, primary, photons...)  the rest of each path: emission at the first hit, then
+//                                           through mirrors and glass (Fresnel choice), every later
+//                                           segment inside a medium gathering the pass's beams
+//                                           through the BeamBvh, a diffuse hit ending the path with
+//                                           the surface-photon estimate
+// trace() runs both. The camera is read from the scene at each tracePrimary call, so a camera
+// that moves between passes (the viewer's reset) is followed, the medium it sits in included.
 //
-// Deterministic: pixel p of pass i draws its film/lens jitter from Rng::forKey(seed, i, p,
-// PixelJitter) and the rest of its path from (seed, i, p, CameraPath).
+// Deterministic: pixel p of pass i draws its film/lens jitter and its primary stored distances
+// from Rng::forKey(seed, i, p, PixelJitter) and the rest of its path from (seed, i, p, CameraPath),
+// so the split changes no bit of the image.
 #include <cstdint>
 
 #include "core/image.h"
@@ -21,13 +28,29 @@
 namespace tyndall {
 
 struct CameraPassStats {
-    uint64_t rays = 0;          ///< surface rays traced
-    uint64_t beamQueries = 0;   ///< secondary segments gathered through the BVH
-    uint64_t beamHits = 0;      ///< beam x ray pairs found by those queries
+    uint64_t rays = 0;         ///< surface rays traced
+    uint64_t beamQueries = 0;  ///< secondary segments gathered through the BVH
+    uint64_t beamHits = 0;     ///< beam x ray pairs found by those queries
+};
+
+/// Where a pixel's primary segment ended, for the secondary stage (CPU only, not uploaded).
+struct PrimaryHit {
+    SurfaceHit hit;
+    Rgb throughput;             ///< transmittance of the primary segment
+    MediumId medium = kVacuum;  ///< the medium the camera ray ran through
+    bool surface = false;       ///< false: the ray left the scene
+};
+
+/// The primary stage of a pass: the splatters' input and where the secondary stage goes on.
+struct PrimaryPass {
+    uint64_t pass = 0;
+    PrimarySegments segments;
+    std::vector<PrimaryHit> hits;  ///< per pixel, row-major like segments.rays
+    uint64_t rays = 0;             ///< surface rays traced
 };
 
 struct CameraPassResult {
-    Image radiance;             ///< everything except the primary segments' medium radiance
+    Image radiance;  ///< everything except the primary segments' medium radiance
     PrimarySegments primary;
     CameraPassStats stats;
 };
@@ -36,23 +59,26 @@ class CameraTracer {
 public:
     CameraTracer(const EmbreeScene& rt, const RenderSettings& settings);
 
+    /// Both stages: the pass's radiance without the primary segments' media, and those segments.
     CameraPassResult trace(uint64_t pass, const PhotonMap& photons, const BeamBvh& beams,
                            const SurfacePhotonGrid& surface) const;
 
-    MediumId cameraMedium() const { return m_cameraMedium; }
+    PrimaryPass tracePrimary(uint64_t pass) const;
+    /// The pass's radiance except the primary segments' media; `stats.rays` counts this stage's.
+    Image traceSecondary(const PrimaryPass& primary, const PhotonMap& photons, const BeamBvh& beams,
+                         const SurfacePhotonGrid& surface, CameraPassStats* stats) const;
 
 private:
     const EmbreeScene& m_rt;
     const Scene& m_scene;
     RenderSettings m_settings;
-    MediumId m_cameraMedium;
     bool m_anyHeterogeneous = false;
 };
 
 /// Medium radiance gathered from `beams` along the segment o + s d, s in [0, sMax], inside
 /// `medium`, before the camera path's throughput. `segmentFreeFlights` (n distances from `o`) are
 /// the segment's own stored transmittance samples for grid media (ignored for homogeneous ones).
-Rgb gatherBeams(const Scene& scene, const PhotonMap& photons, const std::vector<BeamHitRecord>& hits,
-                MediumId medium, const Vec3& o, const Vec3& d, const float* segmentFreeFlights, int n);
+Rgb gatherBeams(const Scene& scene, const PhotonMap& photons, const std::vector<BeamHitRecord>& hits, MediumId medium,
+                const Vec3& o, const Vec3& d, const float* segmentFreeFlights, int n);
 
 }  // namespace tyndall

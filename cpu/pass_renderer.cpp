@@ -10,6 +10,18 @@ double secondsSince(std::chrono::steady_clock::time_point t0) {
 }
 }  // namespace
 
+void PassStats::add(const PhotonMap& photons) {
+    photonPaths += photons.pathCount;
+    beams += photons.beams.size();
+    surfacePhotons += photons.surfacePhotons.size();
+}
+
+void PassStats::add(const CameraPassStats& camera) {
+    cameraRays += camera.rays;
+    beamQueries += camera.beamQueries;
+    beamHits += camera.beamHits;
+}
+
 PassStats& PassStats::operator+=(const PassStats& o) {
     photonPaths += o.photonPaths;
     beams += o.beams;
@@ -34,7 +46,19 @@ PassRenderer::PassRenderer(const Scene& scene, const RenderSettings& settings, B
       m_camera(std::make_unique<CameraTracer>(*m_rt, settings)),
       m_rasterizer(scene) {}
 
-PhotonMap PassRenderer::tracePhotons(uint64_t pass) const { return m_photons->trace(pass); }
+PhotonMap PassRenderer::tracePhotons(uint64_t pass) const {
+    return m_photons->trace(pass);
+}
+
+PrimaryPass PassRenderer::tracePrimary(uint64_t pass) const {
+    return m_camera->tracePrimary(pass);
+}
+
+Image PassRenderer::traceSecondary(const PrimaryPass& primary, const PhotonMap& photons, CameraPassStats* stats) const {
+    BeamBvh bvh(*m_rt->device(), photons.beams, m_bvhKind);
+    SurfacePhotonGrid grid(photons.surfacePhotons);
+    return m_camera->traceSecondary(primary, photons, bvh, grid, stats);
+}
 
 CameraPassResult PassRenderer::traceCamera(uint64_t pass, const PhotonMap& photons) const {
     BeamBvh bvh(*m_rt->device(), photons.beams, m_bvhKind);
@@ -42,8 +66,12 @@ CameraPassResult PassRenderer::traceCamera(uint64_t pass, const PhotonMap& photo
     return m_camera->trace(pass, photons, bvh, grid);
 }
 
-Image PassRenderer::splatPrimary(const CameraPassResult& camera, const PhotonMap& photons, RasterStats* stats) const {
-    return m_rasterizer.rasterize(camera.primary, photons, stats);
+Image PassRenderer::splatPrimary(const PrimarySegments& primary, const PhotonMap& photons, RasterStats* stats) const {
+    return m_rasterizer.rasterize(primary, photons, stats);
+}
+
+void PassRenderer::sceneChanged() {
+    m_photons = std::make_unique<PhotonTracer>(*m_rt, m_settings, m_radii);
 }
 
 Image PassRenderer::renderPass(uint64_t pass, PassStats* stats) const {
@@ -53,15 +81,11 @@ Image PassRenderer::renderPass(uint64_t pass, PassStats* stats) const {
     CameraPassResult camera = traceCamera(pass, photons);
     auto t2 = std::chrono::steady_clock::now();
     RasterStats raster;
-    Image image = splatPrimary(camera, photons, &raster);
+    Image image = splatPrimary(camera.primary, photons, &raster);
     image += camera.radiance;
     if (stats) {
-        stats->photonPaths += photons.pathCount;
-        stats->beams += photons.beams.size();
-        stats->surfacePhotons += photons.surfacePhotons.size();
-        stats->cameraRays += camera.stats.rays;
-        stats->beamQueries += camera.stats.beamQueries;
-        stats->beamHits += camera.stats.beamHits;
+        stats->add(photons);
+        stats->add(camera.stats);
         stats->rasterTests += raster.pixelTests;
         stats->photonSeconds += std::chrono::duration<double>(t1 - t0).count();
         stats->cameraSeconds += std::chrono::duration<double>(t2 - t1).count();

@@ -1,12 +1,18 @@
 #pragma once
 // One PPB pass on the CPU, as separate stages so a scheduler can overlap them and swap the
 // primary-segment splatter for the GL one:
-//   tracePhotons(i)                 -> PhotonMap          (step 1)
-//   traceCamera(i, photons)         -> CameraPassResult   (steps 2-4 except primary media)
-//   splatPrimary(camera, photons)   -> Image              (step 3, primary segments)
-//   renderPass(i) = traceCamera.radiance + splatPrimary   (step 5's pass image)
-// A pass is a pure function of (scene, settings, seed, pass index). Thread-safe: passes may run
-// concurrently on one PassRenderer.
+//   tracePhotons(i)                      -> PhotonMap     (step 1)
+//   tracePrimary(i)                      -> PrimaryPass   (step 2, the primary segments)
+//   splatPrimary(primary, photons)       -> Image         (step 3, primary segments' media)
+//   traceSecondary(primary, photons)     -> Image         (steps 2-4, the rest of the paths)
+//   renderPass(i) = traceSecondary + splatPrimary         (step 5's pass image)
+// traceCamera(i, photons) runs both camera stages. A pass is a pure function of (scene, settings,
+// seed, pass index). Thread-safe: passes may run concurrently on one PassRenderer.
+//
+// The scene is held by reference: its camera, its lights' positions, directions and powers and
+// its media's coefficients may change between passes (the viewer's reset) provided
+// sceneChanged() is called before the next pass; geometry, materials and the number of lights
+// are baked into the ray tracer (build a new PassRenderer for those).
 #include <memory>
 
 #include "core/image.h"
@@ -32,6 +38,8 @@ struct PassStats {
     double splatSeconds = 0;
 
     PassStats& operator+=(const PassStats& o);
+    void add(const PhotonMap& photons);       ///< the counts of a pass's photon stage
+    void add(const CameraPassStats& camera);  ///< the counts of its camera stages
 };
 
 class PassRenderer {
@@ -39,9 +47,16 @@ public:
     PassRenderer(const Scene& scene, const RenderSettings& settings, BeamBvh::Kind beamBvh = BeamBvh::Kind::FlatCurves);
 
     PhotonMap tracePhotons(uint64_t pass) const;
+    PrimaryPass tracePrimary(uint64_t pass) const;
+    /// Builds the pass's beam BVH and surface-photon grid and traces the secondary stage.
+    Image traceSecondary(const PrimaryPass& primary, const PhotonMap& photons, CameraPassStats* stats = nullptr) const;
     CameraPassResult traceCamera(uint64_t pass, const PhotonMap& photons) const;
-    Image splatPrimary(const CameraPassResult& camera, const PhotonMap& photons, RasterStats* stats = nullptr) const;
+    Image splatPrimary(const PrimarySegments& primary, const PhotonMap& photons, RasterStats* stats = nullptr) const;
     Image renderPass(uint64_t pass, PassStats* stats = nullptr) const;
+
+    /// Re-reads what the photon tracer derives from the lights (their sampling distribution and
+    /// the media they sit in). Not thread-safe: call with no pass running.
+    void sceneChanged();
 
     const Scene& scene() const { return m_scene; }
     const RenderSettings& settings() const { return m_settings; }

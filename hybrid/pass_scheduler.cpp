@@ -24,13 +24,12 @@ GpuMode parseGpuMode(const std::string& text) {
     throw Error("--gpu must be auto, on or off (got '" + text + "')");
 }
 
-/// One pass between its CPU stage and the accumulator.
+/// One pass between its CPU stages and the accumulator.
 struct PassScheduler::Flight {
     uint64_t pass = 0;
     PassStats stats;
-    std::shared_ptr<const CameraPassResult> camera;
     std::future<std::pair<Image, double>> splat;  // GL: the primary-segment image and its seconds
-    Image image;                                  // CPU only: the finished pass image
+    Image image;  // the secondary stage's radiance (GL), or the finished pass image (CPU only)
 };
 
 PassScheduler::PassScheduler(GpuMode mode, SchedulerOptions options) : m_mode(mode), m_options(options) {
@@ -83,7 +82,7 @@ void PassScheduler::reloadMedia() {
     if (m_glUsable) m_gl->submit([this](GlContext&) { m_splatter->reloadMedia(); }).get();
 }
 
-RenderProgress PassScheduler::run(const PassRenderer& renderer, Accumulator& acc, uint64_t firstPass,
+RenderProgress PassScheduler::run(PassRenderer& renderer, Accumulator& acc, uint64_t firstPass,
                                   RenderDisplay& display) {
     bind(renderer.scene());
     const RenderSettings& s = renderer.settings();
@@ -97,13 +96,14 @@ RenderProgress PassScheduler::run(const PassRenderer& renderer, Accumulator& acc
         if (s.timeBudget > 0) return secondsSince(start) < s.timeBudget;
         return next - firstPass < s.passes;
     };
+    auto interrupted = [&] { return m_resetRequested.load() || m_exitRequested.load(); };
     // Waits for the oldest pass's splat, adds the pass, asks the display.
     auto finishOldest = [&] {
         Flight f = std::move(flights.front());
         flights.pop_front();
         if (f.splat.valid()) {
             auto [image, splatSeconds] = f.splat.get();
-            image += f.camera->radiance;
+            image += f.image;
             f.image = std::move(image);
             f.stats.splatSeconds += splatSeconds;
         }
@@ -120,48 +120,63 @@ RenderProgress PassScheduler::run(const PassRenderer& renderer, Accumulator& acc
             if (f.splat.valid()) f.splat.wait();
         flights.clear();
     };
+    // The CPU stages of one pass, with the splat submitted between the primary and the secondary
+    // stage; returns Continue with the pass queued, or what a display or request said meanwhile
+    // (the pass is then dropped at the next stage boundary).
+    auto startPass = [&] {
+        Flight f;
+        f.pass = next++;
+        auto t0 = Clock::now();
+        auto photons = std::make_shared<const PhotonMap>(renderer.tracePhotons(f.pass));
+        f.stats.add(*photons);
+        f.stats.photonSeconds = secondsSince(t0);
+        if (interrupted()) return DisplayCommand::Continue;
+        auto t1 = Clock::now();
+        auto primary = std::make_shared<const PrimaryPass>(renderer.tracePrimary(f.pass));
+        CameraPassStats camera;
+        camera.rays = primary->rays;
+        double cameraSeconds = secondsSince(t1);
+        if (interrupted()) return DisplayCommand::Continue;
+        m_peakPassesHeld = std::max(m_peakPassesHeld, int(flights.size()) + 1);
+        while (int(flights.size()) >= m_options.queueDepth) {
+            DisplayCommand command = finishOldest();
+            if (command != DisplayCommand::Continue) return command;
+        }
+        auto t2 = Clock::now();
+        if (m_glUsable) {
+            f.splat = m_gl->submit([this, primary, photons](GlContext&) {
+                auto t = Clock::now();
+                Image image = m_splatter->splat(primary->segments, *photons);
+                return std::make_pair(std::move(image), secondsSince(t));
+            });
+            f.image = renderer.traceSecondary(*primary, *photons, &camera);
+            f.stats.cameraSeconds = cameraSeconds + secondsSince(t2);
+        } else {
+            Image radiance = renderer.traceSecondary(*primary, *photons, &camera);
+            f.stats.cameraSeconds = cameraSeconds + secondsSince(t2);
+            auto t3 = Clock::now();
+            if (!interrupted()) {
+                f.image = renderer.splatPrimary(primary->segments, *photons);
+                f.image += radiance;
+            }
+            f.stats.splatSeconds = secondsSince(t3);
+        }
+        f.stats.add(camera);
+        flights.push_back(std::move(f));
+        // Without GL nothing overlaps: the pass is finished at once (unless the loop is about to
+        // throw it away).
+        return m_glUsable || interrupted() ? DisplayCommand::Continue : finishOldest();
+    };
 
     try {
         for (;;) {
             DisplayCommand command = DisplayCommand::Continue;
-            if (wantMore()) {
-                Flight f;
-                f.pass = next++;
-                if (m_glUsable) {
-                    auto t0 = Clock::now();
-                    auto photons = std::make_shared<const PhotonMap>(renderer.tracePhotons(f.pass));
-                    auto t1 = Clock::now();
-                    f.camera = std::make_shared<const CameraPassResult>(renderer.traceCamera(f.pass, *photons));
-                    f.stats.photonPaths = photons->pathCount;
-                    f.stats.beams = photons->beams.size();
-                    f.stats.surfacePhotons = photons->surfacePhotons.size();
-                    f.stats.cameraRays = f.camera->stats.rays;
-                    f.stats.beamQueries = f.camera->stats.beamQueries;
-                    f.stats.beamHits = f.camera->stats.beamHits;
-                    f.stats.photonSeconds = std::chrono::duration<double>(t1 - t0).count();
-                    f.stats.cameraSeconds = secondsSince(t1);
-                    m_peakPassesHeld = std::max(m_peakPassesHeld, int(flights.size()) + 1);
-                    if (int(flights.size()) >= m_options.queueDepth) command = finishOldest();
-                    if (command == DisplayCommand::Continue) {
-                        std::shared_ptr<const CameraPassResult> camera = f.camera;
-                        f.splat = m_gl->submit([this, camera, photons](GlContext&) {
-                            auto t = Clock::now();
-                            Image image = m_splatter->splat(camera->primary, *photons);
-                            return std::make_pair(std::move(image), secondsSince(t));
-                        });
-                        flights.push_back(std::move(f));
-                    }
-                } else {
-                    m_peakPassesHeld = 1;
-                    f.image = renderer.renderPass(f.pass, &f.stats);
-                    flights.push_back(std::move(f));
-                    command = finishOldest();
-                }
-            } else if (!flights.empty()) {
+            if (wantMore())
+                command = startPass();
+            else if (!flights.empty())
                 command = finishOldest();
-            } else {
+            else
                 break;
-            }
             if (m_resetRequested.exchange(false) && command == DisplayCommand::Continue)
                 command = DisplayCommand::Reset;
             if (m_exitRequested) command = DisplayCommand::Exit;
@@ -170,6 +185,7 @@ RenderProgress PassScheduler::run(const PassRenderer& renderer, Accumulator& acc
                 discardFlights();
                 acc.reset();
                 display.restarting();
+                renderer.sceneChanged();
                 reloadMedia();
                 next = firstPass;
                 progress = RenderProgress();

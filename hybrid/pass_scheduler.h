@@ -2,21 +2,23 @@
 // The hybrid render loop: overlaps the CPU passes with the GL splatter and feeds one progressive
 // accumulator.
 //
-// Per pass i (PPB steps 1-5): the CPU traces pass i's photons and camera paths (gathering the
-// secondary segments through the beam BVH), then hands the primary segments and beams to the GL
-// thread, which splats them while the CPU goes on with pass i+1. Pass i is added to the
-// accumulator when its splat is in, in pass order; at most `queueDepth` passes wait for the GL
-// side, so memory stays flat however many passes run. The steady-state rate is that of the
-// slower side. (Splitting the camera pass so the GL side could start on pass i's primary
-// segments before pass i's secondary gather ends would shorten the latency of a pass, not the
-// rate; PassRenderer's stages are kept as they are.)
+// Per pass i (PPB steps 1-5): the CPU traces pass i's photons and primary camera segments and
+// hands them to the GL thread, which splats them while the CPU gathers pass i's secondary
+// segments (through the beam BVH) and then traces pass i+1's photons and primary segments. Pass i
+// is added to the accumulator when both halves are in, in pass order; at most `queueDepth` passes
+// wait for the GL side, so memory stays flat however many passes run. The steady-state rate is
+// that of the slower side.
 //
-// Without GL (`--gpu off`, or `auto` without a usable context) the same loop runs each pass with
-// PassRenderer::renderPass, the CPU twin of the splat: same seed, same image up to float rounding.
+// Without GL (`--gpu off`, or `auto` without a usable context) the same stages run one after the
+// other with the CPU twin of the splat (PassRenderer::splatPrimary): same seed, same image up to
+// float rounding.
 //
 // Reset and exit: from the display's answer after a pass, or from any thread through
-// requestReset()/requestExit(). Passes in flight are thrown away; the CPU stage under way and the
-// splat under way finish first (they are not interrupted), so a restart starts within one pass.
+// requestReset()/requestExit(). They are heard at every stage boundary (photons, primary,
+// secondary, splat): the pass under way and those in flight are thrown away; a splat already
+// submitted finishes first (GL work is not interrupted), so a restart starts within one stage and
+// one splat. After display.restarting() the scheduler calls renderer.sceneChanged() and reloads
+// the GL side's media, so a camera, light or medium change made there is rendered.
 //
 // Threading: run() blocks its calling thread, which also runs the CPU stages (TBB inside) and calls
 // the display; the GL context lives on a GlThread owned by the scheduler, kept across runs.
@@ -55,7 +57,7 @@ public:
     /// Renders passes firstPass, firstPass+1, ... into `acc` until renderer.settings().passes
     /// were added (or its time budget is spent), or the display or a request says exit.
     /// With GL: throws Error for On when the scene's media cannot be splatted (Auto falls back).
-    RenderProgress run(const PassRenderer& renderer, Accumulator& acc, uint64_t firstPass, RenderDisplay& display);
+    RenderProgress run(PassRenderer& renderer, Accumulator& acc, uint64_t firstPass, RenderDisplay& display);
 
     /// Prepares the GL splatter for `scene` (run() does it too), after which hybrid() and
     /// notice() are settled for it: throws Error for On when its media cannot be splatted.

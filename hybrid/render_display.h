@@ -21,9 +21,10 @@ public:
     virtual DisplayCommand passAdded(const Accumulator& acc, const RenderProgress& progress) = 0;
 
     /// After a reset, with no pass in flight and `acc` cleared, just before the first pass of the
-    /// new render: the one moment where the scene the renderer reads may change (the camera, the
-    /// media's coefficients; lights and geometry are baked into the PassRenderer: build a new one
-    /// and run again).
+    /// new render: the one moment where the scene the renderer reads may change: the camera, the
+    /// lights' positions, directions and powers, the media's coefficients (the loop then calls
+    /// PassRenderer::sceneChanged). Geometry and materials are baked into the PassRenderer's ray
+    /// tracer: for those, build a new one and run again.
     virtual void restarting() {}
 };
 

@@ -217,7 +217,7 @@ TEST(GlBeamSplatter, RealPassOfTheDefaultSceneMatchesTheCpuRasterizer) {
     for (uint64_t pass : {0u, 5u}) {
         PhotonMap photons = renderer.tracePhotons(pass);
         CameraPassResult camera = renderer.traceCamera(pass, photons);
-        Image cpu = renderer.splatPrimary(camera, photons);
+        Image cpu = renderer.splatPrimary(camera.primary, photons);
         Image gl = splatter.splat(camera.primary, photons);
         double rms = relativeRms(gl, cpu);
         EXPECT_LT(rms, 1e-3) << "pass " << pass;

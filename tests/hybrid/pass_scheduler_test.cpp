@@ -12,6 +12,7 @@
 #include "core/default_scene.h"
 #include "core/error.h"
 #include "tests/gpu/gpu_test_util.h"
+#include "tests/test_scenes.h"
 
 using namespace tyndall;
 using tyndall::test::relativeRms;
@@ -80,7 +81,7 @@ TEST(PassScheduler, HybridAndCpuOnlyGiveTheSameImage) {
     PassRenderer renderer(defaultScene(), s);
     PhotonMap photons = renderer.tracePhotons(0);
     CameraPassResult camera = renderer.traceCamera(0, photons);
-    Image splat = renderer.splatPrimary(camera, photons), none(s.width, s.height);
+    Image splat = renderer.splatPrimary(camera.primary, photons), none(s.width, s.height);
     Image full = splat;
     full += camera.radiance;
     EXPECT_GT(relativeRms(camera.radiance, full), 0.05);
@@ -104,7 +105,7 @@ TEST(PassScheduler, HybridAndCpuOnlyAgreeInAGridMedium) {
     PhotonMap photons = renderer.tracePhotons(0);
     CameraPassResult camera = renderer.traceCamera(0, photons);
     ASSERT_GT(photons.freeFlightsPerBeam, 0);
-    Image full = renderer.splatPrimary(camera, photons);
+    Image full = renderer.splatPrimary(camera.primary, photons);
     full += camera.radiance;
     EXPECT_GT(relativeRms(camera.radiance, full), 0.05) << "the primary splat should matter in the grid medium";
 }
@@ -138,34 +139,92 @@ TEST(PassScheduler, ExitFromTheDisplayStopsAfterThatPass) {
 }
 
 TEST(PassScheduler, ResetAndExitFromAnotherThread) {
+    // Requests are heard at the next stage boundary: at most one pass (one whose last stage was
+    // under way) is added between a request and its effect.
     RenderSettings s = smallSettings(100000);
-    PassScheduler scheduler(GpuMode::On);
-    PassRenderer renderer(defaultScene(), s);
-    Accumulator acc(s.width, s.height);
-    std::atomic<uint64_t> passes{0};
-    std::atomic<int> restarts{0};
-    CallbackDisplay display(
-        [&](const Accumulator&, const RenderProgress& p) {
-            passes = p.passesDone;
-            return DisplayCommand::Continue;
-        },
-        [&] {
-            passes = 0;
-            ++restarts;
+    for (GpuMode mode : {GpuMode::Off, GpuMode::On}) {
+        PassScheduler scheduler(mode);
+        PassRenderer renderer(defaultScene(), s);
+        Accumulator acc(s.width, s.height);
+        std::atomic<uint64_t> passes{0};
+        std::atomic<int> restarts{0};
+        std::atomic<bool> resetRequested{false}, exitRequested{false};
+        int addedAfterReset = 0, addedAfterExit = 0;
+        CallbackDisplay display(
+            [&](const Accumulator&, const RenderProgress& p) {
+                if (resetRequested && restarts == 0) ++addedAfterReset;
+                if (exitRequested) ++addedAfterExit;
+                passes = p.passesDone;
+                return DisplayCommand::Continue;
+            },
+            [&] {
+                passes = 0;
+                ++restarts;
+            });
+        std::thread viewer([&] {
+            while (passes < 3) std::this_thread::yield();
+            resetRequested = true;
+            scheduler.requestReset();
+            while (restarts == 0) std::this_thread::yield();
+            while (passes < 2) std::this_thread::yield();
+            exitRequested = true;
+            scheduler.requestExit();
         });
-    std::thread viewer([&] {
-        while (passes < 3) std::this_thread::yield();
-        scheduler.requestReset();
-        while (restarts == 0) std::this_thread::yield();
-        while (passes < 2) std::this_thread::yield();
-        scheduler.requestExit();
-    });
-    RenderProgress p = scheduler.run(renderer, acc, 0, display);
-    viewer.join();
-    EXPECT_EQ(restarts, 1);
-    EXPECT_GE(p.passesDone, 2u);
-    EXPECT_LT(p.passesDone, 20u) << "exit should stop within a pass or two";
-    EXPECT_EQ(acc.passCount(), p.passesDone);
+        RenderProgress p = scheduler.run(renderer, acc, 0, display);
+        viewer.join();
+        EXPECT_EQ(restarts, 1);
+        EXPECT_LE(addedAfterReset, 1);
+        EXPECT_LE(addedAfterExit, 1);
+        EXPECT_GE(p.passesDone, 2u);
+        EXPECT_EQ(acc.passCount(), p.passesDone);
+    }
+}
+
+TEST(PassScheduler, CameraAndLightMovedAtAResetAreRendered) {
+    // The viewer's reset: restarting() moves the camera (out of the fog, into the glass ball, so
+    // the medium it sits in changes too) and the spot light; the render that follows equals a
+    // fresh render of the moved scene.
+    RenderSettings s = smallSettings(6);
+    auto move = [](Scene& scene) {
+        scene.camera = Camera::lookAt({0.05f, 0.0f, 0.1f}, {0, -0.4f, -1.5f}, {0, 1, 0}, 1.2f);
+        scene.lights[0].position = {0.4f, 1.4f, 0.2f};
+    };
+    Scene moved = test::causticScene();
+    move(moved);
+    PassRenderer freshRenderer(moved, s);
+    Accumulator fresh(s.width, s.height);
+    for (uint64_t i = 0; i < s.passes; ++i) fresh.addPass(freshRenderer.renderPass(i));
+
+    Scene original = test::causticScene();
+    PassRenderer unmovedRenderer(original, s);
+    Accumulator unmoved(s.width, s.height);
+    for (uint64_t i = 0; i < s.passes; ++i) unmoved.addPass(unmovedRenderer.renderPass(i));
+    ASSERT_GT(relativeRms(unmoved.mean(), fresh.mean()), 0.1) << "the move should change the image";
+
+    for (GpuMode mode : {GpuMode::Off, GpuMode::On}) {
+        Scene scene = test::causticScene();
+        PassScheduler scheduler(mode);
+        PassRenderer renderer(scene, s);
+        Accumulator acc(s.width, s.height);
+        bool reset = false;
+        CallbackDisplay display(
+            [&](const Accumulator&, const RenderProgress& p) {
+                if (p.passesDone == 3 && !reset) {
+                    reset = true;
+                    return DisplayCommand::Reset;
+                }
+                return DisplayCommand::Continue;
+            },
+            [&] { move(scene); });
+        scheduler.run(renderer, acc, 0, display);
+        ASSERT_TRUE(reset);
+        ASSERT_EQ(acc.passCount(), s.passes);
+        double rms = relativeRms(acc.mean(), fresh.mean());
+        if (mode == GpuMode::Off)
+            EXPECT_EQ(rms, 0.0) << "CPU-only: the same passes bit for bit";
+        else
+            EXPECT_LT(rms, 1e-3) << "hybrid: the same passes up to float rounding";
+    }
 }
 
 TEST(PassScheduler, TimeBudgetStopsTheRender) {

@@ -26,7 +26,7 @@ TEST(SmokeGlParity, RealPassOfTheSmokeSceneMatchesTheCpuRasterizer) {
         PhotonMap photons = renderer.tracePhotons(pass);
         CameraPassResult camera = renderer.traceCamera(pass, photons);
         ASSERT_GT(camera.primary.freeFlightsPerRay, 0);
-        Image cpu = renderer.splatPrimary(camera, photons);
+        Image cpu = renderer.splatPrimary(camera.primary, photons);
         Image gl = splatter.splat(camera.primary, photons);
         double rms = test::relativeRms(gl, cpu);
         std::printf("pass %llu: %zu beams, relative RMS GL vs CPU %.3g\n", (unsigned long long)pass,
