@@ -35,9 +35,10 @@ struct Half {
 
 /// Renders `scene` progressively through `scheduler` (GL splat or CPU); `passes` > 0 forces that
 /// many passes (the twin matches the heterogeneous half's count even when that one ran on a time
-/// budget or was interrupted).
+/// budget or was interrupted). Stops early once `stopAtInterrupt` interrupts were received. Prints
+/// the scheduler's notice unless it is `lastNotice` (both halves falling back for one reason).
 Half renderHalf(PassScheduler& scheduler, const Scene& scene, RenderSettings settings, uint64_t passes,
-                const char* what) {
+                const char* what, int stopAtInterrupt, std::string& lastNotice) {
     if (passes > 0) {
         settings.passes = passes;
         settings.timeBudget = 0;
@@ -49,10 +50,12 @@ Half renderHalf(PassScheduler& scheduler, const Scene& scene, RenderSettings set
         if (tty)
             std::fprintf(stderr, "\r%s: pass %llu  %.1f s ", what, (unsigned long long)pr.passesDone,
                          pr.elapsedSeconds);
-        return interruptRequested() ? DisplayCommand::Exit : DisplayCommand::Continue;
+        return interruptCount() >= stopAtInterrupt ? DisplayCommand::Exit : DisplayCommand::Continue;
     });
     scheduler.bind(scene);
-    if (!scheduler.notice().empty()) std::fprintf(stderr, "tyndall: %s\n", scheduler.notice().c_str());
+    if (!scheduler.notice().empty() && scheduler.notice() != lastNotice)
+        std::fprintf(stderr, "tyndall: %s\n", scheduler.notice().c_str());
+    lastNotice = scheduler.notice();
     RenderProgress p = scheduler.run(renderer, acc, 0, display);
     if (tty) std::fprintf(stderr, "\n");
     return {acc.mean(), acc.passCount(), p.elapsedSeconds, scheduler.hybrid()};
@@ -100,12 +103,14 @@ void addCompareCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--gpu", o->common.settings.gpu,
                     "Primary-beam splatting on OpenGL: auto, on or off (as for `tyndall render`)")
         ->capture_default_str();
-    cmd->add_option("--density", o->density,
-                    "Density of the homogeneous twin (default: each grid's mean over its active voxels)");
-    cmd->callback([o, &exitCode]() {
+    CLI::Option* density = cmd->add_option(
+        "--density", o->density, "Density of the homogeneous twin (default: each grid's mean over its active voxels)");
+    cmd->callback([o, density, &exitCode]() {
         CommonOptions& c = o->common;
         finishOptions(c);
-        if (o->density != -1.0f && !(o->density >= 0.0f && std::isfinite(o->density)))
+        if (density->count() == 0)
+            o->density = -1.0f;
+        else if (!(o->density >= 0.0f && std::isfinite(o->density)))
             throw Error("--density must be a finite number >= 0");
         const std::string hetPath = withSuffix(c.output, "-heterogeneous.exr");
         const std::string homPath = withSuffix(c.output, "-homogeneous.exr");
@@ -124,9 +129,16 @@ void addCompareCommand(CLI::App& app, int& exitCode) {
 
         ThreadLimit threads(c.settings.threads);
         PassScheduler scheduler(parseGpuMode(c.settings.gpu));
-        installInterruptHandler();
-        Half het = renderHalf(scheduler, scene, c.settings, 0, "heterogeneous");
-        Half hom = renderHalf(scheduler, twin, c.settings, het.passes, "homogeneous");
+        // Ctrl-C ends the heterogeneous half (written at once); its twin still renders as many
+        // passes, unless Ctrl-C comes again; a third quits.
+        installInterruptHandler(3);
+        std::string notice;
+        Half het = renderHalf(scheduler, scene, c.settings, 0, "heterogeneous", 1, notice);
+        if (interruptRequested())
+            std::fprintf(stderr,
+                         "tyndall: heterogeneous half stopped after %llu passes; rendering the homogeneous twin to "
+                         "as many (Ctrl-C again stops it)\n",
+                         (unsigned long long)het.passes);
 
         std::string densities;
         for (size_t i = 0; i < used.size(); ++i) densities += (i ? "," : "") + formatDensity(used[i]);
@@ -136,13 +148,16 @@ void addCompareCommand(CLI::App& app, int& exitCode) {
                               {"tyndall:settings", settings.dump()},
                               {"tyndall:passes", std::to_string(het.passes)},
                               {"tyndall:twin_density", densities}};
-        auto withHalf = [&](const char* half) {
+        auto withHalf = [&](const char* half, uint64_t passes) {
             ImageMetadata m = meta;
             m.push_back({"tyndall:half", half});
+            for (auto& [key, value] : m)
+                if (key == "tyndall:passes") value = std::to_string(passes);
             return m;
         };
-        writeImage(hetPath, het.image, withHalf("heterogeneous"));
-        writeImage(homPath, hom.image, withHalf("homogeneous"));
+        writeImage(hetPath, het.image, withHalf("heterogeneous", het.passes));
+        Half hom = renderHalf(scheduler, twin, c.settings, het.passes, "homogeneous", interruptCount() + 1, notice);
+        writeImage(homPath, hom.image, withHalf("homogeneous", hom.passes));
         const std::string labels[2] = {
             "heterogeneous (OpenVDB grid)",
             (o->density >= 0 ? "homogeneous, density " : "homogeneous, mean density ") + densities};
@@ -151,11 +166,14 @@ void addCompareCommand(CLI::App& app, int& exitCode) {
 
         double hetPerPass = het.seconds / std::max<uint64_t>(het.passes, 1);
         double homPerPass = hom.seconds / std::max<uint64_t>(hom.passes, 1);
+        std::string passes = het.passes == hom.passes ? std::to_string(het.passes) + " passes each"
+                                                      : std::to_string(het.passes) + " and " +
+                                                            std::to_string(hom.passes) + " passes (twin stopped early)";
         std::printf(
-            "compared %s: %llu passes each; heterogeneous %.3f s/pass (%s), homogeneous (density %s) %.3f "
+            "compared %s: %s; heterogeneous %.3f s/pass (%s), homogeneous (density %s) %.3f "
             "s/pass (%s) (ratio %.2f)%s -> %s, %s, %s\n",
-            scene.name.c_str(), (unsigned long long)het.passes, hetPerPass, het.hybrid ? "hybrid" : "CPU",
-            densities.c_str(), homPerPass, hom.hybrid ? "hybrid" : "CPU", hetPerPass / std::max(homPerPass, 1e-12),
+            scene.name.c_str(), passes.c_str(), hetPerPass, het.hybrid ? "hybrid" : "CPU", densities.c_str(),
+            homPerPass, hom.hybrid ? "hybrid" : "CPU", hetPerPass / std::max(homPerPass, 1e-12),
             interruptRequested() ? " [interrupted]" : "", c.output.c_str(), hetPath.c_str(), homPath.c_str());
         exitCode = interruptRequested() ? 130 : 0;
     });

@@ -6,15 +6,19 @@
 
 namespace tyndall::app {
 namespace {
-std::atomic<bool> g_interrupted{false};
+std::atomic<int> g_interrupts{0};
+std::atomic<int> g_quitAfter{2};
 extern "C" void onSignal(int) {
-    if (g_interrupted.exchange(true)) std::_Exit(130);  // a second Ctrl-C quits at once
+    if (g_interrupts.fetch_add(1) + 1 >= g_quitAfter.load()) std::_Exit(130);
 }
 }  // namespace
 
-void installInterruptHandler() {
+void installInterruptHandler(int quitAfter) {
+    g_quitAfter = quitAfter;
     std::signal(SIGINT, onSignal);
     std::signal(SIGTERM, onSignal);
 }
-bool interruptRequested() { return g_interrupted.load(); }
+int interruptCount() {
+    return g_interrupts.load();
+}
 }  // namespace tyndall::app

@@ -1,11 +1,19 @@
 // `tyndall compare`: the homogeneous twin keeps albedo and g and takes the grid's mean density; the
 // command writes one side-by-side image with labels and one EXR per half, with equal pass counts;
 // a scene without a grid medium is a clear error. Also the bitmap label font.
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "app/cmd_compare.h"
@@ -88,6 +96,104 @@ TEST(CompareCommand, WritesLabelledHalvesAndOneExrPerHalf) {
     double diff = 0;
     for (size_t i = 0; i < het.pixels.size(); ++i) diff += std::abs(het.pixels[i].g - hom.pixels[i].g);
     EXPECT_GT(diff, 0.0);
+}
+
+namespace {
+/// A string attribute of an image file ("" when absent).
+std::string imageAttribute(const std::string& path, const std::string& name) {
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) return "";
+    return in->spec().get_string_attribute(name);
+}
+
+/// Whether process `pid` has a handler for SIGINT (Linux: the SigCgt mask in /proc/PID/status).
+bool catchesSigint(pid_t pid) {
+    std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+    std::string line;
+    while (std::getline(status, line))
+        if (line.rfind("SigCgt:", 0) == 0) return (std::stoull(line.substr(7), nullptr, 16) >> (SIGINT - 1)) & 1;
+    return false;
+}
+
+struct CommandRun {
+    int exitCode = -1;
+    std::string output;
+};
+
+/// Runs the tyndall binary with `args`, stdout and stderr together.
+CommandRun runTyndall(const std::string& args) {
+    std::string cmd = std::string(TYNDALL_BINARY) + " " + args + " 2>&1";
+    CommandRun r;
+    FILE* pipe = popen(cmd.c_str(), "r");
+    if (!pipe) return r;
+    char buf[512];
+    while (fgets(buf, sizeof buf, pipe)) r.output += buf;
+    int status = pclose(pipe);
+    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+}  // namespace
+
+TEST(CompareCommand, SceneFileAndExplicitDensity) {
+    const std::string out = test::outputDir() + "/compare-scene.png";
+    CommandRun r = runTyndall("compare " + std::string(TYNDALL_SOURCE_DIR) +
+                              "/scenes/caustic-box-smoke.json --density 0.5 --size 48x32 " +
+                              "--passes 2 --photons 200 --gpu off -o " + out);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("2 passes each"), std::string::npos) << r.output;
+    const std::string hom = test::outputDir() + "/compare-scene-homogeneous.exr";
+    EXPECT_EQ(imageAttribute(hom, "tyndall:twin_density"), "0.5");
+    EXPECT_EQ(imageAttribute(hom, "tyndall:half"), "homogeneous");
+    EXPECT_EQ(imageAttribute(hom, "tyndall:passes"), "2");
+    EXPECT_NE(imageAttribute(hom, "tyndall:scene").find("caustic-box-smoke.json"), std::string::npos);
+    Image both = readImage(out);
+    EXPECT_EQ(both.height, 32);
+    EXPECT_GT(both.width, 2 * 48);
+
+    // A scene without a density grid has nothing to compare: one line, non-zero exit.
+    CommandRun bad =
+        runTyndall("compare " + std::string(TYNDALL_SOURCE_DIR) +
+                   "/scenes/caustic-box.json --passes 1 --size 16x16 -o " + test::outputDir() + "/compare-bad.png");
+    EXPECT_NE(bad.exitCode, 0);
+    EXPECT_EQ(std::count(bad.output.begin(), bad.output.end(), '\n'), 1) << bad.output;
+    CommandRun negative =
+        runTyndall("compare --density -1 --passes 1 --gpu off -o " + test::outputDir() + "/compare-bad.png");
+    EXPECT_NE(negative.exitCode, 0);
+    EXPECT_NE(negative.output.find("--density"), std::string::npos) << negative.output;
+}
+
+TEST(CompareCommand, InterruptKeepsBothHalvesAtTheSamePassCount) {
+    // Ctrl-C during the heterogeneous half: that half is written at once and the homogeneous twin
+    // still renders as many passes, so the comparison stays fair.
+    const std::string out = test::outputDir() + "/compare-interrupt.png";
+    const std::string het = test::outputDir() + "/compare-interrupt-heterogeneous.exr";
+    const std::string hom = test::outputDir() + "/compare-interrupt-homogeneous.exr";
+    std::filesystem::remove(het);
+    std::filesystem::remove(hom);
+    pid_t pid = fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+        std::freopen("/dev/null", "w", stdout);
+        std::freopen("/dev/null", "w", stderr);
+        execl(TYNDALL_BINARY, TYNDALL_BINARY, "compare", "--passes", "100000", "--size", "32x24", "--photons", "100",
+              "--gpu", "off", "-o", out.c_str(), (char*)nullptr);
+        _exit(127);
+    }
+    // Interrupt once the command catches SIGINT (its handler is installed just before rendering),
+    // and a moment later, so that some passes are in.
+    for (int i = 0; i < 600 && !catchesSigint(pid); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    ASSERT_TRUE(catchesSigint(pid)) << "compare never installed its interrupt handler";
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    kill(pid, SIGINT);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 130);
+    const std::string hetPasses = imageAttribute(het, "tyndall:passes");
+    ASSERT_FALSE(hetPasses.empty()) << "the heterogeneous half was not written";
+    EXPECT_GE(std::stoull(hetPasses), 1u);
+    EXPECT_EQ(imageAttribute(hom, "tyndall:passes"), hetPasses);
+    EXPECT_TRUE(std::filesystem::exists(out));
 }
 
 TEST(LabelText, DrawsGlyphsInsideItsBox) {
