@@ -9,6 +9,7 @@
 #include "core/mesh_builders.h"
 #include "core/scene.h"
 #include "core/settings.h"
+#include "core/vdb_grid.h"
 #include "cpu/pass_renderer.h"
 
 namespace tyndall::test {
@@ -46,6 +47,42 @@ inline Scene makeGridRoomScene(const GridRoom& r, const Medium& medium, const st
     s.finalize();
     s.validate();
     return s;
+}
+
+/// The room for the real smoke plume ../shared/assets/vdb/openusd/smoke_000002.vdb.
+inline GridRoom smoke000002Room() {
+    GridRoom room;
+    room.lo = Vec3(-2.0f, 0.0f, -2.5f);
+    room.hi = Vec3(2.0f, 3.5f, 2.5f);
+    room.wallAlbedo = Rgb(0.25f);
+    room.light = Vec3(1.4f, 3.2f, 1.0f);
+    room.intensity = Rgb(12.0f);
+    room.eye = Vec3(0.0f, 1.6f, 2.4f);
+    room.target = Vec3(0.0f, 1.5f, 0.0f);
+    room.yFovDegrees = 60.0f;
+    return room;
+}
+
+/// The plume of smoke_000002.vdb (`path`) standing in smoke000002Room(): the file is z-up, ~6.6 x
+/// 6.5 x 10.4 units; it is turned y-up (y' = z, z' = -y), scaled by 0.3 and stood on the floor.
+inline Scene makeSmoke000002Room(const std::string& path) {
+    Affine3 turn;
+    turn.m[0][0] = 0.3f;
+    turn.m[1][1] = 0.0f, turn.m[1][2] = 0.3f;
+    turn.m[2][1] = -0.3f, turn.m[2][2] = 0.0f;
+    VdbGridSource src;
+    src.file = path;
+    src.transform = turn;
+    Bounds3 b = VdbDensityGrid::load(src)->bounds();
+    Vec3 shift = Vec3(0.0f, 0.05f, 0.0f) - Vec3(b.center().x, b.lo.y, b.center().z);
+    for (int i = 0; i < 3; ++i) src.transform.m[i][3] = shift[i];
+    Medium smoke;
+    smoke.name = "smoke";
+    smoke.sigmaS = Rgb(4.0f, 3.8f, 3.6f);
+    smoke.sigmaA = Rgb(0.5f, 0.7f, 0.9f);
+    smoke.g = 0.3f;
+    smoke.density = VdbDensityGrid::load(src);
+    return makeGridRoomScene(smoke000002Room(), smoke, "smoke_000002 room");
 }
 
 /// Renders `passes` passes into a fresh accumulator.

@@ -13,8 +13,8 @@
 #include "core/error.h"
 #include "core/scene_file.h"
 #include "core/vdb_grid.h"
-#include "tests/test_util.h"
 #include "tests/scene/scene_test_util.h"
+#include "tests/test_util.h"
 
 namespace tyndall {
 namespace {
@@ -70,7 +70,8 @@ TEST(SceneDensity, FileGridWithNameScaleAndTransform) {
     writeOneVoxelGrid();
     json t = {{"scale", 0.5}, {"translate", {1, 0, 0}}};
     SceneFile f = loadSceneFile(
-        write("file-grid.json", sceneWith({{"file", "one-voxel.vdb"}, {"grid", "smoke"}, {"scale", 3}, {"transform", t}}).dump()));
+        write("file-grid.json",
+              sceneWith({{"file", "one-voxel.vdb"}, {"grid", "smoke"}, {"scale", 3}, {"transform", t}}).dump()));
     const Medium& m = f.scene.media[f.scene.globalMedium];
     ASSERT_FALSE(m.homogeneous());
     // Voxel (0,0,0) lands at x = 1 (scaled by 0.5, moved by 1); value 2 x scale 3.
@@ -122,7 +123,8 @@ TEST(SceneDensity, ErrorsNameThePlace) {
         {"transform-on-procedural", sceneWith({{"procedural", "smoke"}, {"transform", {{"scale", 2}}}}),
          "/media/0/density", "apply to file grids"},
         {"typo", sceneWith({{"procedural", "smoke"}, {"hieght", 2}}), "/media/0/density", "hieght"},
-        {"negative-scale", sceneWith({{"procedural", "smoke"}, {"scale", -1}}), "/media/0/density/scale", "in [0, 1e+06]"},
+        {"negative-scale", sceneWith({{"procedural", "smoke"}, {"scale", -1}}), "/media/0/density/scale",
+         "in [0, 1e+06]"},
         {"too-many-voxels", sceneWith({{"procedural", "rolling_fog"}, {"voxel_size", 0.001}}), "/media/0/density",
          "raise voxel_size"},
         {"colour-extinction", sceneWith({{"procedural", "smoke"}}, {{"sigma_s", {1, 0.5, 0.2}}}), "/media/0",

@@ -188,36 +188,10 @@ TEST(VdbAssets, Smoke000001EmptyAndNonFloatGrids) {
 TEST(VdbAssets, Smoke000002Renders) {
     const std::string path = assetPath("openusd/smoke_000002.vdb");
     REQUIRE_ASSET(path);
-    // The plume is z-up, ~6.6 x 6.5 x 10.4 units: turn it y-up (y' = z, z' = -y), scale it by 0.3
-    // and stand it on the floor of a 4 x 3.5 x 5 room.
-    Affine3 turn;
-    turn.m[0][0] = 0.3f;
-    turn.m[1][1] = 0.0f, turn.m[1][2] = 0.3f;
-    turn.m[2][1] = -0.3f, turn.m[2][2] = 0.0f;
-    VdbGridSource src = source(path);
-    src.transform = turn;
-    Bounds3 b = VdbDensityGrid::load(src)->bounds();
-    Vec3 shift = Vec3(0.0f, 0.05f, 0.0f) - Vec3(b.center().x, b.lo.y, b.center().z);
-    for (int i = 0; i < 3; ++i) src.transform.m[i][3] = shift[i];
-    auto grid = VdbDensityGrid::load(src);
-    EXPECT_NEAR(grid->bounds().lo.y, 0.05f, 1e-4f);
-
-    Medium smoke;
-    smoke.name = "smoke";
-    smoke.sigmaS = Rgb(4.0f, 3.8f, 3.6f);
-    smoke.sigmaA = Rgb(0.5f, 0.7f, 0.9f);
-    smoke.g = 0.3f;
-    smoke.density = grid;
-    test::GridRoom room;
-    room.lo = Vec3(-2.0f, 0.0f, -2.5f);
-    room.hi = Vec3(2.0f, 3.5f, 2.5f);
-    room.wallAlbedo = Rgb(0.25f);
-    room.light = Vec3(1.4f, 3.2f, 1.0f);
-    room.intensity = Rgb(12.0f);
-    room.eye = Vec3(0.0f, 1.6f, 2.4f);
-    room.target = Vec3(0.0f, 1.5f, 0.0f);
-    room.yFovDegrees = 60.0f;
-    Scene scene = test::makeGridRoomScene(room, smoke, "smoke_000002 room");
+    Scene scene = test::makeSmoke000002Room(path);
+    Medium smoke = scene.media[0];
+    test::GridRoom room = test::smoke000002Room();
+    EXPECT_NEAR(smoke.density->bounds().lo.y, 0.05f, 1e-4f);
     Medium clear = smoke;
     clear.density.reset();
     clear.sigmaS = clear.sigmaA = Rgb(0.0f);

@@ -54,7 +54,6 @@ std::shared_ptr<const VdbDensityGrid> smokeBlobs() {
     return VdbDensityGrid::fromDense(dims, v, Affine3::scaleTranslate(Vec3(voxel), lo), "smoke blobs");
 }
 
-
 TEST(VdbReference, PpbInAVdbSmokeRoomConvergesToTheReference) {
     Scene scene = test::makeConsistencyScene();
     Medium& smoke = scene.media[scene.globalMedium];
