@@ -31,15 +31,11 @@ bool hasExtension(const GlFunctions& gl, const char* name) {
 
 GlSplatFrame splatFrame(const Camera& cam, const PrimarySegments& primary, const PhotonMap& photons) {
     GlSplatFrame f{};
-    auto put = [](float* dst, const Vec3& v) {
-        dst[0] = v.x;
-        dst[1] = v.y;
-        dst[2] = v.z;
-    };
-    put(f.cameraPosition, cam.position);
-    put(f.cameraRight, cam.right);
-    put(f.cameraUp, cam.up);
-    put(f.cameraForward, cam.forward);
+    auto vec3 = [](const Vec3& v) { return shader::vec3{v.x, v.y, v.z}; };
+    f.cameraPosition = vec3(cam.position);
+    f.cameraRight = vec3(cam.right);
+    f.cameraUp = vec3(cam.up);
+    f.cameraForward = vec3(cam.forward);
     // The same float expressions as beamFootprint() in cpu/beam_rasterizer.cpp.
     const float tanHalf = std::tan(0.5f * cam.yFov);
     f.tanHalfX = tanHalf * float(primary.width) / float(primary.height);
@@ -47,8 +43,7 @@ GlSplatFrame splatFrame(const Camera& cam, const PrimarySegments& primary, const
     f.focalPixels = 0.5f * float(primary.height) / tanHalf;
     f.lensRadius = cam.lensRadius;
     f.focusDistance = cam.focusDistance;
-    f.filmSize[0] = primary.width;
-    f.filmSize[1] = primary.height;
+    f.filmSize = {primary.width, primary.height};
     f.freeFlightsPerRay = primary.freeFlightsPerRay;
     f.freeFlightsPerBeam = photons.freeFlightsPerBeam;
     f.beamCount = int32_t(photons.beams.size());
@@ -136,9 +131,9 @@ void GlBeamSplatter::reloadMedia() {
         b.program = std::make_unique<GlProgram>(
             m_gl, "beam splat",
             std::vector<GlShaderStage>{
-                {GL_VERTEX_SHADER, {define, glsl("layout.glsl"), glsl("beam_footprint.glsl"), glsl("beam_splat.vert")}},
+                {GL_VERTEX_SHADER, {define, glsl("gl_layout.h"), glsl("beam_footprint.glsl"), glsl("beam_splat.vert")}},
                 {GL_FRAGMENT_SHADER,
-                 {define, glsl("layout.glsl"), glsl("beam_estimator.glsl"), glsl("media.glsl"),
+                 {define, glsl("gl_layout.h"), glsl("beam_estimator.glsl"), glsl("media.glsl"),
                   glsl("pixel_radiance.glsl"), glsl("beam_splat.frag")}}});
         b.programHasGridMedia = grid;
     }
@@ -193,11 +188,10 @@ Image GlBeamSplatter::splat(const PrimarySegments& primary, const PhotonMap& pho
     b.upload(b.beams, photons.beams.data(), photons.beams.size() * sizeof(PhotonBeam));
     b.upload(b.beamFreeFlights, photons.freeFlights.data(), photons.freeFlights.size() * sizeof(float));
     gl.BindBufferBase(GL_UNIFORM_BUFFER, kBindFrame, b.frame);
-    const std::pair<GlBinding, GLuint> storage[] = {
-        {kBindPrimaryRays, b.rays}, {kBindRayFreeFlights, b.rayFreeFlights},
-        {kBindBeams, b.beams},      {kBindBeamFreeFlights, b.beamFreeFlights},
-        {kBindMedia, b.media},      {kBindVolumes, b.volumes},
-        {kBindVoxels, b.voxels}};
+    const std::pair<int, GLuint> storage[] = {{kBindPrimaryRays, b.rays}, {kBindRayFreeFlights, b.rayFreeFlights},
+                                              {kBindBeams, b.beams},      {kBindBeamFreeFlights, b.beamFreeFlights},
+                                              {kBindMedia, b.media},      {kBindVolumes, b.volumes},
+                                              {kBindVoxels, b.voxels}};
     for (const auto& [binding, buffer] : storage) gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer);
     local.uploadSeconds = secondsSince(t0);
 

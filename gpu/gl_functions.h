@@ -38,6 +38,8 @@ namespace tyndall {
     X(PFNGLLINKPROGRAMPROC, LinkProgram)                                 \
     X(PFNGLGETPROGRAMIVPROC, GetProgramiv)                               \
     X(PFNGLGETPROGRAMINFOLOGPROC, GetProgramInfoLog)                     \
+    X(PFNGLGETPROGRAMRESOURCEINDEXPROC, GetProgramResourceIndex)         \
+    X(PFNGLGETPROGRAMRESOURCEIVPROC, GetProgramResourceiv)               \
     X(PFNGLDELETEPROGRAMPROC, DeleteProgram)                             \
     X(PFNGLUSEPROGRAMPROC, UseProgram)                                   \
     X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)                   \

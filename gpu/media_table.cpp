@@ -9,10 +9,8 @@ GlMediaTable buildMediaTable(const Scene& scene, size_t maxVoxels) {
     for (const Medium& m : scene.media) {
         GlMedium g{};
         Rgb st = m.sigmaT();
-        for (int c = 0; c < 3; ++c) {
-            g.sigmaS[c] = m.sigmaS[c];
-            g.sigmaT[c] = st[c];
-        }
+        g.sigmaS = {m.sigmaS.r, m.sigmaS.g, m.sigmaS.b};
+        g.sigmaT = {st.r, st.g, st.b};
         g.g = m.g;
         g.volume = -1;
         if (!m.homogeneous()) {
@@ -26,11 +24,11 @@ GlMediaTable buildMediaTable(const Scene& scene, size_t maxVoxels) {
                             " voxels, expected " + std::to_string(dense.voxelCount()) + " (at most " +
                             std::to_string(left) + ")");
             GlVolume v{};
-            for (int r = 0; r < 3; ++r)
-                for (int c = 0; c < 4; ++c) v.worldToIndex[r][c] = dense.worldToIndex[r][c];
-            v.size[0] = dense.nx;
-            v.size[1] = dense.ny;
-            v.size[2] = dense.nz;
+            for (int r = 0; r < 3; ++r) {
+                const auto& row = dense.worldToIndex[r];
+                v.worldToIndex[r] = {row[0], row[1], row[2], row[3]};
+            }
+            v.size = {dense.nx, dense.ny, dense.nz};
             v.offset = uint32_t(table.voxels.size());
             table.voxels.insert(table.voxels.end(), dense.voxels.begin(), dense.voxels.end());
             g.volume = int32_t(table.volumes.size());

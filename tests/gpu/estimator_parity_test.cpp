@@ -123,7 +123,7 @@ TEST(EstimatorParity, GlslTwinMatchesCpp) {
     const GlFunctions& gl = ctx->gl();
     GlProgram program(
         gl, "estimator parity",
-        {{GL_COMPUTE_SHADER, {glsl("layout.glsl"), glsl("beam_estimator.glsl"), glsl("media.glsl"), kParityShader}}});
+        {{GL_COMPUTE_SHADER, {glsl("gl_layout.h"), glsl("beam_estimator.glsl"), glsl("media.glsl"), kParityShader}}});
     GlSplatFrame frame{};
     frame.freeFlightsPerRay = 4;
     frame.freeFlightsPerBeam = 4;
