@@ -2,7 +2,9 @@
 
 #include <tbb/global_control.h>
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -22,19 +24,47 @@ CLI::Validator nonNegativeInteger() {
         "", "non-negative");
 }
 
+CLI::Validator positiveInteger() {
+    return CLI::Validator(
+        [](std::string& v) {
+            std::string error = "expected a positive integer, got '" + v + "'";
+            if (v.empty() || v[0] == '-') return error;
+            // Leave text that is no number to CLI11's conversion error; only zero is caught here.
+            char* end = nullptr;
+            unsigned long long n = std::strtoull(v.c_str(), &end, 10);
+            return end != v.c_str() && *end == '\0' && n == 0 ? error : std::string();
+        },
+        "", "positive");
+}
+
+CLI::Validator positiveNumber() {
+    return CLI::Validator(
+        [](std::string& v) {
+            char* end = nullptr;
+            double x = std::strtod(v.c_str(), &end);
+            bool number = end != v.c_str() && *end == '\0';
+            return number && !(x > 0 && std::isfinite(x)) ? "expected a positive number, got '" + v + "'"
+                                                          : std::string();
+        },
+        "", "positive");
+}
+
 void addSceneAndOutputOptions(CLI::App* cmd, CommonOptions& o, const std::string& defaultOutput) {
     o.output = defaultOutput;
     o.command = cmd;
     cmd->add_option("scene", o.scene, "Scene file (.json, .gltf, .glb); omitted = the built-in default scene");
     cmd->add_option("--camera", o.camera, "Camera by name or index (default: the scene's first camera)");
-    cmd->add_option("-o,--output", o.output, "Output image: .exr (linear, settings in metadata) or .png (tone-mapped)")
-        ->capture_default_str();
+    if (!defaultOutput.empty())
+        cmd->add_option("-o,--output", o.output,
+                        "Output image: .exr (linear, settings in metadata) or .png (tone-mapped)")
+            ->capture_default_str();
     cmd->add_option("--size", o.size, "Image size WxH in pixels")->capture_default_str();
     cmd->add_option("--seed", o.settings.seed, "Random seed: the same seed gives the same passes")
         ->check(nonNegativeInteger())
         ->capture_default_str();
     cmd->add_option("--threads", o.settings.threads, "Worker threads (0 = all cores)")->capture_default_str();
-    cmd->add_option("--exposure", o.exposure, "Exposure multiplier for PNG output")->capture_default_str();
+    if (!defaultOutput.empty())
+        cmd->add_option("--exposure", o.exposure, "Exposure multiplier for PNG output")->capture_default_str();
 }
 
 void addPpbOptions(CLI::App* cmd, CommonOptions& o) {
@@ -42,7 +72,9 @@ void addPpbOptions(CLI::App* cmd, CommonOptions& o) {
     auto* passes = cmd->add_option("--passes", o.settings.passes, "Number of passes")
                        ->check(nonNegativeInteger())
                        ->capture_default_str();
-    auto* time = cmd->add_option("--time", o.settings.timeBudget, "Time budget in seconds (instead of --passes)");
+    auto* time = cmd->add_option("--time", o.settings.timeBudget,
+                                 "Time budget in seconds, instead of --passes (default: off, --passes decides)")
+                     ->check(positiveNumber());
     passes->excludes(time);
     cmd->add_option("--photons", o.settings.photonsPerPass, "Photon paths per pass")
         ->check(nonNegativeInteger())
@@ -67,8 +99,7 @@ void addPpbOptions(CLI::App* cmd, CommonOptions& o) {
 void finishOptions(CommonOptions& o) {
     std::smatch m;
     static const std::regex kSize(R"(^\s*(\d{1,6})\s*[xX]\s*(\d{1,6})\s*$)");
-    if (!std::regex_match(o.size, m, kSize))
-        throw Error("--size: expected WxH such as 512x512, got '" + o.size + "'");
+    if (!std::regex_match(o.size, m, kSize)) throw Error("--size: expected WxH such as 512x512, got '" + o.size + "'");
     o.settings.width = std::stoi(m[1]);
     o.settings.height = std::stoi(m[2]);
     if (!(o.exposure > 0) || !std::isfinite(o.exposure)) throw Error("--exposure must be a positive number");
@@ -78,11 +109,17 @@ void finishOptions(CommonOptions& o) {
 namespace {
 /// The render settings given explicitly on the command line, as RenderSettings JSON keys.
 nlohmann::json explicitSettings(const CommonOptions& o) {
-    static const std::pair<const char*, const char*> kOptionKeys[] = {
-        {"--passes", "passes"},   {"--time", "time"},     {"--photons", "photons"},
-        {"--alpha", "alpha"},     {"--radius", "radius"}, {"--surface-radius", "surface_radius"},
-        {"--radius-offset", "radius_offset"}, {"--free-flights", "free_flights"}, {"--seed", "seed"},
-        {"--threads", "threads"}, {"--gpu", "gpu"}};
+    static const std::pair<const char*, const char*> kOptionKeys[] = {{"--passes", "passes"},
+                                                                      {"--time", "time"},
+                                                                      {"--photons", "photons"},
+                                                                      {"--alpha", "alpha"},
+                                                                      {"--radius", "radius"},
+                                                                      {"--surface-radius", "surface_radius"},
+                                                                      {"--radius-offset", "radius_offset"},
+                                                                      {"--free-flights", "free_flights"},
+                                                                      {"--seed", "seed"},
+                                                                      {"--threads", "threads"},
+                                                                      {"--gpu", "gpu"}};
     nlohmann::json all = o.settings.toJson(), given = nlohmann::json::object();
     auto isGiven = [&](const char* name) {
         const CLI::Option* opt = o.command ? o.command->get_option_no_throw(name) : nullptr;
@@ -119,7 +156,8 @@ void checkOutputWritable(const std::string& path) {
     fs::path p(path);
     fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
     std::error_code ec;
-    if (!fs::is_directory(dir, ec)) throw Error("output '" + path + "': directory '" + dir.string() + "' does not exist");
+    if (!fs::is_directory(dir, ec))
+        throw Error("output '" + path + "': directory '" + dir.string() + "' does not exist");
     bool existed = fs::exists(p, ec);
     {
         std::ofstream probe(path, std::ios::app);
@@ -129,9 +167,10 @@ void checkOutputWritable(const std::string& path) {
 }
 
 ThreadLimit::ThreadLimit(int threads) {
-    if (threads > 0)
-        m_control = new tbb::global_control(tbb::global_control::max_allowed_parallelism, size_t(threads));
+    if (threads > 0) m_control = new tbb::global_control(tbb::global_control::max_allowed_parallelism, size_t(threads));
 }
-ThreadLimit::~ThreadLimit() { delete static_cast<tbb::global_control*>(m_control); }
+ThreadLimit::~ThreadLimit() {
+    delete static_cast<tbb::global_control*>(m_control);
+}
 
 }  // namespace tyndall::app

@@ -2,7 +2,6 @@
 // Options shared by the commands that render (render, reference, bench, compare), registered on a
 // CLI11 subcommand, and the helpers every command uses to load the scene and write results.
 #include <CLI/CLI.hpp>
-
 #include <string>
 
 #include "core/image_io.h"
@@ -12,8 +11,8 @@
 namespace tyndall::app {
 
 struct CommonOptions {
-    std::string scene;          ///< empty = built-in default scene
-    std::string camera;         ///< --camera NAME|INDEX; empty = the scene's first camera
+    std::string scene;   ///< empty = built-in default scene
+    std::string camera;  ///< --camera NAME|INDEX; empty = the scene's first camera
     std::string output;
     std::string size = "512x512";
     float exposure = 1.0f;
@@ -23,8 +22,13 @@ struct CommonOptions {
 
 /// Rejects "-3" for unsigned options (CLI11 would wrap it to 2^64 - 3) with a plain message.
 CLI::Validator nonNegativeInteger();
+/// Rejects 0 and negative values (and "-3" before CLI11 wraps it) for counts that must be >= 1.
+CLI::Validator positiveInteger();
+/// Rejects numbers <= 0, NaN and infinity (time budgets, rates' denominators).
+CLI::Validator positiveNumber();
 
-/// Adds [SCENE] --camera --size --seed --threads -o --exposure.
+/// Adds [SCENE] --camera --size --seed --threads, and -o --exposure unless `defaultOutput` is empty
+/// (a command that writes no image, such as bench).
 void addSceneAndOutputOptions(CLI::App* cmd, CommonOptions& o, const std::string& defaultOutput);
 /// Adds the PPB options: --passes --time --photons --alpha --radius --surface-radius.
 void addPpbOptions(CLI::App* cmd, CommonOptions& o);

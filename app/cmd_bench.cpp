@@ -5,8 +5,8 @@
 #include <thread>
 
 #include "app/bench_cpu.h"
-#include "app/bench_media.h"
 #include "app/bench_hybrid.h"
+#include "app/bench_media.h"
 #include "app/cli_common.h"
 #include "core/default_smoke_scene.h"
 
@@ -19,7 +19,7 @@ struct BenchOptions {
     uint64_t rays = 4000000;
     uint64_t queries = 200000;
     uint64_t freeFlights = 2000000;
-    bool hybrid = true;
+    bool noHybrid = false;
 };
 
 void printRate(const char* what, double value, const char* unit, const std::string& note = "") {
@@ -37,15 +37,23 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
     o->common.settings.photonsPerPass = 1000;
     CLI::App* cmd = app.add_subcommand("bench", "Measure the throughput of every stage (default scene, 512x512)");
     addSceneAndOutputOptions(cmd, o->common, "");
-    cmd->add_option("--passes", o->passes, "Passes timed for the passes/s figure")->capture_default_str();
+    // Every count divides a rate: 0 would print NaN, so all must be positive.
+    cmd->add_option("--passes", o->passes, "Passes timed for the passes/s figure")
+        ->check(positiveInteger())
+        ->capture_default_str();
     cmd->add_option("--photons", o->common.settings.photonsPerPass, "Photon paths per pass")
-        ->check(nonNegativeInteger())
+        ->check(positiveInteger())
         ->capture_default_str();
-    cmd->add_option("--rays", o->rays, "Rays for the raw Embree baseline")->capture_default_str();
-    cmd->add_option("--queries", o->queries, "Beam gather queries per BVH kind")->capture_default_str();
+    cmd->add_option("--rays", o->rays, "Rays for the raw Embree baseline")
+        ->check(positiveInteger())
+        ->capture_default_str();
+    cmd->add_option("--queries", o->queries, "Beam gather queries per BVH kind")
+        ->check(positiveInteger())
+        ->capture_default_str();
     cmd->add_option("--free-flights", o->freeFlights, "Free-flight distances sampled per majorant kind")
+        ->check(positiveInteger())
         ->capture_default_str();
-    cmd->add_flag("!--no-hybrid", o->hybrid, "Skip the hybrid (GL splat) figures");
+    cmd->add_flag("--no-hybrid", o->noHybrid, "Skip the hybrid (GL splat) figures");
     cmd->callback([o, &exitCode]() {
         finishOptions(o->common);
         const RenderSettings& s = o->common.settings;
@@ -87,7 +95,8 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
         PassRate pr = measurePasses(renderer, o->passes);
         double perPass = 1.0 / pr.passesPerSecond;
         double pixels = double(s.width) * s.height * pr.passes;
-        printRate("passes", pr.passesPerSecond, "passes/s", pr.passesPerSecond >= 3.0 ? "(target >= 3: met)" : "(target >= 3: NOT met)");
+        printRate("passes", pr.passesPerSecond, "passes/s",
+                  pr.passesPerSecond >= 3.0 ? "(target >= 3: met)" : "(target >= 3: NOT met)");
         printRate("camera paths", pixels / pr.totals.cameraSeconds / 1e6, "M paths/s");
         printRate("secondary gather queries", pr.totals.beamQueries / pr.totals.cameraSeconds / 1e3, "k queries/s",
                   "(inside the camera pass)");
@@ -99,7 +108,7 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
         printRate("  primary splat stage", pr.totals.splatSeconds / pr.passes * 1e3, "ms/pass",
                   ratio(pr.totals.splatSeconds / pr.passes, perPass, "of a pass"));
         printRate("beams per pass", double(pr.totals.beams) / pr.passes, "beams");
-        if (o->hybrid) printHybridBench(measureHybrid(renderer, o->passes));
+        if (!o->noHybrid) printHybridBench(measureHybrid(renderer, o->passes));
 
         // Heterogeneous media: the built-in smoke scene against this (fog) scene, or a scene's own
         // grid media against their homogeneous twin.
@@ -112,7 +121,7 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
             Scene twin = makeHomogeneousTwin(het, -1.0f, &twinDensity);
             PassRenderer hetRenderer(het, s), twinRenderer(twin, s);
             std::printf("heterogeneous media (%s)\n", builtIn ? "built-in smoke scene; baseline: the fog scene above"
-                                                               : "this scene's grids; baseline: their homogeneous twin");
+                                                              : "this scene's grids; baseline: their homogeneous twin");
             PassRate hp = measurePasses(hetRenderer, o->passes);
             PassRate tp = measurePasses(twinRenderer, o->passes);
             double base = builtIn ? pr.passesPerSecond : tp.passesPerSecond;
@@ -134,7 +143,8 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                 std::snprintf(buf, sizeof buf, "(%.2f density lookups each)", r.densityLookupsPerSample);
                 return std::string(buf);
             };
-            FreeFlightRate sets = measureFreeFlights(hetRenderer, o->freeFlights, MajorantMode::Grid, s.freeFlightSamples);
+            FreeFlightRate sets =
+                measureFreeFlights(hetRenderer, o->freeFlights, MajorantMode::Grid, s.freeFlightSamples);
             printRate("free flights: majorant grid (DDA)", grid.samplesPerSecond / 1e6, "M samples/s", lookups(grid));
             char setName[64];
             std::snprintf(setName, sizeof setName, "free flights: sets of %d (as passes)", s.freeFlightSamples);

@@ -19,12 +19,18 @@ std::string extensionOf(const std::string& path) {
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
     return ext;
 }
-bool isLinearFormat(const std::string& ext) { return ext == ".exr" || ext == ".hdr"; }
+bool isLinearFormat(const std::string& ext) {
+    return ext == ".exr" || ext == ".hdr";
+}
 bool isDisplayFormat(const std::string& ext) {
     return ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".tif" || ext == ".tiff";
 }
-float srgbEncode(float c) { return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f; }
-float srgbDecode(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
+float srgbEncode(float c) {
+    return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+}
+float srgbDecode(float c) {
+    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
 }  // namespace
 
 float toneMapChannel(float linear, float exposure) {
@@ -80,6 +86,15 @@ Image readImage(const std::string& path) {
         }
     in->close();
     return img;
+}
+
+std::string readImageAttribute(const std::string& path, const std::string& name) {
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) throw Error("cannot read image '" + path + "': " + OIIO::geterror());
+    const OIIO::ParamValue* p = in->spec().find_attribute(name);
+    std::string value = p ? p->get_string() : std::string();
+    in->close();
+    return value;
 }
 
 }  // namespace tyndall

@@ -16,6 +16,9 @@ using ImageMetadata = std::vector<std::pair<std::string, std::string>>;
 void writeImage(const std::string& path, const Image& image, const ImageMetadata& metadata = {}, float exposure = 1.0f);
 /// Reads an image as linear float RGB (PNG/JPG are sRGB-decoded). Throws Error naming the file.
 Image readImage(const std::string& path);
+/// The header attribute `name` of an image file (e.g. "tyndall:settings" of an EXR written with
+/// metadata) as text; "" when the file has no such attribute. Throws Error naming the file.
+std::string readImageAttribute(const std::string& path, const std::string& name);
 /// Throws Error when `path` has an extension writeImage does not handle, before any rendering.
 void checkImageExtension(const std::string& path);
 
