@@ -98,8 +98,12 @@ TEST(CompareCommand, WritesLabelledHalvesAndOneExrPerHalf) {
 }
 
 namespace {
-/// Whether process `pid` has a handler for SIGINT (Linux: the SigCgt mask in /proc/PID/status).
+/// Whether process `pid` runs the tyndall binary (its exec is done: before, the forked child has
+/// the test's signal handlers) and has a handler for SIGINT (Linux: SigCgt in /proc/PID/status).
 bool catchesSigint(pid_t pid) {
+    std::error_code ec;
+    auto exe = std::filesystem::read_symlink("/proc/" + std::to_string(pid) + "/exe", ec);
+    if (ec || !std::filesystem::equivalent(exe, TYNDALL_BINARY, ec)) return false;
     std::ifstream status("/proc/" + std::to_string(pid) + "/status");
     std::string line;
     while (std::getline(status, line))
