@@ -22,7 +22,9 @@ public:
 
 private:
     [[noreturn]] void expected(const json& v, const std::string& path, const std::string& what) const {
-        throw Error(m_file + ": " + path + ": expected " + what + ", got " + JsonValue(v, m_file, path).describe());
+        // Numbers as written (0.0 is not an index, 4294967296 is not 4.29497e+09).
+        std::string got = v.is_number() ? v.dump() : JsonValue(v, m_file, path).describe();
+        throw Error(m_file + ": " + path + ": expected " + what + ", got " + got);
     }
     static std::string at(const std::string& path, const char* key) {
         return path.empty() ? std::string(key) : path + "." + key;
