@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "core/gltf_accessor.h"
+#include "core/gltf_json_check.h"
 #include "core/gltf_material_mapping.h"
 #include "core/json_reader.h"
 #include "core/photometry.h"
@@ -22,17 +23,34 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// ---- File access for tinygltf: regular files under the base directory only (tinygltf also
-// tries the current directory, which would let a missing buffer resolve to an unrelated file).
+// ---- File access for tinygltf: regular files inside the base directory only. tinygltf joins the
+// URI to the base directory as text and also tries the current directory, so "../x.bin", a
+// sibling folder that shares the base's name as a prefix, an absolute path or a symbolic link
+// leading out would otherwise reach unrelated files.
 struct FileAccess {
-    std::string baseDir;  // absolute
+    std::string baseDir;     // absolute, lexically normal: what tinygltf joins URIs to
+    fs::path canonicalBase;  // symbolic links resolved: what a file must lie inside
     bool allowed = true;
 };
+
+/// Whether `path` lies strictly inside `base`, comparing whole path components after resolving
+/// ".", ".." and symbolic links.
+bool insideBase(const std::string& path, const fs::path& base) {
+    std::error_code ec;
+    fs::path p = fs::weakly_canonical(fs::absolute(path, ec), ec);
+    if (ec || base.empty()) return false;
+    auto b = base.begin(), q = p.begin();
+    for (; b != base.end(); ++b, ++q) {
+        if (b->empty()) continue;  // a trailing separator
+        if (q == p.end() || *q != *b) return false;
+    }
+    return q != p.end();
+}
 
 bool fileExists(const std::string& path, void* user) {
     auto* access = static_cast<FileAccess*>(user);
     if (!access->allowed) return true;  // let readFile report that references are disabled
-    if (path.compare(0, access->baseDir.size(), access->baseDir) != 0) return false;
+    if (!insideBase(path, access->canonicalBase)) return false;
     std::error_code ec;
     return fs::is_regular_file(path, ec);
 }
@@ -45,6 +63,10 @@ bool readFile(std::vector<unsigned char>* out, std::string* err, const std::stri
     auto* access = static_cast<FileAccess*>(user);
     if (!access->allowed) {
         if (err) *err = "references to other files are disabled";
+        return false;
+    }
+    if (!insideBase(path, access->canonicalBase)) {  // tinygltf asks fileExists first; be sure
+        if (err) *err = "outside the glTF file's folder";
         return false;
     }
     std::ifstream in(path, std::ios::binary);
@@ -118,6 +140,33 @@ Rgb rgbOf(const std::vector<double>& v, Rgb fallback, size_t expectedSize, const
         throw Error(where + ": " + key + " must have " + std::to_string(expectedSize) + " numbers, got " +
                     std::to_string(v.size()));
     return Rgb(float(v[0]), float(v[1]), float(v[2]));
+}
+
+/// "buffers[i]" for the first buffer whose URI, percent-decoded as tinygltf decodes it, is `uri`
+/// (`root` has passed checkGltfJson); "buffer" when none is.
+std::string bufferNamed(const nlohmann::json& root, const std::string& uri) {
+    if (root.is_discarded() || !root.contains("buffers")) return "buffer";
+    auto hex = [](char c) {
+        return std::isdigit(static_cast<unsigned char>(c)) ? c - '0' : (std::tolower(c) - 'a' + 10) & 15;
+    };
+    const nlohmann::json& buffers = root["buffers"];
+    for (size_t i = 0; i < buffers.size(); ++i) {
+        if (!buffers[i].contains("uri")) continue;
+        const std::string u = buffers[i]["uri"].get<std::string>();
+        std::string decoded;
+        for (size_t k = 0; k < u.size(); ++k) {
+            if (u[k] == '+') {
+                decoded += ' ';
+            } else if (u[k] == '%' && k + 2 < u.size()) {
+                decoded += char(hex(u[k + 1]) << 4 | hex(u[k + 2]));
+                k += 2;
+            } else {
+                decoded += u[k];
+            }
+        }
+        if (u == uri || decoded == uri) return "buffers[" + std::to_string(i) + "]";
+    }
+    return "buffer";
 }
 
 // Extensions Tyndall reads (others are reported once as ignored).
@@ -489,10 +538,16 @@ void GltfImporter::addCamera(size_t node, const Affine& world) {
 
 SceneDraft importGltf(const std::string& bytes, bool binary, const std::string& file, const std::string& baseDir,
                       const SceneLoadOptions& options, WarnOnce& warn) {
+    // tinygltf ignores properties of the wrong type: check them first (gltf_json_check.h).
+    const nlohmann::json root = gltfJsonOf(bytes, binary);
+    if (!root.is_discarded()) checkGltfJson(root, file);
+
     FileAccess access;
     std::error_code ec;
     access.baseDir = fs::absolute(baseDir.empty() ? fs::path(".") : fs::path(baseDir), ec).lexically_normal().string();
     while (access.baseDir.size() > 1 && access.baseDir.back() == '/') access.baseDir.pop_back();
+    access.canonicalBase = fs::weakly_canonical(access.baseDir, ec);
+    if (ec) access.canonicalBase.clear();  // nothing resolves inside it
     access.allowed = options.allowExternalFiles;
     std::set<int> imagesFound;
 
@@ -521,8 +576,10 @@ SceneDraft importGltf(const std::string& bytes, bool binary, const std::string& 
         std::string what = err.substr(at + prefix.size());
         what = what.substr(0, what.find('\n'));
         bool missing = prefix.rfind("File not found", 0) == 0;
-        throw Error(file + ": buffer file " +
-                    (missing ? "'" + what + "' not found next to the glTF file" : "cannot be read: " + what));
+        if (missing)
+            throw Error(file + ": " + bufferNamed(root, what) + ": file '" + what +
+                        "' not found in the glTF file's folder");
+        throw Error(file + ": buffer file cannot be read: " + what);
     }
     if (!ok)
         throw Error(file + ": not valid glTF: " +

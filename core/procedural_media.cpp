@@ -1,6 +1,7 @@
 #include "core/procedural_media.h"
 
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "core/rng.h"
@@ -52,7 +53,9 @@ float smoothstep(float e0, float e1, float x) {
 namespace {
 constexpr float kWobble = 0.25f;  // lateral drift of the smoke column's axis
 
-float smokeReach(const ProceduralSmoke& s) { return s.topRadius + kWobble + 2.0f * s.voxelSize; }
+float smokeReach(const ProceduralSmoke& s) {
+    return s.topRadius + kWobble + 2.0f * s.voxelSize;
+}
 
 void smokeDims(const ProceduralSmoke& s, int64_t dims[3]) {
     const double reach = smokeReach(s);
@@ -63,18 +66,24 @@ void smokeDims(const ProceduralSmoke& s, int64_t dims[3]) {
 void fogDims(const RollingFog& f, int64_t dims[3]) {
     for (int a = 0; a < 3; ++a) dims[a] = int64_t(std::ceil(double(f.hi[a] - f.lo[a]) / f.voxelSize)) + 1;
 }
+
+/// The product of the dimensions a grid would have, in doubles so that hostile parameters (a box
+/// of 1e30, an infinite extent) saturate at UINT64_MAX instead of overflowing an integer.
+uint64_t saturatingVoxelCount(double nx, double ny, double nz) {
+    double n = nx * ny * nz;
+    return n >= 1.8e19 || !(n == n) ? UINT64_MAX : uint64_t(n);
+}
 }  // namespace
 
 uint64_t voxelCount(const ProceduralSmoke& s) {
-    int64_t d[3];
-    smokeDims(s, d);
-    return uint64_t(d[0]) * uint64_t(d[1]) * uint64_t(d[2]);
+    const double side = std::ceil(2.0 * smokeReach(s) / s.voxelSize) + 1;
+    return saturatingVoxelCount(side, std::ceil(double(s.height) / s.voxelSize) + 1, side);
 }
 
 uint64_t voxelCount(const RollingFog& f) {
-    int64_t d[3];
-    fogDims(f, d);
-    return uint64_t(d[0]) * uint64_t(d[1]) * uint64_t(d[2]);
+    double n[3];
+    for (int a = 0; a < 3; ++a) n[a] = std::ceil(double(f.hi[a] - f.lo[a]) / f.voxelSize) + 1;  // as fogDims
+    return saturatingVoxelCount(n[0], n[1], n[2]);
 }
 
 std::shared_ptr<const VdbDensityGrid> makeProceduralSmoke(const ProceduralSmoke& s) {

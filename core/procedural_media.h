@@ -32,15 +32,15 @@ std::shared_ptr<const VdbDensityGrid> makeProceduralSmoke(const ProceduralSmoke&
 struct RollingFog {
     Vec3 lo{-10.0f, 0.0f, -10.0f};  ///< world box the fog fills (its floor is the ground)
     Vec3 hi{10.0f, 3.0f, 10.0f};
-    float layerHeight = 1.2f;  ///< world units: mean thickness of the layer
-    float bankSize = 4.0f;     ///< world units: horizontal size of the rolling banks
-    float voxelSize = 0.1f;    ///< world units (cubic voxels)
-    float densityScale = 1.0f; ///< multiplies every value (so values lie in [0, densityScale])
+    float layerHeight = 1.2f;   ///< world units: mean thickness of the layer
+    float bankSize = 4.0f;      ///< world units: horizontal size of the rolling banks
+    float voxelSize = 0.1f;     ///< world units (cubic voxels)
+    float densityScale = 1.0f;  ///< multiplies every value (so values lie in [0, densityScale])
     uint32_t seed = 11;
 };
 
 /// Voxels a procedural grid with these parameters would hold (checked by scene loading before
-/// building one).
+/// building one); UINT64_MAX when that does not fit 64 bits.
 uint64_t voxelCount(const ProceduralSmoke& params);
 uint64_t voxelCount(const RollingFog& params);
 

@@ -20,10 +20,6 @@ namespace tyndall {
 
 namespace {
 
-/// A procedural grid may hold at most this many voxels (a bound on memory and time for hostile
-/// input; the built-in smoke has 0.7 M).
-constexpr uint64_t kMaxProceduralVoxels = uint64_t(1) << 24;
-
 Affine3 toAffine3(const Affine& a) {
     Affine3 r;
     for (int i = 0; i < 3; ++i)
@@ -35,12 +31,16 @@ uint32_t readSeed(JsonObject& obj, uint32_t fallback) {
     return uint32_t(obj.integer("seed", fallback, 0, 0xFFFFFFFFll));
 }
 
-std::shared_ptr<const DensityGrid> readProcedural(JsonObject& obj, const JsonValue& kind, float scale) {
+std::shared_ptr<const DensityGrid> readProcedural(JsonObject& obj, const JsonValue& kind, float scale,
+                                                  const SceneLoadOptions& options, uint64_t* proceduralVoxels) {
     const std::string type = kind.string();
     auto checkSize = [&](uint64_t voxels) {
-        if (voxels > kMaxProceduralVoxels)
-            obj.fail("procedural grid of " + std::to_string(voxels) + " voxels (at most " +
-                     std::to_string(kMaxProceduralVoxels) + "): raise voxel_size");
+        const uint64_t limit = options.maxProceduralVoxels, before = *proceduralVoxels;
+        if (voxels > limit || before > limit - voxels)
+            obj.fail("procedural grid of " + std::to_string(voxels) + " voxels" +
+                     (before > 0 ? " (after " + std::to_string(before) + " in this scene's other grids)" : "") +
+                     ": at most " + std::to_string(limit) + " in all; raise voxel_size");
+        *proceduralVoxels = before + voxels;
     };
     if (type == "smoke") {
         ProceduralSmoke p;
@@ -60,7 +60,8 @@ std::shared_ptr<const DensityGrid> readProcedural(JsonObject& obj, const JsonVal
         RollingFog f;
         f.lo = obj.vec3("min", f.lo);
         f.hi = obj.vec3("max", f.hi);
-        if (!(f.lo.x < f.hi.x && f.lo.y < f.hi.y && f.lo.z < f.hi.z)) obj.fail("'min' must lie below 'max' on every axis");
+        if (!(f.lo.x < f.hi.x && f.lo.y < f.hi.y && f.lo.z < f.hi.z))
+            obj.fail("'min' must lie below 'max' on every axis");
         f.layerHeight = float(obj.number("layer_height", f.layerHeight, 1e-3, 1e4));
         f.bankSize = float(obj.number("bank_size", f.bankSize, 1e-3, 1e4));
         f.voxelSize = float(obj.number("voxel_size", f.voxelSize, 1e-4, 1e4));
@@ -76,15 +77,16 @@ std::shared_ptr<const DensityGrid> readProcedural(JsonObject& obj, const JsonVal
 }  // namespace
 
 std::shared_ptr<const DensityGrid> readDensity(JsonObject& obj, const std::string& baseDir,
-                                               const SceneLoadOptions& options) {
+                                               const SceneLoadOptions& options, uint64_t* proceduralVoxels) {
     auto file = obj.get("file");
     auto procedural = obj.get("procedural");
     const float scale = float(obj.number("scale", 1.0, 0.0, 1e6));
-    if (bool(file) == bool(procedural)) obj.fail("a density needs exactly one of 'file' (an OpenVDB grid) and 'procedural'");
+    if (bool(file) == bool(procedural))
+        obj.fail("a density needs exactly one of 'file' (an OpenVDB grid) and 'procedural'");
     if (procedural) {
         if (obj.has("grid") || obj.has("transform"))
             obj.fail("'grid' and 'transform' apply to file grids; procedural grids take world-space parameters");
-        return readProcedural(obj, *procedural, scale);
+        return readProcedural(obj, *procedural, scale, options, proceduralVoxels);
     }
     if (!options.allowExternalFiles) file->fail("references to other files are disabled");
     VdbGridSource source;

@@ -10,6 +10,7 @@
 // and index); features glTF has and Tyndall approximates or ignores are reported once per kind
 // through SceneLoadOptions::warn. Loads are independent: safe to run on several threads.
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -30,6 +31,9 @@ struct SceneLoadOptions {
     std::function<void(const std::string&)> warn;
     /// Refuse scenes with more triangles than this (a bound on memory for hostile input).
     size_t maxTriangles = size_t(1) << 27;
+    /// Refuse scenes whose procedural density grids hold more voxels than this, all together (a
+    /// bound on load time and memory for hostile input; the built-in smoke has 0.7 M).
+    uint64_t maxProceduralVoxels = uint64_t(1) << 24;
     /// false: any reference to another file (glTF from a .json, buffers, images) is an error.
     /// The fuzzer turns it off.
     bool allowExternalFiles = true;

@@ -76,7 +76,8 @@ Material readMaterial(JsonObject& obj) {
     return m;
 }
 
-Medium readMedium(JsonObject& obj, const std::string& baseDir, const SceneLoadOptions& options) {
+Medium readMedium(JsonObject& obj, const std::string& baseDir, const SceneLoadOptions& options,
+                  uint64_t* proceduralVoxels) {
     Medium m;
     m.name = obj.require("name").string();
     m.sigmaS = obj.rgb("sigma_s", Rgb(0.0f));
@@ -93,7 +94,7 @@ Medium readMedium(JsonObject& obj, const std::string& baseDir, const SceneLoadOp
                      "' has a density grid, which needs grey extinction (sigma_s + sigma_a equal in r, g, b); "
                      "put the colour in the albedo");
         JsonObject d = density->object();
-        m.density = readDensity(d, baseDir, options);
+        m.density = readDensity(d, baseDir, options, proceduralVoxels);
     }
     return m;
 }
@@ -209,10 +210,11 @@ SceneDraft readSceneJson(const std::string& text, const std::string& file, const
     const size_t gltfMedia = scene.media.size();
     placed.assign(gltfMedia, true);
     if (const auto& list = mediaKey) {
+        uint64_t proceduralVoxels = 0;
         for (const JsonValue& v : list->elements()) {
             JsonObject obj = v.object();
             auto inside = obj.get("inside");
-            Medium m = readMedium(obj, baseDir, options);
+            Medium m = readMedium(obj, baseDir, options, &proceduralVoxels);
             for (const Medium& other : scene.media)
                 if (other.name == m.name) v.fail("medium '" + m.name + "' is defined twice");
             scene.media.push_back(m);

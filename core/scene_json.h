@@ -20,13 +20,16 @@ SceneDraft readSceneJson(const std::string& text, const std::string& file, const
 Material readMaterial(JsonObject& obj);
 /// One entry of "media"; the caller reads the placement ("inside") first, this reads the rest and
 /// finishes the object. Keys: name, sigma_s, sigma_a, g, density (readDensity). `baseDir` resolves
-/// relative grid files.
-Medium readMedium(JsonObject& obj, const std::string& baseDir, const SceneLoadOptions& options);
+/// relative grid files; `proceduralVoxels` as for readDensity.
+Medium readMedium(JsonObject& obj, const std::string& baseDir, const SceneLoadOptions& options,
+                  uint64_t* proceduralVoxels);
 /// A medium's "density" object (scene_density.cpp, docs/scene-format.md): an OpenVDB grid from a
 /// file ("file", "grid", "scale", "transform") or a procedural one ("procedural": "smoke" or
-/// "rolling_fog" with its parameters, "scale"). Errors name the JSON place.
+/// "rolling_fog" with its parameters, "scale"). Errors name the JSON place. `proceduralVoxels`
+/// counts the scene's procedural voxels so far: a procedural grid adds its own, and one that would
+/// take the total past options.maxProceduralVoxels is an error before anything is built.
 std::shared_ptr<const DensityGrid> readDensity(JsonObject& obj, const std::string& baseDir,
-                                               const SceneLoadOptions& options);
+                                               const SceneLoadOptions& options, uint64_t* proceduralVoxels);
 /// "transform": {"scale": s | [sx, sy, sz], "rotate": {"axis": [x, y, z], "degrees": d},
 /// "translate": [x, y, z]}, applied in that order (shapes and density grids).
 Affine readTransform(JsonObject& obj);

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 
 #include "core/gltf_material_mapping.h"
 #include "core/photometry.h"
@@ -232,6 +234,80 @@ TEST(GltfLoader, HeadlightWhenTheFileHasNoLight) {
     expectNear(s.lights[0].position, s.camera.position);
     ASSERT_EQ(warnings.size(), 1u);
     EXPECT_NE(warnings[0].find("no lights"), std::string::npos);
+}
+
+// ---- Whole files on disk: .gltf with external buffer and image, .glb, the fuzzer's seeds.
+
+/// A red diffuse cube with a base-colour texture, lit by a point light.
+GltfBuilder texturedCube() {
+    GltfBuilder b;
+    b.doc["images"] = {{{"name", "label"}, {"uri", "label.png"}}};
+    b.doc["textures"] = {{{"source", 0}}};
+    int mat = b.addMaterial(
+        {{"name", "red paint"},
+         {"pbrMetallicRoughness",
+          {{"baseColorFactor", {0.8, 0.1, 0.1, 1.0}}, {"metallicFactor", 0.0}, {"baseColorTexture", {{"index", 0}}}}}});
+    b.addNode({{"name", "box"}, {"mesh", b.addCube("box mesh", mat)}, {"translation", {0, 0.5, 0}}});
+    addSomeLight(b);
+    return b;
+}
+
+void expectTexturedCube(const SceneFile& f, const std::vector<std::string>& warnings) {
+    const Scene& s = f.scene;
+    ASSERT_EQ(s.meshes.size(), 1u);
+    const TriangleMesh& m = s.meshes[0];
+    EXPECT_EQ(m.name, "box");
+    EXPECT_EQ(m.triangleCount(), 12u);
+    ASSERT_EQ(m.positions.size(), 8u);
+    expectNear(m.positions[0], {-0.5f, 0.0f, -0.5f});
+    expectNear(m.positions[7], {0.5f, 1.0f, 0.5f});
+    EXPECT_TRUE(m.isClosed());
+    const Material& mat = s.materials[size_t(m.material)];
+    EXPECT_EQ(mat.name, "red paint");
+    EXPECT_EQ(mat.type, MaterialType::Diffuse);
+    EXPECT_NEAR(mat.albedo.r, 0.8f, 1e-6f);
+    EXPECT_NEAR(mat.albedo.g, 0.1f, 1e-6f);
+    ASSERT_EQ(s.lights.size(), 1u);
+    bool textureNoted = false;
+    for (const std::string& w : warnings) textureNoted |= w.find("baseColorTexture ignored") != std::string::npos;
+    EXPECT_TRUE(textureNoted) << "the image was found, the texture reported as unused";
+}
+
+SceneFile loadFile(const std::string& path, std::vector<std::string>* warnings) {
+    SceneLoadOptions o;
+    o.warn = [warnings](const std::string& w) { warnings->push_back(w); };
+    return loadSceneFile(path, o);
+}
+
+TEST(GltfFiles, GltfWithExternalBufferAndImageLoads) {
+    namespace fs = std::filesystem;
+    const fs::path dir = fs::path(test::outputDir()) / "gltf-external";
+    fs::create_directories(dir / "data");
+    GltfBuilder b = texturedCube();
+    std::ofstream(dir / "data" / "cube mesh.bin", std::ios::binary) << b.bin;
+    std::ofstream(dir / "label.png", std::ios::binary) << "images are not decoded, only found";
+    const fs::path file = dir / "cube.gltf";
+    std::ofstream(file, std::ios::binary) << b.jsonWithExternalBuffer("data/cube%20mesh.bin").dump();
+    std::vector<std::string> warnings;
+    expectTexturedCube(loadFile(file.string(), &warnings), warnings);
+}
+
+TEST(GltfFiles, GlbLoads) {
+    const std::string path = test::writeTestFile("cube.glb", texturedCube().glb());
+    { std::ofstream(test::outputDir() + "/label.png", std::ios::binary) << "not decoded"; }
+    std::vector<std::string> warnings;
+    expectTexturedCube(loadFile(path, &warnings), warnings);
+}
+
+TEST(GltfFiles, FuzzSeedsLoad) {
+    for (const char* seed : {"tiny.gltf", "tiny.glb"}) {
+        SCOPED_TRACE(seed);
+        std::vector<std::string> warnings;
+        SceneFile f = loadFile(std::string(TYNDALL_SOURCE_DIR) + "/fuzz/seeds/" + seed, &warnings);
+        EXPECT_GT(f.scene.triangleCount(), 0u);
+        EXPECT_FALSE(f.scene.lights.empty());
+        EXPECT_FALSE(f.scene.materials.empty());
+    }
 }
 
 // ---- The material mapping table.

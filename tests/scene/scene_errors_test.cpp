@@ -2,11 +2,17 @@
 // (JSON pointer, or glTF node/mesh/material/accessor with name and index), and never a crash.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <functional>
+
 #include "tests/scene/scene_test_util.h"
 
 namespace tyndall {
 namespace {
 
+namespace fs = std::filesystem;
 using nlohmann::json;
 using test::errorOf;
 using test::GltfBuilder;
@@ -184,7 +190,11 @@ TEST(SceneErrors, GltfMissingBufferAndImage) {
     GltfBuilder b = validGltf();
     json j = b.json();
     j["buffers"][0]["uri"] = "missing.bin";
-    expectError("missing-buffer.gltf", j.dump(), "buffer file 'missing.bin'", "not found");
+    expectError("missing-buffer.gltf", j.dump(), "buffers[0]: file 'missing.bin'",
+                "not found in the glTF file's folder");
+    j = b.json();  // the second of two buffers, its URI percent-encoded
+    j["buffers"].push_back({{"byteLength", 4}, {"uri", "no%20such.bin"}});
+    expectError("missing-second-buffer.gltf", j.dump(), "buffers[1]: file 'no such.bin'", "not found");
     j = b.json();
     j["images"] = {{{"name", "label"}, {"uri", "missing.png"}}};
     expectError("missing-image.gltf", j.dump(), "image 'label' (index 0)", "file 'missing.png' not found");
@@ -228,6 +238,13 @@ TEST(SceneErrors, GltfBadData) {
     j = b.json();
     j["accessors"][0]["count"] = 500;
     expectError("accessor-overrun.gltf", j.dump(), "accessor 0", "do not fit bufferView 0");
+    // NaN and infinity inside the binary data (POSITION's view starts the buffer; its 2nd float).
+    for (float bad : {NAN, INFINITY}) {
+        GltfBuilder n = validGltf();
+        std::memcpy(&n.bin[4], &bad, 4);
+        expectError(std::isnan(bad) ? "nan-position.gltf" : "inf-position.gltf", n.text(),
+                    "mesh 'box mesh' (index 0) primitive 0: POSITION: accessor 0", "contains a non-finite value");
+    }
     // Vertex index 99 in a cube of 8 vertices: rewrite the index buffer through a sparse accessor.
     GltfBuilder c = validGltf();
     uint32_t bad[] = {99};
@@ -256,6 +273,259 @@ TEST(SceneErrors, GltfBadData) {
     expectError("draco.gltf", j.dump(), "requires glTF extension KHR_draco_mesh_compression", "cannot read");
     expectError("not-json.gltf", "{\"asset\": ", "not valid glTF", "");
     expectError("truncated.glb", std::string("glTF\x02\0\0\0\xff\0\0\0", 12), "not valid glTF", "");
+}
+
+// ---- glTF: wrong JSON types (tinygltf would silently ignore each of them; gltf_json_check.h).
+
+struct GltfTypeCase {
+    const char* name;
+    std::function<void(json&)> edit;  ///< applied to validGltfWithCamera().json()
+    const char* place;                ///< the glTF path in the message
+    const char* what;
+};
+
+GltfBuilder validGltfWithCamera() {
+    GltfBuilder b = validGltf();
+    b.doc["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.1}}}}};
+    b.addNode({{"name", "cam"}, {"camera", 0}, {"translation", {0, 1, 5}}});
+    return b;
+}
+
+void expectGltfTypeErrors(const std::vector<GltfTypeCase>& cases) {
+    for (const GltfTypeCase& c : cases) {
+        json j = validGltfWithCamera().json();
+        c.edit(j);
+        expectError(std::string("type-") + c.name + ".gltf", j.dump(), std::string(": ") + c.place + ": ", c.what);
+    }
+}
+
+const char* kIndex = "expected an index (an integer in [0, 2147483647])";
+
+TEST(SceneErrors, GltfWrongTypesInScenesAndNodes) {
+    expectGltfTypeErrors({
+        {"scene", [](json& j) { j["scene"] = "0"; }, "scene", kIndex},
+        {"scenes",
+         [](json& j) {
+             j["scenes"] = {{"nodes", {0}}};
+         },
+         "scenes", "expected an array of objects"},
+        {"scene-nodes", [](json& j) { j["scenes"][0]["nodes"][1] = "1"; }, "scenes[0].nodes[1]", kIndex},
+        {"nodes", [](json& j) { j["nodes"] = j["nodes"][0]; }, "nodes", "expected an array of objects"},
+        {"node", [](json& j) { j["nodes"][0] = 3; }, "nodes[0]", "expected an object, got 3"},
+        {"mesh-string", [](json& j) { j["nodes"][0]["mesh"] = "0"; }, "nodes[0].mesh",
+         "expected an index (an integer in [0, 2147483647]), got the string \"0\""},
+        {"mesh-float", [](json& j) { j["nodes"][0]["mesh"] = 0.0; }, "nodes[0].mesh", kIndex},
+        {"mesh-wraps", [](json& j) { j["nodes"][0]["mesh"] = 4294967296ll; }, "nodes[0].mesh", kIndex},
+        {"mesh-negative", [](json& j) { j["nodes"][0]["mesh"] = -1; }, "nodes[0].mesh", kIndex},
+        {"camera", [](json& j) { j["nodes"][2]["camera"] = "cam"; }, "nodes[2].camera", kIndex},
+        {"children", [](json& j) { j["nodes"][0]["children"] = 1; }, "nodes[0].children",
+         "expected an array of indices, got 1"},
+        {"child", [](json& j) { j["nodes"][0]["children"] = {"1"}; }, "nodes[0].children[0]", kIndex},
+        {"translation", [](json& j) { j["nodes"][1]["translation"] = "x"; }, "nodes[1].translation",
+         "expected an array of 3 numbers, got the string \"x\""},
+        {"translation-length",
+         [](json& j) {
+             j["nodes"][1]["translation"] = {0, 3};
+         },
+         "nodes[1].translation", "expected an array of 3 numbers"},
+        {"rotation",
+         [](json& j) {
+             j["nodes"][1]["rotation"] = {0, 0, 0, "1"};
+         },
+         "nodes[1].rotation[3]", "expected a number"},
+        {"scale",
+         [](json& j) {
+             j["nodes"][1]["scale"] = {1, 1, 1, 1};
+         },
+         "nodes[1].scale", "expected an array of 3 numbers"},
+        {"matrix", [](json& j) { j["nodes"][0]["matrix"] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0}; },
+         "nodes[0].matrix", "expected an array of 16 numbers"},
+        {"node-extensions", [](json& j) { j["nodes"][1]["extensions"] = {1}; }, "nodes[1].extensions",
+         "expected an object"},
+        {"node-light-object", [](json& j) { j["nodes"][1]["extensions"]["KHR_lights_punctual"] = {0}; },
+         "nodes[1].extensions.KHR_lights_punctual", "expected an object"},
+        {"node-light", [](json& j) { j["nodes"][1]["extensions"]["KHR_lights_punctual"]["light"] = "0"; },
+         "nodes[1].extensions.KHR_lights_punctual.light", kIndex},
+        {"node-name", [](json& j) { j["nodes"][0]["name"] = 7; }, "nodes[0].name", "expected a string"},
+        {"extensions-required", [](json& j) { j["extensionsRequired"] = "KHR_draco_mesh_compression"; },
+         "extensionsRequired", "expected an array of strings"},
+    });
+}
+
+TEST(SceneErrors, GltfWrongTypesInMeshes) {
+    expectGltfTypeErrors({
+        {"primitives", [](json& j) { j["meshes"][0]["primitives"] = json::object(); }, "meshes[0].primitives",
+         "expected an array of objects"},
+        {"attributes", [](json& j) { j["meshes"][0]["primitives"][0]["attributes"] = {0}; },
+         "meshes[0].primitives[0].attributes", "expected an object"},
+        {"position", [](json& j) { j["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = "0"; },
+         "meshes[0].primitives[0].attributes.POSITION", kIndex},
+        {"indices", [](json& j) { j["meshes"][0]["primitives"][0]["indices"] = true; },
+         "meshes[0].primitives[0].indices", "expected an index (an integer in [0, 2147483647]), got true"},
+        {"material", [](json& j) { j["meshes"][0]["primitives"][0]["material"] = "paint"; },
+         "meshes[0].primitives[0].material", kIndex},
+        {"mode", [](json& j) { j["meshes"][0]["primitives"][0]["mode"] = 4.0; }, "meshes[0].primitives[0].mode",
+         kIndex},
+        {"targets", [](json& j) { j["meshes"][0]["primitives"][0]["targets"] = 1; }, "meshes[0].primitives[0].targets",
+         "expected an array"},
+    });
+}
+
+TEST(SceneErrors, GltfWrongTypesInAccessorsViewsBuffersAndImages) {
+    expectGltfTypeErrors({
+        {"count", [](json& j) { j["accessors"][0]["count"] = "8"; }, "accessors[0].count", "expected an integer >= 0"},
+        {"count-negative", [](json& j) { j["accessors"][0]["count"] = -8; }, "accessors[0].count",
+         "expected an integer >= 0, got -8"},
+        {"component-type", [](json& j) { j["accessors"][0]["componentType"] = "FLOAT"; }, "accessors[0].componentType",
+         kIndex},
+        {"accessor-type", [](json& j) { j["accessors"][0]["type"] = 3; }, "accessors[0].type", "expected a string"},
+        {"normalized", [](json& j) { j["accessors"][0]["normalized"] = 1; }, "accessors[0].normalized",
+         "expected true or false"},
+        {"accessor-view", [](json& j) { j["accessors"][0]["bufferView"] = {0}; }, "accessors[0].bufferView", kIndex},
+        {"sparse",
+         [](json& j) {
+             j["accessors"][1]["sparse"] = {{"count", 1},
+                                            {"indices", {{"bufferView", "0"}, {"componentType", 5125}}},
+                                            {"values", {{"bufferView", 1}}}};
+         },
+         "accessors[1].sparse.indices.bufferView", kIndex},
+        {"view-length", [](json& j) { j["bufferViews"][0]["byteLength"] = 96.5; }, "bufferViews[0].byteLength",
+         "expected an integer >= 0"},
+        {"view-buffer", [](json& j) { j["bufferViews"][0]["buffer"] = "0"; }, "bufferViews[0].buffer", kIndex},
+        {"view-stride", [](json& j) { j["bufferViews"][0]["byteStride"] = "12"; }, "bufferViews[0].byteStride",
+         "expected an integer >= 0"},
+        {"buffer-uri", [](json& j) { j["buffers"][0]["uri"] = 5; }, "buffers[0].uri", "expected a string, got 5"},
+        {"buffer-length", [](json& j) { j["buffers"][0]["byteLength"] = "96"; }, "buffers[0].byteLength",
+         "expected an integer >= 0"},
+        {"image-uri",
+         [](json& j) {
+             j["images"] = {{{"uri", 7}}};
+         },
+         "images[0].uri", "expected a string"},
+    });
+}
+
+TEST(SceneErrors, GltfWrongTypesInMaterials) {
+    auto ext = [](json& j) -> json& { return j["materials"][0]["extensions"]; };
+    expectGltfTypeErrors({
+        {"pbr", [](json& j) { j["materials"][0]["pbrMetallicRoughness"] = 0; }, "materials[0].pbrMetallicRoughness",
+         "expected an object"},
+        {"metallic", [](json& j) { j["materials"][0]["pbrMetallicRoughness"]["metallicFactor"] = "0"; },
+         "materials[0].pbrMetallicRoughness.metallicFactor", "expected a number, got the string \"0\""},
+        {"roughness", [](json& j) { j["materials"][0]["pbrMetallicRoughness"]["roughnessFactor"] = nullptr; },
+         "materials[0].pbrMetallicRoughness.roughnessFactor", "expected a number, got null"},
+        {"base-color",
+         [](json& j) {
+             j["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = {1, 1, 1};
+         },
+         "materials[0].pbrMetallicRoughness.baseColorFactor", "expected an array of 4 numbers"},
+        {"texture",
+         [](json& j) {
+             j["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", "0"}};
+         },
+         "materials[0].pbrMetallicRoughness.baseColorTexture.index", kIndex},
+        {"emissive", [](json& j) { j["materials"][0]["emissiveFactor"] = "red"; }, "materials[0].emissiveFactor",
+         "expected an array of 3 numbers"},
+        {"alpha-mode", [](json& j) { j["materials"][0]["alphaMode"] = 1; }, "materials[0].alphaMode",
+         "expected a string"},
+        {"strength", [&](json& j) { ext(j)["KHR_materials_emissive_strength"]["emissiveStrength"] = "8"; },
+         "materials[0].extensions.KHR_materials_emissive_strength.emissiveStrength", "expected a number"},
+        {"transmission", [&](json& j) { ext(j)["KHR_materials_transmission"]["transmissionFactor"] = true; },
+         "materials[0].extensions.KHR_materials_transmission.transmissionFactor", "expected a number, got true"},
+        {"ior", [&](json& j) { ext(j)["KHR_materials_ior"]["ior"] = "1.5"; },
+         "materials[0].extensions.KHR_materials_ior.ior", "expected a number"},
+        {"volume", [&](json& j) { ext(j)["KHR_materials_volume"] = 1; }, "materials[0].extensions.KHR_materials_volume",
+         "expected an object"},
+        {"attenuation-color",
+         [&](json& j) {
+             ext(j)["KHR_materials_volume"]["attenuationColor"] = {1, 1};
+         },
+         "materials[0].extensions.KHR_materials_volume.attenuationColor", "expected an array of 3 numbers"},
+        {"attenuation-distance", [&](json& j) { ext(j)["KHR_materials_volume"]["attenuationDistance"] = "far"; },
+         "materials[0].extensions.KHR_materials_volume.attenuationDistance", "expected a number"},
+    });
+}
+
+TEST(SceneErrors, GltfWrongTypesInCamerasAndLights) {
+    auto light = [](json& j) -> json& { return j["extensions"]["KHR_lights_punctual"]["lights"][0]; };
+    expectGltfTypeErrors({
+        {"yfov", [](json& j) { j["cameras"][0]["perspective"]["yfov"] = "wide"; }, "cameras[0].perspective.yfov",
+         "expected a number"},
+        {"perspective", [](json& j) { j["cameras"][0]["perspective"] = {0.8}; }, "cameras[0].perspective",
+         "expected an object"},
+        {"camera-type", [](json& j) { j["cameras"][0]["type"] = 1; }, "cameras[0].type", "expected a string"},
+        {"orthographic",
+         [](json& j) {
+             j["cameras"][0]["orthographic"] = {{"xmag", "1"}};
+         },
+         "cameras[0].orthographic.xmag", "expected a number"},
+        {"intensity", [&](json& j) { light(j)["intensity"] = "bright"; },
+         "extensions.KHR_lights_punctual.lights[0].intensity", "expected a number, got the string \"bright\""},
+        {"color",
+         [&](json& j) {
+             light(j)["color"] = {1, 1};
+         },
+         "extensions.KHR_lights_punctual.lights[0].color", "expected an array of 3 numbers"},
+        {"light-type", [&](json& j) { light(j)["type"] = 1; }, "extensions.KHR_lights_punctual.lights[0].type",
+         "expected a string"},
+        {"range", [&](json& j) { light(j)["range"] = "far"; }, "extensions.KHR_lights_punctual.lights[0].range",
+         "expected a number"},
+        {"spot",
+         [&](json& j) {
+             light(j)["spot"] = {{"outerConeAngle", "wide"}};
+         },
+         "extensions.KHR_lights_punctual.lights[0].spot.outerConeAngle", "expected a number"},
+        {"lights", [](json& j) { j["extensions"]["KHR_lights_punctual"]["lights"] = json::object(); },
+         "extensions.KHR_lights_punctual.lights", "expected an array of objects"},
+    });
+}
+
+TEST(SceneErrors, GltfWrongTypesInAGlbJsonChunk) {
+    GltfBuilder b = validGltf();
+    json j = b.doc;
+    j["buffers"] = {{{"byteLength", b.bin.size()}}};
+    j["nodes"][0]["mesh"] = "0";
+    expectError("type-mesh.glb", GltfBuilder::glbOf(j.dump(), b.bin), ": nodes[0].mesh: ", kIndex);
+}
+
+TEST(SceneErrors, GltfUnknownKeysExtrasAndExtensionsAreAllowed) {
+    json j = validGltfWithCamera().json();
+    j["nodes"][0]["extras"] = {{"mesh", "not Tyndall's"}};
+    j["nodes"][0]["vendorKey"] = "x";
+    j["nodes"][0]["extensions"]["EXT_something"] = {{"translation", "anything"}};
+    j["materials"][0]["extensions"]["KHR_materials_clearcoat"] = {{"clearcoatFactor", "1"}};
+    j["extras"] = 5;
+    EXPECT_EQ(errorOf([&] { loadSceneFile(writeTestFile("type-extras.gltf", j.dump())); }), "");
+}
+
+// ---- glTF: buffers and images are read only from the glTF file's folder.
+
+TEST(SceneErrors, GltfFilesOutsideItsFolderAreNotRead) {
+    const fs::path root = fs::path(test::outputDir()) / "gltf-escape";
+    fs::remove_all(root);
+    fs::create_directories(root / "b");
+    fs::create_directories(root / "bc");  // a sibling whose name starts with the base folder's
+    GltfBuilder b = validGltf();
+    for (const fs::path& p : {root / "outside.bin", root / "bc" / "data.bin", root / "b" / "inside.bin"})
+        std::ofstream(p, std::ios::binary) << b.bin;
+    std::ofstream(root / "outside.png", std::ios::binary) << "not decoded";
+    std::error_code ec;
+    fs::create_symlink(root / "outside.bin", root / "b" / "link.bin", ec);
+    ASSERT_FALSE(ec) << ec.message();
+
+    for (const std::string uri : {"inside.bin", "./inside.bin"})
+        EXPECT_EQ(errorOf([&] {
+                      loadSceneFile(writeTestFile("gltf-escape/b/in.gltf", b.jsonWithExternalBuffer(uri).dump()));
+                  }),
+                  "")
+            << uri;
+    for (const std::string& uri : std::vector<std::string>{"../outside.bin", "../bc/data.bin", "../b/../outside.bin",
+                                                           "link.bin", (root / "outside.bin").string()})
+        expectError("gltf-escape/b/out.gltf", b.jsonWithExternalBuffer(uri).dump(), "buffers[0]: file '" + uri + "'",
+                    "not found in the glTF file's folder");
+    json j = b.json();
+    j["images"] = {{{"uri", "../outside.png"}}};
+    expectError("gltf-escape/b/image.gltf", j.dump(), "image (index 0)", "file '../outside.png' not found");
 }
 
 TEST(SceneErrors, MissingAndUnknownFiles) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 
 #include "core/image_io.h"
@@ -45,22 +46,52 @@ std::vector<fs::path> filesWithExtension(const fs::path& dir, std::initializer_l
     return out;
 }
 
-TEST(GltfAssets, EveryModelLoadsAndRenders) {
-    fs::path dir = fs::path(test::assetsDir()) / "gltf";
-    if (!fs::is_directory(dir)) GTEST_SKIP() << "no third-party glTF assets at " << dir << " (../shared/assets absent)";
-    std::vector<fs::path> files = filesWithExtension(dir, {".gltf", ".glb"});
-    ASSERT_FALSE(files.empty());
-    for (const fs::path& f : files) {
-        SCOPED_TRACE(f.string());
-        std::vector<std::string> warnings;
-        SceneLoadOptions o;
-        o.warn = [&](const std::string& w) { warnings.push_back(w); };
-        SceneFile sf = loadSceneFile(f.string(), o);
-        EXPECT_GT(sf.scene.triangleCount(), 0u);
-        double mean = renderMeanLuminance(sf.scene, 24, 2, 2000, "asset-" + f.stem().string());
-        EXPECT_GT(mean, 0.0) << "black image (" << warnings.size() << " warnings)";
-    }
+fs::path gltfAssetsDir() {
+    return fs::path(test::assetsDir()) / "gltf";
 }
+
+/// The models in ../shared/assets/gltf, one test each; one empty path (a skipped test that says
+/// why) when the folder is absent.
+/// (Strings, not paths: GoogleTest would print a path as a container of paths, endlessly.)
+std::vector<std::string> gltfAssets() {
+    if (!fs::is_directory(gltfAssetsDir())) return {""};
+    std::vector<std::string> out;
+    for (const fs::path& f : filesWithExtension(gltfAssetsDir(), {".gltf", ".glb"})) out.push_back(f.string());
+    return out;
+}
+
+class GltfAssets : public testing::TestWithParam<std::string> {};
+
+TEST_P(GltfAssets, LoadsAndRenders) {
+    const fs::path f = GetParam();
+    if (f.empty()) GTEST_SKIP() << "no third-party glTF assets at " << gltfAssetsDir() << " (../shared/assets absent)";
+    std::vector<std::string> warnings;
+    SceneLoadOptions o;
+    o.warn = [&](const std::string& w) { warnings.push_back(w); };
+    SceneFile sf = loadSceneFile(f.string(), o);
+    EXPECT_GT(sf.scene.triangleCount(), 0u);
+    double mean = renderMeanLuminance(sf.scene, 24, 2, 2000, "asset-" + f.stem().string());
+    EXPECT_GT(mean, 0.0) << "black image (" << warnings.size() << " warnings)";
+}
+
+TEST(GltfAssetsFolder, HoldsModels) {
+    if (!fs::is_directory(gltfAssetsDir()))
+        GTEST_SKIP() << "no third-party glTF assets at " << gltfAssetsDir() << " (../shared/assets absent)";
+    EXPECT_FALSE(filesWithExtension(gltfAssetsDir(), {".gltf", ".glb"}).empty()) << gltfAssetsDir();
+}
+
+/// The test name: the path below the assets folder, letters and digits only, plus the index
+/// (which keeps names unique).
+std::string assetTestName(const testing::TestParamInfo<std::string>& info) {
+    if (info.param.empty()) return "NoAssets";
+    std::string name;
+    for (char c : fs::path(info.param).lexically_relative(gltfAssetsDir()).replace_extension().string())
+        name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+    return name + "_" + std::to_string(info.index);
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryModel, GltfAssets, testing::ValuesIn(gltfAssets()), assetTestName);
+GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(GltfAssets);  // an empty folder: HoldsModels fails
 
 TEST(SceneLibrary, EveryScenesFileLoadsAndRenders) {
     std::vector<fs::path> files = filesWithExtension(fs::path(TYNDALL_SOURCE_DIR) / "scenes", {".json"});

@@ -104,6 +104,28 @@ struct GltfBuilder {
         return j;
     }
     std::string text() const { return json().dump(); }
+    /// The document with its buffer in an external file `uri` (write bin to it beside the .gltf).
+    nlohmann::json jsonWithExternalBuffer(const std::string& uri) const {
+        nlohmann::json j = doc;
+        j["buffers"] = {{{"byteLength", bin.size()}, {"uri", uri}}};
+        return j;
+    }
+    /// A .glb: the document (its buffer without a URI) in the JSON chunk, the bytes in the BIN chunk.
+    std::string glb() const {
+        nlohmann::json j = doc;
+        if (!bin.empty()) j["buffers"] = {{{"byteLength", bin.size()}}};
+        return glbOf(j.dump(), bin);
+    }
+    /// A .glb of `jsonText` and `binary` (each chunk padded to 4 bytes; no BIN chunk when empty).
+    static std::string glbOf(std::string jsonText, std::string binary) {
+        while (jsonText.size() % 4) jsonText.push_back(' ');
+        while (binary.size() % 4) binary.push_back('\0');
+        auto u32 = [](uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+        uint32_t total = 12 + 8 + uint32_t(jsonText.size()) + (binary.empty() ? 0 : 8 + uint32_t(binary.size()));
+        std::string out = "glTF" + u32(2) + u32(total) + u32(uint32_t(jsonText.size())) + "JSON" + jsonText;
+        if (!binary.empty()) out += u32(uint32_t(binary.size())) + std::string("BIN\0", 4) + binary;
+        return out;
+    }
 };
 
 /// Loads scene text in `format` with warnings collected into `warnings` (may be null).

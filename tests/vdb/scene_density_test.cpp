@@ -127,6 +127,15 @@ TEST(SceneDensity, ErrorsNameThePlace) {
          "in [0, 1e+06]"},
         {"too-many-voxels", sceneWith({{"procedural", "rolling_fog"}, {"voxel_size", 0.001}}), "/media/0/density",
          "raise voxel_size"},
+        // Hostile extents: the voxel count saturates instead of overflowing (into a small number).
+        {"huge-fog-box",
+         sceneWith({{"procedural", "rolling_fog"}, {"min", {-1e30, 0, -1e30}}, {"max", {1e30, 1, 1e30}}}),
+         "/media/0/density", "raise voxel_size"},
+        {"infinite-fog-box",
+         sceneWith({{"procedural", "rolling_fog"}, {"min", {-3e38, 0, -3e38}}, {"max", {3e38, 1, 3e38}}}),
+         "/media/0/density", "raise voxel_size"},
+        {"huge-smoke", sceneWith({{"procedural", "smoke"}, {"height", 1e4}, {"top_radius", 1e4}, {"voxel_size", 1e-4}}),
+         "/media/0/density", "raise voxel_size"},
         {"colour-extinction", sceneWith({{"procedural", "smoke"}}, {{"sigma_s", {1, 0.5, 0.2}}}), "/media/0",
          "grey extinction"},
     };
@@ -138,6 +147,27 @@ TEST(SceneDensity, ErrorsNameThePlace) {
         EXPECT_NE(err.find(c.place), std::string::npos) << "names the place";
         EXPECT_NE(err.find(c.what), std::string::npos) << "says what";
         EXPECT_EQ(err.find('\n'), std::string::npos) << "one line";
+    }
+}
+
+TEST(SceneDensity, ProceduralVoxelBudgetIsForTheWholeScene) {
+    // Two fogs of 11^3 = 1331 voxels each: one fits a budget of 2000, the second does not.
+    json fog = {{"procedural", "rolling_fog"}, {"min", {0, 0, 0}}, {"max", {1, 1, 1}}, {"voxel_size", 0.1}};
+    json j = sceneWith(fog);
+    SceneLoadOptions o;
+    o.maxProceduralVoxels = 2000;
+    EXPECT_NO_THROW(loadSceneFile(write("budget-one.json", j.dump()), o));
+    json second = j["media"][0];
+    second["name"] = "more smoke";
+    j["media"].push_back(second);
+    try {
+        loadSceneFile(write("budget-two.json", j.dump()), o);
+        FAIL() << "the second grid was built past the budget";
+    } catch (const Error& e) {
+        std::string err = e.what();
+        EXPECT_NE(err.find("/media/1/density"), std::string::npos) << err;
+        EXPECT_NE(err.find("1331 voxels (after 1331 in this scene's other grids): at most 2000"), std::string::npos)
+            << err;
     }
 }
 
