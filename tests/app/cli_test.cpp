@@ -22,26 +22,12 @@
 #include "cpu/pass_renderer.h"
 #include "gpu/gl_context.h"
 #include "tests/test_util.h"
+#include "tests/tyndall_cli.h"
 
 namespace {
 
-struct Result {
-    int status = -1;
-    std::string out;  // stdout and stderr together
-};
-
-Result run(const std::string& args) {
-    std::string cmd = std::string(TYNDALL_BINARY) + " " + args + " 2>&1";
-    Result r;
-    FILE* pipe = popen(cmd.c_str(), "r");
-    if (!pipe) return r;
-    std::array<char, 4096> buf;
-    size_t n;
-    while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
-    int st = pclose(pipe);
-    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-    return r;
-}
+using tyndall::test::CliRun;
+using tyndall::test::runTyndall;
 
 int lineCount(const std::string& s) {
     int n = 0;
@@ -114,10 +100,10 @@ tyndall::Image renderPasses(const tyndall::PassRenderer& renderer, uint64_t firs
 }  // namespace
 
 TEST(Cli, HelpListsEveryOptionWithDefaults) {
-    Result top = run("--help");
-    EXPECT_EQ(top.status, 0);
+    CliRun top = runTyndall("--help");
+    EXPECT_EQ(top.exitCode, 0);
     for (const char* command : {"render", "reference", "bench", "compare"})
-        EXPECT_NE(top.out.find(command), std::string::npos) << command;
+        EXPECT_NE(top.output.find(command), std::string::npos) << command;
 
     // Every option of every command, each with its default ("TYPE=value" or "(default: ...)")
     // unless it is a flag; nothing listed that is not expected here.
@@ -136,9 +122,9 @@ TEST(Cli, HelpListsEveryOptionWithDefaults) {
         {"bench", join({scene, {"--passes", "--photons", "--rays", "--queries", "--free-flights", "--no-hybrid"}})},
         {"compare", join({scene, output, ppb, {"--gpu", "--density"}})}};
     for (const auto& [command, names] : expected) {
-        Result r = run(command + " --help");
-        EXPECT_EQ(r.status, 0) << command;
-        std::map<std::string, HelpOption> options = parseHelpOptions(r.out);
+        CliRun r = runTyndall(command + " --help");
+        EXPECT_EQ(r.exitCode, 0) << command;
+        std::map<std::string, HelpOption> options = parseHelpOptions(r.output);
         std::set<std::string> listed;
         for (const auto& [name, o] : options) {
             listed.insert(name);
@@ -146,19 +132,19 @@ TEST(Cli, HelpListsEveryOptionWithDefaults) {
                 EXPECT_TRUE(o.hasDefault) << command << " " << o.opts << ": no default in '" << o.description << "'";
             }
         }
-        EXPECT_EQ(listed, names) << command << " --help:\n" << r.out;
+        EXPECT_EQ(listed, names) << command << " --help:\n" << r.output;
     }
 
-    Result r = run("render --help");
+    CliRun r = runTyndall("render --help");
     for (const char* opt : {"--passes UINT=64", "--photons UINT=4000", "--alpha FLOAT=0.5", "--radius FLOAT=0",
                             "--radius-offset UINT=1000", "--free-flights INT=4", "--seed UINT=1", "--size TEXT=512x512",
                             "--threads INT=0", "-o,--output TEXT=tyndall.png", "--exposure FLOAT=1", "--gpu TEXT=auto",
                             "(default: off, --passes decides)"})
-        EXPECT_NE(r.out.find(opt), std::string::npos) << opt << " missing from:\n" << r.out;
-    Result b = run("bench --help");
+        EXPECT_NE(r.output.find(opt), std::string::npos) << opt << " missing from:\n" << r.output;
+    CliRun b = runTyndall("bench --help");
     for (const char* opt : {"--passes INT=10", "--photons UINT=1000", "--rays UINT=4000000", "--queries UINT=200000",
                             "--free-flights UINT=2000000"})
-        EXPECT_NE(b.out.find(opt), std::string::npos) << opt << " missing from:\n" << b.out;
+        EXPECT_NE(b.output.find(opt), std::string::npos) << opt << " missing from:\n" << b.output;
 }
 
 TEST(Cli, BadValuesGiveOneLineNamingTheOption) {
@@ -194,21 +180,21 @@ TEST(Cli, BadValuesGiveOneLineNamingTheOption) {
                                            {"bench --free-flights -7", "--free-flights"},
                                            {"bench --rays many", "--rays"},
                                            {"render --frobnicate", "--frobnicate"}}) {
-        Result r = run(c.args);
-        EXPECT_NE(r.status, 0) << c.args;
-        EXPECT_EQ(lineCount(r.out), 1) << c.args << " printed:\n" << r.out;
-        EXPECT_NE(r.out.find(c.needle), std::string::npos) << c.args << " printed:\n" << r.out;
-        EXPECT_EQ(r.out.rfind("tyndall: ", 0), 0u) << r.out;
+        CliRun r = runTyndall(c.args);
+        EXPECT_NE(r.exitCode, 0) << c.args;
+        EXPECT_EQ(lineCount(r.output), 1) << c.args << " printed:\n" << r.output;
+        EXPECT_NE(r.output.find(c.needle), std::string::npos) << c.args << " printed:\n" << r.output;
+        EXPECT_EQ(r.output.rfind("tyndall: ", 0), 0u) << r.output;
     }
 }
 
 TEST(Cli, RendersAreReproducibleAcrossThreadCounts) {
     const std::string a = tyndall::test::outputDir() + "/cli_t1.exr", b = tyndall::test::outputDir() + "/cli_t2.exr";
-    Result r1 = run("render --passes 3 --photons 200 --size 48x32 --threads 1 -o " + a);
-    Result r2 = run("render --passes 3 --photons 200 --size 48x32 --threads 2 -o " + b);
-    ASSERT_EQ(r1.status, 0) << r1.out;
-    ASSERT_EQ(r2.status, 0) << r2.out;
-    EXPECT_NE(r1.out.find("3 passes, 600 photon paths"), std::string::npos) << r1.out;
+    CliRun r1 = runTyndall("render --passes 3 --photons 200 --size 48x32 --threads 1 -o " + a);
+    CliRun r2 = runTyndall("render --passes 3 --photons 200 --size 48x32 --threads 2 -o " + b);
+    ASSERT_EQ(r1.exitCode, 0) << r1.output;
+    ASSERT_EQ(r2.exitCode, 0) << r2.output;
+    EXPECT_NE(r1.output.find("3 passes, 600 photon paths"), std::string::npos) << r1.output;
     tyndall::Image ia = tyndall::readImage(a), ib = tyndall::readImage(b);
     ASSERT_EQ(ia.pixels.size(), size_t(48 * 32));
     double sum = 0;
@@ -223,47 +209,48 @@ TEST(Cli, RendersAreReproducibleAcrossThreadCounts) {
 TEST(Cli, GpuModes) {
     const std::string out = tyndall::test::outputDir() + "/cli_gpu.exr";
     const std::string common = "render --passes 2 --photons 200 --size 48x32 -o " + out + " --gpu ";
-    Result off = run(common + "off");
-    ASSERT_EQ(off.status, 0) << off.out;
-    EXPECT_NE(off.out.find("passes/s, CPU)"), std::string::npos) << off.out;
-    EXPECT_EQ(lineCount(off.out), 1) << off.out;
+    CliRun off = runTyndall(common + "off");
+    ASSERT_EQ(off.exitCode, 0) << off.output;
+    EXPECT_NE(off.output.find("passes/s, CPU)"), std::string::npos) << off.output;
+    EXPECT_EQ(lineCount(off.output), 1) << off.output;
 
     // What on and auto do depends on the OpenGL this machine has: none, a software rasterizer
     // (llvmpipe: auto stays on the CPU and says why in one line) or a hardware GPU (auto splats).
     const GlKind gl = glKind();
     std::printf("OpenGL here: %s\n", gl == GlKind::None ? "none" : gl == GlKind::Software ? "software" : "hardware");
-    Result on = run(common + "on");
-    Result automatic = run(common + "auto");
-    ASSERT_EQ(automatic.status, 0) << automatic.out;
+    CliRun on = runTyndall(common + "on");
+    CliRun automatic = runTyndall(common + "auto");
+    ASSERT_EQ(automatic.exitCode, 0) << automatic.output;
     if (gl == GlKind::None) {
-        EXPECT_NE(on.status, 0) << on.out;
-        EXPECT_EQ(lineCount(on.out), 1) << on.out;
-        EXPECT_NE(on.out.find("--gpu on"), std::string::npos) << on.out;
+        EXPECT_NE(on.exitCode, 0) << on.output;
+        EXPECT_EQ(lineCount(on.output), 1) << on.output;
+        EXPECT_NE(on.output.find("--gpu on"), std::string::npos) << on.output;
     } else {
-        ASSERT_EQ(on.status, 0) << on.out;
-        EXPECT_NE(on.out.find("hybrid, "), std::string::npos) << on.out;
-        EXPECT_EQ(lineCount(on.out), 1) << on.out;
+        ASSERT_EQ(on.exitCode, 0) << on.output;
+        EXPECT_NE(on.output.find("hybrid, "), std::string::npos) << on.output;
+        EXPECT_EQ(lineCount(on.output), 1) << on.output;
     }
     if (gl == GlKind::Hardware) {
-        EXPECT_NE(automatic.out.find("hybrid, "), std::string::npos) << automatic.out;
-        EXPECT_EQ(lineCount(automatic.out), 1) << automatic.out;
+        EXPECT_NE(automatic.output.find("hybrid, "), std::string::npos) << automatic.output;
+        EXPECT_EQ(lineCount(automatic.output), 1) << automatic.output;
     } else {
-        EXPECT_NE(automatic.out.find("tyndall: --gpu auto: rendering on the CPU"), std::string::npos) << automatic.out;
-        EXPECT_NE(automatic.out.find("passes/s, CPU)"), std::string::npos) << automatic.out;
-        EXPECT_EQ(lineCount(automatic.out), 2) << automatic.out;
+        EXPECT_NE(automatic.output.find("tyndall: --gpu auto: rendering on the CPU"), std::string::npos)
+            << automatic.output;
+        EXPECT_NE(automatic.output.find("passes/s, CPU)"), std::string::npos) << automatic.output;
+        EXPECT_EQ(lineCount(automatic.output), 2) << automatic.output;
     }
-    Result bad = run(common + "sometimes");
-    EXPECT_NE(bad.status, 0);
-    EXPECT_EQ(lineCount(bad.out), 1) << bad.out;
-    EXPECT_NE(bad.out.find("--gpu"), std::string::npos) << bad.out;
+    CliRun bad = runTyndall(common + "sometimes");
+    EXPECT_NE(bad.exitCode, 0);
+    EXPECT_EQ(lineCount(bad.output), 1) << bad.output;
+    EXPECT_NE(bad.output.find("--gpu"), std::string::npos) << bad.output;
 }
 
 TEST(Cli, ExrMetadataHoldsTheSettingsThatMadeIt) {
     using tyndall::readImageAttribute;
     const std::string out = tyndall::test::outputDir() + "/cli_metadata.exr";
-    Result r =
-        run("render --passes 3 --photons 150 --size 20x12 --seed 42 --alpha 0.3 --radius 0.02 --gpu off -o " + out);
-    ASSERT_EQ(r.status, 0) << r.out;
+    CliRun r = runTyndall(
+        "render --passes 3 --photons 150 --size 20x12 --seed 42 --alpha 0.3 --radius 0.02 --gpu off -o " + out);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_EQ(readImageAttribute(out, "Software"), "tyndall");
     EXPECT_EQ(readImageAttribute(out, "tyndall:scene"), "<built-in default scene>");
     EXPECT_EQ(readImageAttribute(out, "tyndall:passes"), "3");
@@ -288,8 +275,8 @@ TEST(Cli, ExrMetadataHoldsTheSettingsThatMadeIt) {
     EXPECT_EQ(parsed.photonsPerPass, 150u);
 
     const std::string ref = tyndall::test::outputDir() + "/cli_metadata_reference.exr";
-    Result rr = run("reference --spp 2 --max-depth 3 --size 12x8 --seed 5 -o " + ref);
-    ASSERT_EQ(rr.status, 0) << rr.out;
+    CliRun rr = runTyndall("reference --spp 2 --max-depth 3 --size 12x8 --seed 5 -o " + ref);
+    ASSERT_EQ(rr.exitCode, 0) << rr.output;
     EXPECT_EQ(readImageAttribute(ref, "Software"), "tyndall");
     EXPECT_EQ(readImageAttribute(ref, "tyndall:renderer"), "reference");
     EXPECT_EQ(readImageAttribute(ref, "tyndall:scene"), "<built-in default scene>");
@@ -311,10 +298,10 @@ TEST(Cli, FewerPassesAreExactlyTheFirstPassesOfMore) {
     // 16-pass mean is (8 mean8 + 8 mean(passes 8..15)) / 16 up to float rounding.
     const std::string dir = tyndall::test::outputDir();
     const std::string common = "render --photons 200 --size 40x24 --seed 9 --gpu off ";
-    Result r8 = run(common + "--passes 8 --threads 1 -o " + dir + "/cli_prefix8.exr");
-    Result r16 = run(common + "--passes 16 --threads 2 -o " + dir + "/cli_prefix16.exr");
-    ASSERT_EQ(r8.status, 0) << r8.out;
-    ASSERT_EQ(r16.status, 0) << r16.out;
+    CliRun r8 = runTyndall(common + "--passes 8 --threads 1 -o " + dir + "/cli_prefix8.exr");
+    CliRun r16 = runTyndall(common + "--passes 16 --threads 2 -o " + dir + "/cli_prefix16.exr");
+    ASSERT_EQ(r8.exitCode, 0) << r8.output;
+    ASSERT_EQ(r16.exitCode, 0) << r16.output;
     tyndall::Image m8 = tyndall::readImage(dir + "/cli_prefix8.exr"),
                    m16 = tyndall::readImage(dir + "/cli_prefix16.exr");
 

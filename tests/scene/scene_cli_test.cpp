@@ -8,27 +8,13 @@
 
 #include "app/cli_common.h"
 #include "tests/scene/scene_test_util.h"
+#include "tests/tyndall_cli.h"
 
 namespace tyndall {
 namespace {
 
-struct CliRun {
-    int exitCode = -1;
-    std::string output;  // stdout and stderr
-};
-
-CliRun runTyndall(const std::string& args) {
-    std::string cmd = std::string(TYNDALL_BINARY) + " " + args + " 2>&1";
-    CliRun r;
-    FILE* p = popen(cmd.c_str(), "r");
-    if (!p) return r;
-    char buf[4096];
-    size_t n;
-    while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.output.append(buf, n);
-    int status = pclose(p);
-    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
+using test::CliRun;
+using test::runTyndall;
 
 const char* kSmallScene = R"({
   "render": {"width": 8, "height": 6, "passes": 1, "photons": 200},

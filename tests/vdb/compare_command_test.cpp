@@ -22,6 +22,7 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "tests/test_util.h"
+#include "tests/tyndall_cli.h"
 
 namespace tyndall {
 namespace {
@@ -111,30 +112,13 @@ bool catchesSigint(pid_t pid) {
     return false;
 }
 
-struct CommandRun {
-    int exitCode = -1;
-    std::string output;
-};
-
-/// Runs the tyndall binary with `args`, stdout and stderr together.
-CommandRun runTyndall(const std::string& args) {
-    std::string cmd = std::string(TYNDALL_BINARY) + " " + args + " 2>&1";
-    CommandRun r;
-    FILE* pipe = popen(cmd.c_str(), "r");
-    if (!pipe) return r;
-    char buf[512];
-    while (fgets(buf, sizeof buf, pipe)) r.output += buf;
-    int status = pclose(pipe);
-    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
 }  // namespace
 
 TEST(CompareCommand, SceneFileAndExplicitDensity) {
     const std::string out = test::outputDir() + "/compare-scene.png";
-    CommandRun r = runTyndall("compare " + std::string(TYNDALL_SOURCE_DIR) +
-                              "/scenes/caustic-box-smoke.json --density 0.5 --size 48x32 " +
-                              "--passes 2 --photons 200 --gpu off -o " + out);
+    test::CliRun r = test::runTyndall("compare " + std::string(TYNDALL_SOURCE_DIR) +
+                                      "/scenes/caustic-box-smoke.json --density 0.5 --size 48x32 " +
+                                      "--passes 2 --photons 200 --gpu off -o " + out);
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("2 passes each"), std::string::npos) << r.output;
     const std::string hom = test::outputDir() + "/compare-scene-homogeneous.exr";
@@ -147,13 +131,13 @@ TEST(CompareCommand, SceneFileAndExplicitDensity) {
     EXPECT_GT(both.width, 2 * 48);
 
     // A scene without a density grid has nothing to compare: one line, non-zero exit.
-    CommandRun bad =
-        runTyndall("compare " + std::string(TYNDALL_SOURCE_DIR) +
-                   "/scenes/caustic-box.json --passes 1 --size 16x16 -o " + test::outputDir() + "/compare-bad.png");
+    test::CliRun bad = test::runTyndall("compare " + std::string(TYNDALL_SOURCE_DIR) +
+                                        "/scenes/caustic-box.json --passes 1 --size 16x16 -o " + test::outputDir() +
+                                        "/compare-bad.png");
     EXPECT_NE(bad.exitCode, 0);
     EXPECT_EQ(std::count(bad.output.begin(), bad.output.end(), '\n'), 1) << bad.output;
-    CommandRun negative =
-        runTyndall("compare --density -1 --passes 1 --gpu off -o " + test::outputDir() + "/compare-bad.png");
+    test::CliRun negative =
+        test::runTyndall("compare --density -1 --passes 1 --gpu off -o " + test::outputDir() + "/compare-bad.png");
     EXPECT_NE(negative.exitCode, 0);
     EXPECT_NE(negative.output.find("--density"), std::string::npos) << negative.output;
 }
