@@ -139,12 +139,17 @@ Scene loadScene(CommonOptions& o) {
         if (!o.camera.empty() && o.camera != "0" && o.camera != "default")
             throw Error("--camera " + o.camera + ": the built-in default scene has one camera, 0 'default'");
         scene.validate();
+        RenderSettings fromScene = RenderSettings::fromJson(defaultSceneRender(), "default scene", o.settings);
+        o.settings = RenderSettings::fromJson(explicitSettings(o), "command line", fromScene);
+        o.settings.validate();
         return scene;
     }
     SceneLoadOptions options;
     options.camera = o.camera;
     SceneFile file = loadSceneFile(o.scene, options);
-    RenderSettings fromFile = RenderSettings::fromJson(file.render, file.renderWhere);
+    // The command's own defaults (bench's photon count), then the file's render block, then the
+    // options given.
+    RenderSettings fromFile = RenderSettings::fromJson(file.render, file.renderWhere, o.settings);
     o.settings = RenderSettings::fromJson(explicitSettings(o), "command line", fromFile);
     o.settings.validate();
     return std::move(file.scene);

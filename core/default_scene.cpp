@@ -1,5 +1,7 @@
 #include "core/default_scene.h"
 
+#include <nlohmann/json.hpp>
+
 #include "core/mesh_builders.h"
 
 namespace tyndall {
@@ -77,5 +79,7 @@ Scene makeDefaultScene() {
     s.finalize();
     return s;
 }
+
+nlohmann::json defaultSceneRender() { return {{"surface_radius", 0.3}}; }
 
 }  // namespace tyndall

@@ -24,6 +24,7 @@ std::string sourceDir() {
 TEST(SceneFile, CausticBoxFileIsTheBuiltInDefaultScene) {
     SceneFile f = loadSceneFile(sourceDir() + "/scenes/caustic-box.json");
     expectSameScene(f.scene, makeDefaultScene(), 1e-6f);
+    EXPECT_EQ(f.render, defaultSceneRender());
 }
 
 TEST(SceneFile, ExtensionPicksTheFormat) {
