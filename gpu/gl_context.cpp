@@ -1,6 +1,7 @@
 #include "gpu/gl_context.h"
 
 #include <cstdio>
+#include <cstdlib>
 
 #include "core/error.h"
 
@@ -9,7 +10,7 @@ namespace tyndall {
 namespace {
 #ifndef NDEBUG
 void APIENTRY debugMessage(GLenum source, GLenum type, GLuint id, GLenum severity, GLsizei length,
-                             const GLchar* message, const void* user) {
+                           const GLchar* message, const void* user) {
     if (severity == GL_DEBUG_SEVERITY_NOTIFICATION) return;
     std::fprintf(stderr, "tyndall: GL debug: %s\n", message);
 }
@@ -42,6 +43,12 @@ void GlContext::finishSetup(const std::function<void*(const char*)>& getProc, co
     m_gl.Enable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
     m_gl.DebugMessageCallback(debugMessage, nullptr);
 #endif
+}
+
+std::vector<std::string> detail::glLibraryNames(const char* envVar, std::vector<std::string> defaults) {
+    const char* chosen = std::getenv(envVar);
+    if (chosen && *chosen) return {chosen};
+    return defaults;
 }
 
 bool GlContext::isSoftware() const {

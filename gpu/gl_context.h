@@ -4,7 +4,10 @@
 // Backends, tried in this order by GlBackend::Auto:
 //   1. EGL on a hardware device (EGL_EXT_platform_device; the NVIDIA/AMD/Intel GPU when present),
 //   2. EGL on Mesa's surfaceless platform (llvmpipe on a machine without a GPU),
-//   3. OSMesa, loaded with dlopen (libOSMesa.so.8; software, no EGL needed).
+//   3. OSMesa (libOSMesa.so.8; software, no EGL needed).
+// Both libEGL and libOSMesa are loaded with dlopen, so a machine without them still runs Tyndall
+// on the CPU. The environment variables TYNDALL_EGL_LIBRARY and TYNDALL_OSMESA_LIBRARY name the
+// library to load instead of the usual sonames (a vendor's libEGL, or a test hiding GL).
 // Rendering goes to framebuffer objects only; there is no window. All GL calls go through gl()
 // (gpu/gl_functions.h).
 //
@@ -13,6 +16,7 @@
 #include <memory>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "gpu/gl_functions.h"
 
@@ -54,6 +58,9 @@ namespace detail {
 /// with the reason in `whyNot`.
 std::unique_ptr<GlContext> createEglContext(std::string* whyNot);
 std::unique_ptr<GlContext> createOSMesaContext(std::string* whyNot);
+/// The library names to dlopen, in order: the environment variable `envVar`'s value alone when
+/// it is set and not empty, else `defaults`.
+std::vector<std::string> glLibraryNames(const char* envVar, std::vector<std::string> defaults);
 }  // namespace detail
 
 }  // namespace tyndall

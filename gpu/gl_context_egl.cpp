@@ -1,7 +1,11 @@
 // EGL backend of GlContext: a hardware EGL device first, then Mesa's surfaceless platform.
+// libEGL is loaded with dlopen, like OSMesa, so the binary starts (and `--gpu off` renders) on a
+// machine without any GL library.
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
+#include <dlfcn.h>
 
+#include <cstdlib>
 #include <cstring>
 #include <vector>
 
@@ -11,6 +15,53 @@
 namespace tyndall {
 
 namespace {
+
+// The EGL 1.4 entry points used here; the extension ones come through getProcAddress.
+#define TYNDALL_EGL_FUNCTIONS(X) \
+    X(GetProcAddress)            \
+    X(GetError)                  \
+    X(QueryString)               \
+    X(Initialize)                \
+    X(BindAPI)                   \
+    X(ChooseConfig)              \
+    X(CreateContext)             \
+    X(MakeCurrent)               \
+    X(DestroyContext)            \
+    X(ReleaseThread)
+
+struct EglApi {
+    void* library = nullptr;
+#define TYNDALL_EGL_DECLARE(name) decltype(&egl##name) name = nullptr;
+    TYNDALL_EGL_FUNCTIONS(TYNDALL_EGL_DECLARE)
+#undef TYNDALL_EGL_DECLARE
+};
+
+/// Loaded once per process and never unloaded; null with the reason when there is no libEGL.
+const EglApi* eglApi(std::string* whyNot) {
+    static const EglApi api = [] {
+        EglApi a;
+        for (const std::string& name : detail::glLibraryNames("TYNDALL_EGL_LIBRARY", {"libEGL.so.1", "libEGL.so"}))
+            if ((a.library = dlopen(name.c_str(), RTLD_NOW | RTLD_LOCAL))) break;
+        if (!a.library) return a;
+#define TYNDALL_EGL_LOAD(name) a.name = reinterpret_cast<decltype(a.name)>(dlsym(a.library, "egl" #name));
+        TYNDALL_EGL_FUNCTIONS(TYNDALL_EGL_LOAD)
+#undef TYNDALL_EGL_LOAD
+        return a;
+    }();
+    if (!api.library) {
+        *whyNot = detail::glLibraryNames("TYNDALL_EGL_LIBRARY", {"libEGL.so.1"})[0] +
+                  " not found (install libegl1 and libgl1-mesa-dri)";
+        return nullptr;
+    }
+#define TYNDALL_EGL_CHECK(name)             \
+    if (!api.name) {                        \
+        *whyNot = "libEGL lacks egl" #name; \
+        return nullptr;                     \
+    }
+    TYNDALL_EGL_FUNCTIONS(TYNDALL_EGL_CHECK)
+#undef TYNDALL_EGL_CHECK
+    return &api;
+}
 
 bool hasExtension(const char* list, const char* name) {
     if (!list) return false;
@@ -47,10 +98,10 @@ std::string eglErrorName(EGLint e) {
 
 class EglContext : public GlContext {
 public:
-    EglContext(EGLDisplay display, EGLContext context, const std::string& name)
-        : m_display(display), m_context(context) {
+    EglContext(const EglApi& egl, EGLDisplay display, EGLContext context, const std::string& name)
+        : m_egl(egl), m_display(display), m_context(context) {
         try {
-            finishSetup([](const char* f) { return reinterpret_cast<void*>(eglGetProcAddress(f)); }, name);
+            finishSetup([&egl](const char* f) { return reinterpret_cast<void*>(egl.GetProcAddress(f)); }, name);
         } catch (...) {
             release();
             throw;
@@ -61,39 +112,41 @@ public:
 private:
     void release() {
         // The display is shared by every context on it in this process: release, never terminate.
-        eglMakeCurrent(m_display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-        eglDestroyContext(m_display, m_context);
-        eglReleaseThread();
+        m_egl.MakeCurrent(m_display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        m_egl.DestroyContext(m_display, m_context);
+        m_egl.ReleaseThread();
     }
 
+    const EglApi& m_egl;
     EGLDisplay m_display;
     EGLContext m_context;
 };
 
 /// A 4.5 core context on `display`, current on this thread, or null with the reason.
-std::unique_ptr<GlContext> contextOn(EGLDisplay display, const std::string& name, std::string* whyNot) {
+std::unique_ptr<GlContext> contextOn(const EglApi& egl, EGLDisplay display, const std::string& name,
+                                     std::string* whyNot) {
     EGLint major = 0, minor = 0;
     if (display == EGL_NO_DISPLAY) {
         *whyNot = name + ": no display";
         return nullptr;
     }
-    if (!eglInitialize(display, &major, &minor)) {
-        *whyNot = name + ": eglInitialize failed (" + eglErrorName(eglGetError()) + ")";
+    if (!egl.Initialize(display, &major, &minor)) {
+        *whyNot = name + ": eglInitialize failed (" + eglErrorName(egl.GetError()) + ")";
         return nullptr;
     }
-    const char* ext = eglQueryString(display, EGL_EXTENSIONS);
+    const char* ext = egl.QueryString(display, EGL_EXTENSIONS);
     if (!hasExtension(ext, "EGL_KHR_surfaceless_context")) {
         *whyNot = name + ": no EGL_KHR_surfaceless_context";
         return nullptr;
     }
-    if (!eglBindAPI(EGL_OPENGL_API)) {
+    if (!egl.BindAPI(EGL_OPENGL_API)) {
         *whyNot = name + ": no desktop OpenGL API";
         return nullptr;
     }
     EGLConfig config = nullptr;
     EGLint count = 0;
     const EGLint configAttribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_NONE};
-    if (!eglChooseConfig(display, configAttribs, &config, 1, &count) || count == 0) {
+    if (!egl.ChooseConfig(display, configAttribs, &config, 1, &count) || count == 0) {
         if (!hasExtension(ext, "EGL_KHR_no_config_context")) {
             *whyNot = name + ": no OpenGL config";
             return nullptr;
@@ -111,18 +164,18 @@ std::unique_ptr<GlContext> contextOn(EGLDisplay display, const std::string& name
                                      EGL_TRUE,
 #endif
                                      EGL_NONE};
-    EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, contextAttribs);
+    EGLContext context = egl.CreateContext(display, config, EGL_NO_CONTEXT, contextAttribs);
     if (context == EGL_NO_CONTEXT) {
-        *whyNot = name + ": no OpenGL 4.5 core context (" + eglErrorName(eglGetError()) + ")";
+        *whyNot = name + ": no OpenGL 4.5 core context (" + eglErrorName(egl.GetError()) + ")";
         return nullptr;
     }
-    if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
-        *whyNot = name + ": eglMakeCurrent failed (" + eglErrorName(eglGetError()) + ")";
-        eglDestroyContext(display, context);
+    if (!egl.MakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
+        *whyNot = name + ": eglMakeCurrent failed (" + eglErrorName(egl.GetError()) + ")";
+        egl.DestroyContext(display, context);
         return nullptr;
     }
     try {
-        return std::make_unique<EglContext>(display, context, name);
+        return std::make_unique<EglContext>(egl, display, context, name);
     } catch (const Error& e) {  // the constructor released the context
         *whyNot = e.what();
         return nullptr;
@@ -134,16 +187,19 @@ std::unique_ptr<GlContext> contextOn(EGLDisplay display, const std::string& name
 namespace detail {
 
 std::unique_ptr<GlContext> createEglContext(std::string* whyNot) {
-    const char* clientExt = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+    const EglApi* api = eglApi(whyNot);
+    if (!api) return nullptr;
+    const EglApi& egl = *api;
+    const char* clientExt = egl.QueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
     auto getPlatformDisplay =
-        reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
+        reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(egl.GetProcAddress("eglGetPlatformDisplayEXT"));
     std::vector<std::string> reasons;
     std::string why;
 
     // Hardware devices first: on a GPU machine this is the GPU even without a display server.
-    auto queryDevices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+    auto queryDevices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(egl.GetProcAddress("eglQueryDevicesEXT"));
     auto queryDeviceString =
-        reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
+        reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(egl.GetProcAddress("eglQueryDeviceStringEXT"));
     if (getPlatformDisplay && queryDevices && queryDeviceString && hasExtension(clientExt, "EGL_EXT_platform_device")) {
         EGLDeviceEXT devices[16];
         EGLint n = 0;
@@ -152,14 +208,14 @@ std::unique_ptr<GlContext> createEglContext(std::string* whyNot) {
                 const char* devExt = queryDeviceString(devices[i], EGL_EXTENSIONS);
                 if (hasExtension(devExt, "EGL_MESA_device_software")) continue;  // llvmpipe: surfaceless below
                 EGLDisplay d = getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
-                if (auto ctx = contextOn(d, "EGL device " + std::to_string(i), &why)) return ctx;
+                if (auto ctx = contextOn(egl, d, "EGL device " + std::to_string(i), &why)) return ctx;
                 reasons.push_back(why);
             }
         }
     }
     if (getPlatformDisplay && hasExtension(clientExt, "EGL_MESA_platform_surfaceless")) {
         EGLDisplay d = getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-        if (auto ctx = contextOn(d, "EGL surfaceless", &why)) return ctx;
+        if (auto ctx = contextOn(egl, d, "EGL surfaceless", &why)) return ctx;
         reasons.push_back(why);
     } else {
         reasons.push_back("no EGL_MESA_platform_surfaceless");

@@ -27,8 +27,9 @@ struct OSMesaApi {
 const OSMesaApi* osmesaApi(std::string* whyNot) {
     static const OSMesaApi api = [] {
         OSMesaApi a;
-        for (const char* name : {"libOSMesa.so.8", "libOSMesa.so.6", "libOSMesa.so"})
-            if ((a.library = dlopen(name, RTLD_NOW | RTLD_LOCAL))) break;
+        for (const std::string& name :
+             detail::glLibraryNames("TYNDALL_OSMESA_LIBRARY", {"libOSMesa.so.8", "libOSMesa.so.6", "libOSMesa.so"}))
+            if ((a.library = dlopen(name.c_str(), RTLD_NOW | RTLD_LOCAL))) break;
         if (!a.library) return a;
         a.createContextAttribs =
             reinterpret_cast<decltype(a.createContextAttribs)>(dlsym(a.library, "OSMesaCreateContextAttribs"));
@@ -38,7 +39,8 @@ const OSMesaApi* osmesaApi(std::string* whyNot) {
         return a;
     }();
     if (!api.library) {
-        *whyNot = "libOSMesa.so.8 not found (install libosmesa6)";
+        *whyNot =
+            detail::glLibraryNames("TYNDALL_OSMESA_LIBRARY", {"libOSMesa.so.8"})[0] + " not found (install libosmesa6)";
         return nullptr;
     }
     if (!api.createContextAttribs || !api.makeCurrent || !api.destroyContext || !api.getProcAddress) {

@@ -13,9 +13,11 @@ struct CliRun {
     std::string output;  ///< stdout and stderr together
 };
 
-/// `tyndall <args>` through the shell (quote paths with spaces yourself).
-inline CliRun runTyndall(const std::string& args) {
-    std::string cmd = std::string(TYNDALL_BINARY) + " " + args + " 2>&1";
+/// `tyndall <args>` through the shell (quote paths with spaces yourself), with `environment`
+/// ("NAME=value ...") added to its environment.
+inline CliRun runTyndall(const std::string& args, const std::string& environment = "") {
+    std::string cmd =
+        (environment.empty() ? "" : "env " + environment + " ") + std::string(TYNDALL_BINARY) + " " + args + " 2>&1";
     CliRun r;
     FILE* pipe = popen(cmd.c_str(), "r");
     if (!pipe) return r;

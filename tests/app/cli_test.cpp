@@ -245,6 +245,33 @@ TEST(Cli, GpuModes) {
     EXPECT_NE(bad.output.find("--gpu"), std::string::npos) << bad.output;
 }
 
+TEST(Cli, WithoutAnyGlLibraryAutoFallsBackAndOnFails) {
+    // libEGL and libOSMesa are loaded at run time: hide both and the program still renders on
+    // the CPU (auto, with one line saying why) or fails clearly (on).
+    const std::string noGl =
+        "TYNDALL_EGL_LIBRARY=/nonexistent/libEGL.so.1 TYNDALL_OSMESA_LIBRARY=/nonexistent/libOSMesa.so.8";
+    const std::string out = tyndall::test::outputDir() + "/cli_nogl.png";
+    const std::string common = "render --passes 1 --photons 100 --size 24x16 -o " + out + " --gpu ";
+    CliRun automatic = runTyndall(common + "auto", noGl);
+    ASSERT_EQ(automatic.exitCode, 0) << automatic.output;
+    EXPECT_EQ(lineCount(automatic.output), 2) << automatic.output;
+    EXPECT_NE(automatic.output.find("tyndall: --gpu auto: rendering on the CPU: no OpenGL 4.5 core context"),
+              std::string::npos)
+        << automatic.output;
+    EXPECT_NE(automatic.output.find("/nonexistent/libEGL.so.1 not found"), std::string::npos) << automatic.output;
+    EXPECT_NE(automatic.output.find("/nonexistent/libOSMesa.so.8 not found"), std::string::npos) << automatic.output;
+    EXPECT_NE(automatic.output.find("passes/s, CPU)"), std::string::npos) << automatic.output;
+
+    CliRun on = runTyndall(common + "on", noGl);
+    EXPECT_EQ(on.exitCode, 1) << on.output;
+    EXPECT_EQ(lineCount(on.output), 1) << on.output;
+    EXPECT_NE(on.output.find("tyndall: --gpu on: no OpenGL 4.5 core context"), std::string::npos) << on.output;
+
+    CliRun off = runTyndall(common + "off", noGl);
+    EXPECT_EQ(off.exitCode, 0) << off.output;
+    EXPECT_EQ(lineCount(off.output), 1) << off.output;
+}
+
 TEST(Cli, ExrMetadataHoldsTheSettingsThatMadeIt) {
     using tyndall::readImageAttribute;
     const std::string out = tyndall::test::outputDir() + "/cli_metadata.exr";
