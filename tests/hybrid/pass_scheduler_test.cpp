@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <nlohmann/json.hpp>
 #include <thread>
 
 #include "core/default_scene.h"
@@ -68,7 +69,11 @@ const Scene& defaultScene() {
 }  // namespace
 
 TEST(PassScheduler, HybridAndCpuOnlyGiveTheSameImage) {
-    RenderSettings s = smallSettings(64);
+    // What `tyndall render --gpu on` and `--gpu off` do with no options: the default scene at its
+    // own settings, 512x512, 64 passes of 4000 photon paths.
+    RenderSettings s = RenderSettings::fromJson(defaultSceneRender(), "default scene", RenderSettings());
+    ASSERT_EQ(s.width, 512);
+    ASSERT_EQ(s.passes, 64u);
     Rendered cpu = render(GpuMode::Off, defaultScene(), s);
     Rendered hybrid = render(GpuMode::On, defaultScene(), s);
     double rms = relativeRms(hybrid.image, cpu.image);
