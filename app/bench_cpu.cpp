@@ -2,8 +2,10 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <vector>
 
 #include "core/rng.h"
 #include "core/sampling.h"
@@ -29,10 +31,7 @@ double measureRawRayRate(const EmbreeScene& rt, uint64_t count) {
             Vec3 o = b.lo + mul(b.diagonal(), Vec3(rng.uniform(), rng.uniform(), rng.uniform()));
             Vec3 d = sampleUniformSphere(rng.uniform(), rng.uniform());
             RTCRayHit rh;
-            rh.ray.org_x = o.x, rh.ray.org_y = o.y, rh.ray.org_z = o.z;
-            rh.ray.dir_x = d.x, rh.ray.dir_y = d.y, rh.ray.dir_z = d.z;
-            rh.ray.tnear = 0, rh.ray.tfar = kInfinity, rh.ray.mask = 0xFFFFFFFFu, rh.ray.flags = 0, rh.ray.time = 0;
-            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            initRayHit(rh, o, d);  // the photon tracer's ray setup
             rtcIntersect1(rt.rtcScene(), &ctx, &rh);
             localHits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
         }
@@ -42,43 +41,50 @@ double measureRawRayRate(const EmbreeScene& rt, uint64_t count) {
     return double(((count + block - 1) / block) * block) / s;
 }
 
-double measureReplayedPhotonRayRate(const PassRenderer& renderer, int passes) {
-    std::vector<Ray> rays;
-    for (int i = 0; i < passes; ++i)
-        for (const PhotonBeam& b : renderer.tracePhotons(uint64_t(i)).beams) rays.push_back(Ray{b.origin, b.dir});
-    if (rays.empty()) return 0.0;
-    const RTCScene scene = renderer.rayTracer().rtcScene();
-    const size_t block = 1024, repeats = 8;  // repeat so the timed loop runs long enough
+namespace {
+/// Seconds to trace `rays` through rtcIntersect1 alone, in parallel blocks of 1024.
+double replaySeconds(const EmbreeScene& rt, const std::vector<Ray>& rays) {
+    const size_t block = 1024;
     auto t0 = Clock::now();
-    for (size_t rep = 0; rep < repeats; ++rep) {
-        tbb::parallel_for(size_t(0), (rays.size() + block - 1) / block, [&](size_t k) {
-            RTCIntersectContext ctx;
-            rtcInitIntersectContext(&ctx);
-            for (size_t i = k * block; i < std::min(rays.size(), (k + 1) * block); ++i) {
-                RTCRayHit rh;
-                const Ray& r = rays[i];
-                rh.ray.org_x = r.o.x, rh.ray.org_y = r.o.y, rh.ray.org_z = r.o.z;
-                rh.ray.dir_x = r.d.x, rh.ray.dir_y = r.d.y, rh.ray.dir_z = r.d.z;
-                rh.ray.tnear = 0, rh.ray.tfar = kInfinity, rh.ray.mask = 0xFFFFFFFFu, rh.ray.flags = 0, rh.ray.time = 0;
-                rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-                rtcIntersect1(scene, &ctx, &rh);
-            }
-        });
-    }
-    return double(rays.size() * repeats) / since(t0);
+    tbb::parallel_for(size_t(0), (rays.size() + block - 1) / block, [&](size_t k) {
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        for (size_t i = k * block; i < std::min(rays.size(), (k + 1) * block); ++i) {
+            RTCRayHit rh;
+            initRayHit(rh, rays[i].o, rays[i].d, rays[i].tMin, rays[i].tMax);  // as the tracer sets it up
+            rtcIntersect1(rt.rtcScene(), &ctx, &rh);
+        }
+    });
+    return since(t0);
 }
+}  // namespace
 
-PhotonRate measurePhotonTracing(const PassRenderer& renderer, int passes) {
-    uint64_t paths = 0, beams = 0, rays = 0;
-    auto t0 = Clock::now();
-    for (int i = 0; i < passes; ++i) {
-        PhotonMap m = renderer.tracePhotons(uint64_t(i));
-        paths += m.pathCount;
-        beams += m.beams.size();
-        rays += m.raysTraced;
+PhotonStageRate measurePhotonStage(const PassRenderer& renderer, int passes, int rounds) {
+    PhotonStageRate r;
+    std::vector<Ray> rays, beamRays;
+    for (int i = 0; i < passes; ++i)
+        for (const PhotonBeam& b : renderer.photonTracer().traceRecordingRays(uint64_t(i), &rays).beams)
+            beamRays.push_back(Ray{b.origin, b.dir});
+    r.rays = rays.size();
+    r.beamRays = beamRays.size();
+    if (rays.empty()) return r;
+    for (int round = 0; round < rounds; ++round) {
+        uint64_t paths = 0, beams = 0, traced = 0;
+        auto t0 = Clock::now();
+        for (int i = 0; i < passes; ++i) {
+            PhotonMap m = renderer.tracePhotons(uint64_t(i));
+            paths += m.pathCount;
+            beams += m.beams.size();
+            traced += m.raysTraced;
+        }
+        double s = since(t0);
+        if (traced / s > r.tracing.raysPerSecond) r.tracing = {paths / s, beams / s, traced / s};
+        r.replayRaysPerSecond =
+            std::max(r.replayRaysPerSecond, double(rays.size()) / replaySeconds(renderer.rayTracer(), rays));
+        r.beamReplayRaysPerSecond = std::max(r.beamReplayRaysPerSecond,
+                                             double(beamRays.size()) / replaySeconds(renderer.rayTracer(), beamRays));
     }
-    double s = since(t0);
-    return {paths / s, beams / s, rays / s};
+    return r;
 }
 
 GatherRate measureBeamGather(const PassRenderer& renderer, BeamBvh::Kind kind, uint64_t count) {

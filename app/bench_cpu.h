@@ -11,15 +11,22 @@ namespace tyndall::app {
 /// scene bounds and uniform random directions, rtcIntersect1 in parallel. Rays per second.
 double measureRawRayRate(const EmbreeScene& rt, uint64_t count);
 
-/// Embree's raw closest-hit throughput on the photon tracer's own rays: the origins and directions
-/// of the beams of `passes` photon passes (in a fog-filled scene nearly every photon ray starts a
-/// beam), replayed through rtcIntersect1 in parallel. Rays per second.
-double measureReplayedPhotonRayRate(const PassRenderer& renderer, int passes);
-
 struct PhotonRate {
     double pathsPerSecond = 0, beamsPerSecond = 0, raysPerSecond = 0;
 };
-PhotonRate measurePhotonTracing(const PassRenderer& renderer, int passes);
+
+/// The photon stage against Embree alone on the same rays.
+struct PhotonStageRate {
+    PhotonRate tracing;                  ///< PhotonTracer::trace(pass), pass after pass as renderPass calls it
+    double replayRaysPerSecond = 0;      ///< every ray those passes cast, through rtcIntersect1 alone
+    double beamReplayRaysPerSecond = 0;  ///< only the rays that start a beam (the earlier baseline)
+    uint64_t rays = 0, beamRays = 0;     ///< per round
+};
+/// Traces passes 0 .. passes-1 (the renderer's own pass size) and replays every ray they cast
+/// (origin, direction, t range; the tracer's own ray setup) through rtcIntersect1 in blocks of
+/// 1024, in parallel at the same thread count. Rounds alternate tracing and replay; each rate is
+/// its best round (the machine's noise only ever slows a round down).
+PhotonStageRate measurePhotonStage(const PassRenderer& renderer, int passes, int rounds);
 
 struct GatherRate {
     double queriesPerSecond = 0, hitsPerSecond = 0, buildSeconds = 0;

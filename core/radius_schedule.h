@@ -37,8 +37,16 @@ public:
     static double logR(double alpha, double n);
 
 private:
+    /// logR with its n-independent terms precomputed (the same values, so the same result).
+    struct LogRTerms {
+        double alpha, c, k2, k3, k4;  // c = -ln Gamma(1 + alpha); k = Bernoulli-polynomial differences
+        explicit LogRTerms(double alpha);
+        double operator()(double n) const;
+    };
+
     double m_alpha;
     uint64_t m_offset;
+    LogRTerms m_terms;
     double m_logR0;
 };
 

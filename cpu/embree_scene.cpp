@@ -59,6 +59,18 @@ EmbreeScene::EmbreeScene(const Scene& scene, std::shared_ptr<EmbreeDevice> devic
         rtcAttachGeometryByID(m_rtcScene, geom, unsigned(m));
         rtcReleaseGeometry(geom);
     }
+    m_shadingNormals.resize(scene.meshes.size());
+    for (size_t m = 0; m < scene.meshes.size(); ++m) {
+        const TriangleMesh& mesh = scene.meshes[m];
+        // Shading normals only change specular directions (diffuse sampling uses ng).
+        if (mesh.normals.empty() || mesh.material < 0 || size_t(mesh.material) >= scene.materials.size() ||
+            !scene.materials[mesh.material].isSpecular())
+            continue;
+        std::vector<TriangleNormals>& packed = m_shadingNormals[m];
+        packed.resize(mesh.triangleCount());
+        for (size_t t = 0; t < packed.size(); ++t)
+            for (int k = 0; k < 3; ++k) packed[t].n[k] = mesh.normals[mesh.indices[3 * t + size_t(k)]];
+    }
     rtcCommitScene(m_rtcScene);
     m_device->check("building the scene BVH");
     Bounds3 b = scene.bounds;
@@ -69,25 +81,9 @@ EmbreeScene::EmbreeScene(const Scene& scene, std::shared_ptr<EmbreeDevice> devic
 EmbreeScene::~EmbreeScene() { rtcReleaseScene(m_rtcScene); }
 
 bool EmbreeScene::intersect(const Ray& ray, SurfaceHit* hit) const {
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
     RTCRayHit rh;
-    rh.ray.org_x = ray.o.x;
-    rh.ray.org_y = ray.o.y;
-    rh.ray.org_z = ray.o.z;
-    rh.ray.dir_x = ray.d.x;
-    rh.ray.dir_y = ray.d.y;
-    rh.ray.dir_z = ray.d.z;
-    rh.ray.tnear = ray.tMin;
-    rh.ray.tfar = ray.tMax;
-    rh.ray.mask = 0xFFFFFFFFu;
-    rh.ray.flags = 0;
-    rh.ray.time = 0;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(m_rtcScene, &ctx, &rh);
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-    const TriangleMesh& mesh = m_scene.meshes[rh.hit.geomID];
+    initRayHit(rh, ray.o, ray.d, ray.tMin, ray.tMax);
+    if (!intersectRaw(rh)) return false;
     hit->t = rh.ray.tfar;
     hit->mesh = int(rh.hit.geomID);
     hit->triangle = rh.hit.primID;
@@ -96,19 +92,7 @@ bool EmbreeScene::intersect(const Ray& ray, SurfaceHit* hit) const {
     hit->p = ray.at(hit->t);
     // Embree's Ng is cross(v1 - v0, v2 - v0): the same orientation as Scene's CCW convention.
     hit->ng = normalize(Vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
-    hit->ns = hit->ng;
-    // Shading normals only change specular directions (diffuse sampling uses ng): skip the vertex
-    // fetches for everything else.
-    if (!mesh.normals.empty() && m_scene.materials[mesh.material].isSpecular()) {
-        const uint32_t* tri = &mesh.indices[3 * size_t(rh.hit.primID)];
-        Vec3 n = mesh.normals[tri[0]] * (1.0f - hit->b1 - hit->b2) + mesh.normals[tri[1]] * hit->b1 +
-                 mesh.normals[tri[2]] * hit->b2;
-        float len = length(n);
-        if (len > 0 && std::isfinite(len)) {
-            n = n / len;
-            hit->ns = dot(n, hit->ng) < 0 ? -n : n;
-        }
-    }
+    hit->ns = shadingNormal(hit->mesh, hit->triangle, hit->b1, hit->b2, hit->ng);
     return true;
 }
 
@@ -142,27 +126,6 @@ MediumId EmbreeScene::mediumAt(const Vec3& p) const {
         ray.o = offsetOrigin(hit.p, hit.ng, ray.d);
     }
     return m_scene.globalMedium;
-}
-
-bool EmbreeScene::globalMediumInterval(const Ray& ray, float* t0, float* t1) const {
-    if (m_mediumBounds.empty()) return false;
-    float lo = ray.tMin, hi = ray.tMax;
-    for (int a = 0; a < 3; ++a) {
-        float inv = 1.0f / ray.d[a];
-        float tn = (m_mediumBounds.lo[a] - ray.o[a]) * inv;
-        float tf = (m_mediumBounds.hi[a] - ray.o[a]) * inv;
-        if (tn > tf) std::swap(tn, tf);
-        if (std::isnan(tn) || std::isnan(tf)) {  // ray parallel to and inside the slab plane
-            if (ray.o[a] < m_mediumBounds.lo[a] || ray.o[a] > m_mediumBounds.hi[a]) return false;
-            continue;
-        }
-        lo = std::max(lo, tn);
-        hi = std::min(hi, tf * 1.0000001f);
-        if (lo > hi) return false;
-    }
-    *t0 = lo;
-    *t1 = hi;
-    return true;
 }
 
 }  // namespace tyndall

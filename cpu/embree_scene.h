@@ -2,8 +2,12 @@
 // Embree 3 ray queries over a Scene's triangle meshes. One Embree geometry per mesh, with the
 // geometry ID equal to the mesh index. Thread-safe for concurrent queries after construction.
 #include <embree3/rtcore.h>
+#if defined(__SSE__)
+#include <xmmintrin.h>
+#endif
 
 #include <memory>
+#include <vector>
 
 #include "core/scene.h"
 
@@ -34,6 +38,24 @@ struct SurfaceHit {
     float b1 = 0, b2 = 0;  ///< barycentrics of vertices 1 and 2
 };
 
+/// Fills `rh` for a closest-hit query along o + t d, t in (tMin, tMax). Origin and direction go in
+/// with 16-byte stores, the way Embree loads them (scalar stores there stall the loads).
+inline void initRayHit(RTCRayHit& rh, const Vec3& o, const Vec3& d, float tMin = 0.0f, float tMax = kInfinity) {
+#if defined(__SSE__)
+    _mm_store_ps(&rh.ray.org_x, _mm_setr_ps(o.x, o.y, o.z, tMin));
+    _mm_store_ps(&rh.ray.dir_x, _mm_setr_ps(d.x, d.y, d.z, 0.0f));  // time = 0
+#else
+    rh.ray.org_x = o.x, rh.ray.org_y = o.y, rh.ray.org_z = o.z, rh.ray.tnear = tMin;
+    rh.ray.dir_x = d.x, rh.ray.dir_y = d.y, rh.ray.dir_z = d.z, rh.ray.time = 0.0f;
+#endif
+    rh.ray.tfar = tMax;
+    rh.ray.mask = 0xFFFFFFFFu;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+}
+
 class EmbreeScene {
 public:
     EmbreeScene(const Scene& scene, std::shared_ptr<EmbreeDevice> device = nullptr);
@@ -45,13 +67,54 @@ public:
     bool intersect(const Ray& ray, SurfaceHit* hit) const;
     /// Any hit with t in (ray.tMin, ray.tMax).
     bool occluded(const Ray& ray) const;
+    /// Embree's raw closest hit for `rh` (set up by initRayHit): no hit record, for the photon
+    /// tracer's lean loop. True when something was hit.
+    bool intersectRaw(RTCRayHit& rh) const {
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        rtcIntersect1(m_rtcScene, &ctx, &rh);
+        return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+    }
+    /// Starts fetching what shadingNormal(mesh, tri, ...) reads, so that work in between hides
+    /// the cache miss (the normals are not where Embree's traversal just was). Always inlined:
+    /// GCC finds an out-of-line prefetch-only function pure and deletes its calls.
+    [[gnu::always_inline]] void prefetchShadingNormal(int mesh, uint32_t tri) const {
+        const std::vector<TriangleNormals>& normals = m_shadingNormals[size_t(mesh)];
+        if (normals.empty()) return;
+        const char* at = reinterpret_cast<const char*>(&normals[tri]);
+        __builtin_prefetch(at);
+        __builtin_prefetch(at + sizeof(TriangleNormals) - 1);
+    }
+    /// SurfaceHit::ns for a hit at barycentrics (b1, b2) of triangle `tri` of mesh `mesh` with unit
+    /// geometric normal `ng`: the interpolated vertex normal on specular meshes with normals, else ng.
+    Vec3 shadingNormal(int mesh, uint32_t tri, float b1, float b2, const Vec3& ng) const {
+        const std::vector<TriangleNormals>& normals = m_shadingNormals[size_t(mesh)];
+        if (normals.empty()) return ng;
+        const TriangleNormals& v = normals[tri];
+        Vec3 n = v.n[0] * (1.0f - b1 - b2) + v.n[1] * b1 + v.n[2] * b2;
+        float len = length(n);
+        if (!(len > 0 && std::isfinite(len))) return ng;
+        n = n / len;
+        return dot(n, ng) < 0 ? -n : n;
+    }
 
     /// The medium containing point `p`: found by casting a ray to the first medium-bounding surface
     /// (a mesh whose interior and exterior media differ) and reading which side it is on.
     MediumId mediumAt(const Vec3& p) const;
     /// Ray-parameter interval [t0, t1] where the global medium exists: the scene bounds, so that a
     /// ray escaping into an unbounded fog stops at the scene's edge. Returns false if none.
-    bool globalMediumInterval(const Ray& ray, float* t0, float* t1) const;
+    bool globalMediumInterval(const Ray& ray, float* t0, float* t1) const {
+        if (m_mediumBounds.empty()) return false;
+        float lo = ray.tMin, hi = ray.tMax;
+        const Bounds3& b = m_mediumBounds;
+        if (!clipSlab(ray.o.x, ray.d.x, b.lo.x, b.hi.x, &lo, &hi) ||
+            !clipSlab(ray.o.y, ray.d.y, b.lo.y, b.hi.y, &lo, &hi) ||
+            !clipSlab(ray.o.z, ray.d.z, b.lo.z, b.hi.z, &lo, &hi))
+            return false;
+        *t0 = lo;
+        *t1 = hi;
+        return true;
+    }
     /// The stretch of o + t d, t in [0, tEnd] (tEnd: the next surface, or infinity), that lies in
     /// the medium the ray is in, as a segment with its own origin: {o + t0 d, d, 0, t1 - t0}.
     /// False when it is empty. Every stage that walks media starts here.
@@ -75,11 +138,30 @@ public:
     const std::shared_ptr<EmbreeDevice>& device() const { return m_device; }
 
 private:
+    /// One axis of globalMediumInterval: narrows [*lo, *hi] to the slab [slabLo, slabHi] of o + t d.
+    static bool clipSlab(float o, float d, float slabLo, float slabHi, float* lo, float* hi) {
+        float inv = 1.0f / d;
+        float tn = (slabLo - o) * inv;
+        float tf = (slabHi - o) * inv;
+        if (tn > tf) std::swap(tn, tf);
+        if (std::isnan(tn) || std::isnan(tf)) return !(o < slabLo || o > slabHi);  // parallel, inside
+        *lo = std::max(*lo, tn);
+        *hi = std::min(*hi, tf * 1.0000001f);
+        return !(*lo > *hi);
+    }
+
+    struct TriangleNormals {
+        Vec3 n[3];
+    };
+
     const Scene& m_scene;
     std::shared_ptr<EmbreeDevice> m_device;
     RTCScene m_rtcScene = nullptr;
     float m_epsilon = 1e-5f;
     Bounds3 m_mediumBounds;
+    /// Per mesh: the vertex normals of each triangle, packed (one cache line, no index fetch), for
+    /// specular meshes with normals; empty for every other mesh.
+    std::vector<std::vector<TriangleNormals>> m_shadingNormals;
 };
 
 }  // namespace tyndall

@@ -69,23 +69,10 @@ float deltaTrack(const Medium& medium, const Ray& ray, float tEnd, Rng& rng) {
 }
 }  // namespace
 
-FreeFlight sampleFreeFlight(const Medium& medium, const Ray& ray, float tEnd, Rng& rng) {
+FreeFlight sampleFreeFlightSpectralOrGrid(const Medium& medium, const Ray& ray, float tEnd, Rng& rng) {
     FreeFlight ff;
     if (medium.homogeneous()) {
         Rgb st = medium.sigmaT();
-        if (st.r == st.g && st.r == st.b) {
-            // Grey extinction: exact exponential sampling, no MIS; the weights need no exp:
-            // sigma_s Tr / (sigma_t Tr) on scattering, Tr / Tr on passing.
-            float t = expSample(st.r, rng.uniform());
-            if (t < tEnd) {
-                ff.scattered = true;
-                ff.t = t;
-                ff.weight = medium.sigmaS / st.r;
-            } else {
-                ff.t = tEnd;
-            }
-            return ff;
-        }
         int channel = std::min(int(rng.uniform() * 3.0f), 2);
         float t = expSample(st[channel], rng.uniform());
         if (t < tEnd) {

@@ -5,6 +5,8 @@
 // piecewise constant along the ray when the grid has a majorant grid (a DDA over its coarse
 // cells), else one value per segment. No ray marching anywhere: every estimate here is unbiased.
 // Randomness comes only from the caller's keyed stream `rng`.
+#include <cmath>
+
 #include "core/medium.h"
 #include "core/rng.h"
 
@@ -19,7 +21,27 @@ struct FreeFlight {
     Rgb weight{1.0f};
 };
 
-FreeFlight sampleFreeFlight(const Medium& medium, const Ray& ray, float tEnd, Rng& rng);
+/// sampleFreeFlight for every medium but the homogeneous grey ones (those are inline below).
+FreeFlight sampleFreeFlightSpectralOrGrid(const Medium& medium, const Ray& ray, float tEnd, Rng& rng);
+
+inline FreeFlight sampleFreeFlight(const Medium& medium, const Ray& ray, float tEnd, Rng& rng) {
+    if (!medium.homogeneous()) return sampleFreeFlightSpectralOrGrid(medium, ray, tEnd, rng);
+    Rgb st = medium.sigmaT();
+    if (!(st.r == st.g && st.r == st.b)) return sampleFreeFlightSpectralOrGrid(medium, ray, tEnd, rng);
+    // Grey extinction: exact exponential sampling, no MIS; the weights need no exp:
+    // sigma_s Tr / (sigma_t Tr) on scattering, Tr / Tr on passing.
+    FreeFlight ff;
+    float u = rng.uniform();
+    float t = st.r > 0 ? -std::log(1.0f - u) / st.r : kInfinity;  // u < 1
+    if (t < tEnd) {
+        ff.scattered = true;
+        ff.t = t;
+        ff.weight = medium.sigmaS / st.r;
+    } else {
+        ff.t = tEnd;
+    }
+    return ff;
+}
 
 /// Distance to the first real collision (absorption or scattering) along `ray`, or +infinity when
 /// it passes tEnd: one sample of the stored step transmittance, Tr(t) = P(distance > t). Needs grey

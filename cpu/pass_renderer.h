@@ -62,6 +62,7 @@ public:
     const RenderSettings& settings() const { return m_settings; }
     const RadiusSetup& radii() const { return m_radii; }
     const EmbreeScene& rayTracer() const { return *m_rt; }
+    const PhotonTracer& photonTracer() const { return *m_photons; }
 
 private:
     const Scene& m_scene;

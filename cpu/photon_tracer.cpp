@@ -1,6 +1,7 @@
 #include "cpu/photon_tracer.h"
 
 #include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
 
 #include "core/error.h"
 #include "core/phase.h"
@@ -32,17 +33,34 @@ PhotonMap PhotonTracer::trace(uint64_t pass) const {
 }
 
 PhotonMap PhotonTracer::trace(uint64_t pass, uint64_t firstPath, uint32_t count) const {
-    constexpr uint32_t kBlock = 64;
+    return trace(pass, firstPath, count, nullptr);
+}
+
+PhotonMap PhotonTracer::traceRecordingRays(uint64_t pass, std::vector<Ray>* rays) const {
+    uint32_t m = m_settings.photonsPerPass;
+    return trace(pass, pass * uint64_t(m), m, rays);
+}
+
+PhotonMap PhotonTracer::trace(uint64_t pass, uint64_t firstPath, uint32_t count, std::vector<Ray>* rays) const {
+    // Blocks of 32 paths, one task each: the pass ends within ~one block's time of its last
+    // thread, where the auto partitioner's chunks of several blocks left a thread idle longer.
+    constexpr uint32_t kBlock = 32;
     uint32_t blocks = (count + kBlock - 1) / kBlock;
     std::vector<PhotonMap> parts(blocks);
-    tbb::parallel_for(uint32_t(0), blocks, [&](uint32_t b) {
-        PhotonMap& part = parts[b];
-        part.beams.reserve(kBlock * 8);
-        part.surfacePhotons.reserve(kBlock * 4);
-        part.freeFlightsPerBeam = m_anyHeterogeneous ? m_settings.freeFlightSamples : 0;
-        uint32_t end = std::min(count, (b + 1) * kBlock);
-        for (uint32_t k = b * kBlock; k < end; ++k) tracePath(pass, k, firstPath + k, count, part);
-    });
+    std::vector<std::vector<Ray>> partRays(rays ? blocks : 0);
+    tbb::parallel_for(
+        uint32_t(0), blocks,
+        [&](uint32_t b) {
+            PhotonMap& part = parts[b];
+            part.beams.reserve(kBlock * 8);
+            part.surfacePhotons.reserve(kBlock * 4);
+            part.freeFlightsPerBeam = m_anyHeterogeneous ? m_settings.freeFlightSamples : 0;
+            std::vector<Ray>* blockRays = rays ? &partRays[b] : nullptr;
+            uint32_t end = std::min(count, (b + 1) * kBlock);
+            for (uint32_t k = b * kBlock; k < end; ++k) tracePath(pass, k, firstPath + k, count, part, blockRays);
+        },
+        tbb::simple_partitioner());
+    for (const std::vector<Ray>& r : partRays) rays->insert(rays->end(), r.begin(), r.end());
     PhotonMap out;
     out.pass = pass;
     out.firstPath = firstPath;
@@ -65,8 +83,8 @@ PhotonMap PhotonTracer::trace(uint64_t pass, uint64_t firstPath, uint32_t count)
     return out;
 }
 
-void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t globalPath, uint32_t count,
-                             PhotonMap& out) const {
+void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t globalPath, uint32_t count, PhotonMap& out,
+                             std::vector<Ray>* rays) const {
     Rng rng = Rng::forKey(m_settings.seed, pass, pathInPass, StreamPurpose::PhotonPath);
     EmittedPhoton e = m_lights.sample(rng);
     Rgb power = e.power / float(count);
@@ -76,74 +94,85 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
     m_radii.radiiOf(globalPath, &beamRadius, &surfaceRadius);
 
     MediumId medium = e.light >= 0 ? m_lightMedium[e.light] : m_scene.meshes[e.emitterMesh].exteriorMedium;
-    Ray ray = e.ray;
+    // The ray is o + t d, t in (0, infinity), as every emitted and scattered ray is.
+    Vec3 o = e.ray.o, d = e.ray.d;
     // Area-light photons start on their triangle: nudge them off it along the emitted direction.
-    if (e.emitterMesh >= 0) ray.o = m_rt.offsetOrigin(ray.o, ray.d, ray.d);
+    if (e.emitterMesh >= 0) o = m_rt.offsetOrigin(o, d, d);
 
     for (int bounce = 0; bounce < m_settings.maxPhotonBounces; ++bounce) {
-        SurfaceHit hit;
-        bool surface = m_rt.intersect(ray, &hit);
+        RTCRayHit rh;
+        initRayHit(rh, o, d);
+        if (rays) rays->push_back(Ray{o, d, 0.0f, kInfinity});
+        const bool surface = m_rt.intersectRaw(rh);
         out.raysTraced++;
-        float tHit = surface ? hit.t : kInfinity;
+        const float tHit = surface ? rh.ray.tfar : kInfinity;
+        if (surface) m_rt.prefetchShadingNormal(int(rh.hit.geomID), rh.hit.primID);
 
-        if (medium != kVacuum) {
+        float t0, t1;
+        if (medium != kVacuum && m_rt.globalMediumInterval(Ray{o, d, 0.0f, tHit}, &t0, &t1) && t1 > t0) {
+            // The beam is written in place: a stack copy pushed back stalls on store forwarding.
             const Medium& med = m_scene.media[medium];
-            Ray seg;
-            if (m_rt.mediumSegment(ray.o, ray.d, tHit, &seg)) {
-                PhotonBeam beam;
-                beam.origin = seg.o;
-                beam.dir = seg.d;
-                beam.tMax = seg.tMax;
-                beam.radius = beamRadius;
-                beam.power = power;
-                beam.medium = medium;
-                out.beams.push_back(beam);
-                if (const int n = out.freeFlightsPerBeam; n > 0) {
-                    // Homogeneous beams in a scene with grid media keep analytic transmittance.
-                    size_t at = out.freeFlights.size();
-                    out.freeFlights.resize(at + size_t(n), kInfinity);
-                    if (!med.homogeneous()) sampleCollisionDistances(med, seg, seg.tMax, rng, n, &out.freeFlights[at]);
-                }
-                FreeFlight ff = sampleFreeFlight(med, seg, seg.tMax, rng);
-                power *= ff.weight;
-                if (ff.scattered) {
-                    // Russian roulette keeps path power near its start value.
-                    float q = std::min(1.0f, power.maxComponent() / startMax);
-                    if (!(rng.uniform() < q)) return;
-                    power *= 1.0f / q;
-                    Vec3 x = seg.at(ff.t);
-                    ray = Ray{x, sampleHg(ray.d, med.g, rng.uniform(), rng.uniform())};
-                    continue;
-                }
+            const Ray seg{o + d * t0, d, 0.0f, t1 - t0};
+            PhotonBeam& beam = out.beams.emplace_back();
+            beam.origin = seg.o;
+            beam.tMax = seg.tMax;
+            beam.dir = seg.d;
+            beam.radius = beamRadius;
+            beam.power = power;
+            beam.medium = medium;
+            if (const int n = out.freeFlightsPerBeam; n > 0) {
+                // Homogeneous beams in a scene with grid media keep analytic transmittance.
+                size_t at = out.freeFlights.size();
+                out.freeFlights.resize(at + size_t(n), kInfinity);
+                if (!med.homogeneous()) sampleCollisionDistances(med, seg, seg.tMax, rng, n, &out.freeFlights[at]);
+            }
+            FreeFlight ff = sampleFreeFlight(med, seg, seg.tMax, rng);
+            power *= ff.weight;
+            if (ff.scattered) {
+                // Russian roulette keeps path power near its start value.
+                float q = std::min(1.0f, power.maxComponent() / startMax);
+                if (!(rng.uniform() < q)) return;
+                power *= 1.0f / q;
+                Vec3 x = seg.at(ff.t);
+                d = sampleHg(d, med.g, rng.uniform(), rng.uniform());
+                o = x;
+                continue;
             }
         }
         if (!surface) return;
 
-        const TriangleMesh& mesh = m_scene.meshes[hit.mesh];
+        // The hit record, only for paths that reach the surface.
+        const Vec3 p = o + d * tHit;
+        // Embree's Ng is cross(v1 - v0, v2 - v0): the same orientation as Scene's CCW convention.
+        const Vec3 ng = normalize(Vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
+        const TriangleMesh& mesh = m_scene.meshes[rh.hit.geomID];
         const Material& mat = m_scene.materials[mesh.material];
         if (mat.type == MaterialType::Diffuse) {
-            HitSide side = hitSide(hit, ray.d);
-            SurfacePhoton sp;
-            sp.position = hit.p;
+            const Vec3 nf = dot(d, ng) < 0 ? ng : -ng;  // hitSide(hit, d).nf
+            SurfacePhoton& sp = out.surfacePhotons.emplace_back();
+            sp.position = p;
             sp.radius = surfaceRadius;
-            sp.wi = -ray.d;
-            sp.normal = side.nf;
+            sp.wi = -d;
+            sp.normal = nf;
             sp.power = power;
-            out.surfacePhotons.push_back(sp);
             power *= mat.albedo;
             float q = std::min(1.0f, power.maxComponent() / startMax);
             if (!(rng.uniform() < q)) return;
             power *= 1.0f / q;
-            Vec3 d = Frame(side.nf).toWorld(sampleCosineHemisphere(rng.uniform(), rng.uniform()));
-            ray = Ray{m_rt.offsetOrigin(hit.p, side.nf, d), d};
+            d = Frame(nf).toWorld(sampleCosineHemisphere(rng.uniform(), rng.uniform()));
+            o = m_rt.offsetOrigin(p, nf, d);
             continue;
         }
+        SurfaceHit hit;
+        hit.ng = ng;
+        hit.ns = m_rt.shadingNormal(int(rh.hit.geomID), rh.hit.primID, rh.hit.u, rh.hit.v, ng);
         SpecularEvent ev;
-        if (!sampleSpecular(mat, mesh, hit, ray.d, medium, rng.uniform(), TransportMode::Importance, &ev)) return;
+        if (!sampleSpecular(mat, mesh, hit, d, medium, rng.uniform(), TransportMode::Importance, &ev)) return;
         power *= ev.weight;
         if (power.isBlack()) return;
         medium = ev.medium;
-        ray = Ray{m_rt.offsetOrigin(hit.p, hit.ng, ev.d), ev.d};
+        o = m_rt.offsetOrigin(p, ng, ev.d);
+        d = ev.d;
     }
 }
 

@@ -46,8 +46,14 @@ public:
     /// (seed, pass, k); the power divisor is `count`.
     PhotonMap trace(uint64_t pass, uint64_t firstPath, uint32_t count) const;
 
+    /// trace(pass), also appending every ray it casts (origin, direction, t range), in path order:
+    /// what `tyndall bench` replays through Embree alone as the photon tracer's raw ray rate.
+    PhotonMap traceRecordingRays(uint64_t pass, std::vector<Ray>* rays) const;
+
 private:
-    void tracePath(uint64_t pass, uint64_t pathInPass, uint64_t globalPath, uint32_t count, PhotonMap& out) const;
+    PhotonMap trace(uint64_t pass, uint64_t firstPath, uint32_t count, std::vector<Ray>* rays) const;
+    void tracePath(uint64_t pass, uint64_t pathInPass, uint64_t globalPath, uint32_t count, PhotonMap& out,
+                   std::vector<Ray>* rays) const;
 
     const EmbreeScene& m_rt;
     const Scene& m_scene;
