@@ -65,6 +65,8 @@ struct VdbDensityGrid::Impl {
     float meanDensity = 0;
     uint64_t activeVoxels = 0;
     int majorantBlock = 0;
+    bool hasDense = false;
+    DensityVolume dense;  // the denseVolume() lattice when it fits kMaxDenseVoxels: density() reads it
 };
 
 namespace {
@@ -202,7 +204,9 @@ std::shared_ptr<const VdbDensityGrid> makeVdbDensityGrid(openvdb::FloatGrid::Con
     return std::make_shared<const VdbDensityGrid>(std::move(impl));
 }
 
-VdbDensityGrid::VdbDensityGrid(std::unique_ptr<Impl> impl) : m_impl(std::move(impl)) {}
+VdbDensityGrid::VdbDensityGrid(std::unique_ptr<Impl> impl) : m_impl(std::move(impl)) {
+    if (!m_impl->empty) m_impl->hasDense = denseVolume(&m_impl->dense, kMaxDenseVoxels);
+}
 VdbDensityGrid::~VdbDensityGrid() = default;
 
 std::shared_ptr<const VdbDensityGrid> VdbDensityGrid::load(const VdbGridSource& source) {
@@ -285,6 +289,7 @@ std::shared_ptr<const VdbDensityGrid> VdbDensityGrid::fromDense(const int dims[3
 float VdbDensityGrid::density(const Vec3& p) const {
     const Impl& g = *m_impl;
     if (g.empty || !g.worldBounds.contains(p)) return 0.0f;
+    if (g.hasDense) return g.dense.sample(p);
     Vec3 x = g.worldToIndex.point(p);
     float v = openvdb::tools::BoxSampler::sample(accessorFor(g), openvdb::Vec3R(x.x, x.y, x.z));
     return std::max(v, 0.0f) * g.scale;
