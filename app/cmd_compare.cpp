@@ -146,13 +146,11 @@ void addCompareCommand(CLI::App& app, int& exitCode) {
         ImageMetadata meta = {{"Software", "tyndall compare"},
                               {"tyndall:scene", scene.source},
                               {"tyndall:settings", settings.dump()},
-                              {"tyndall:passes", std::to_string(het.passes)},
                               {"tyndall:twin_density", densities}};
         auto withHalf = [&](const char* half, uint64_t passes) {
             ImageMetadata m = meta;
             m.push_back({"tyndall:half", half});
-            for (auto& [key, value] : m)
-                if (key == "tyndall:passes") value = std::to_string(passes);
+            m.push_back({"tyndall:passes", std::to_string(passes)});
             return m;
         };
         writeImage(hetPath, het.image, withHalf("heterogeneous", het.passes));
@@ -162,6 +160,8 @@ void addCompareCommand(CLI::App& app, int& exitCode) {
             "heterogeneous (OpenVDB grid)",
             (o->density >= 0 ? "homogeneous, density " : "homogeneous, mean density ") + densities};
         const std::string shortLabels[2] = {"heterogeneous", "homogeneous"};
+        meta.push_back({"tyndall:passes", std::to_string(het.passes)});
+        meta.push_back({"tyndall:twin_passes", std::to_string(hom.passes)});
         writeImage(c.output, sideBySide(het.image, hom.image, labels, shortLabels), meta, c.exposure);
 
         double hetPerPass = het.seconds / std::max<uint64_t>(het.passes, 1);

@@ -166,14 +166,4 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
     return radiance;
 }
 
-CameraPassResult CameraTracer::trace(uint64_t pass, const PhotonMap& photons, const BeamBvh& beams,
-                                     const SurfacePhotonGrid& surfacePhotons) const {
-    PrimaryPass primary = tracePrimary(pass);
-    CameraPassResult result;
-    result.stats.rays = primary.rays;
-    result.radiance = traceSecondary(primary, photons, beams, surfacePhotons, &result.stats);
-    result.primary = std::move(primary.segments);
-    return result;
-}
-
 }  // namespace tyndall

@@ -9,7 +9,7 @@
 //                                           segment inside a medium gathering the pass's beams
 //                                           through the BeamBvh, a diffuse hit ending the path with
 //                                           the surface-photon estimate
-// trace() runs both. The camera is read from the scene at each tracePrimary call, so a camera
+// PassRenderer::traceCamera runs both. The camera is read from the scene at each tracePrimary call, so a camera
 // that moves between passes (the viewer's reset) is followed, the medium it sits in included.
 //
 // Deterministic: pixel p of pass i draws its film/lens jitter and its primary stored distances
@@ -58,10 +58,6 @@ struct CameraPassResult {
 class CameraTracer {
 public:
     CameraTracer(const EmbreeScene& rt, const RenderSettings& settings);
-
-    /// Both stages: the pass's radiance without the primary segments' media, and those segments.
-    CameraPassResult trace(uint64_t pass, const PhotonMap& photons, const BeamBvh& beams,
-                           const SurfacePhotonGrid& surface) const;
 
     PrimaryPass tracePrimary(uint64_t pass) const;
     /// The pass's radiance except the primary segments' media; `stats.rays` counts this stage's.

@@ -61,9 +61,12 @@ Image PassRenderer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
 }
 
 CameraPassResult PassRenderer::traceCamera(uint64_t pass, const PhotonMap& photons) const {
-    BeamBvh bvh(*m_rt->device(), photons.beams, m_bvhKind);
-    SurfacePhotonGrid grid(photons.surfacePhotons);
-    return m_camera->trace(pass, photons, bvh, grid);
+    PrimaryPass primary = tracePrimary(pass);
+    CameraPassResult result;
+    result.stats.rays = primary.rays;
+    result.radiance = traceSecondary(primary, photons, &result.stats);
+    result.primary = std::move(primary.segments);
+    return result;
 }
 
 Image PassRenderer::splatPrimary(const PrimarySegments& primary, const PhotonMap& photons, RasterStats* stats) const {
