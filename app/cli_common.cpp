@@ -134,23 +134,23 @@ nlohmann::json explicitSettings(const CommonOptions& o) {
 }  // namespace
 
 Scene loadScene(CommonOptions& o) {
+    SceneFile file;
     if (o.scene.empty()) {
-        Scene scene = makeDefaultScene();
+        file.scene = makeDefaultScene();
         if (!o.camera.empty() && o.camera != "0" && o.camera != "default")
             throw Error("--camera " + o.camera + ": the built-in default scene has one camera, 0 'default'");
-        scene.validate();
-        RenderSettings fromScene = RenderSettings::fromJson(defaultSceneRender(), "default scene", o.settings);
-        o.settings = RenderSettings::fromJson(explicitSettings(o), "command line", fromScene);
-        o.settings.validate();
-        return scene;
+        file.scene.validate();
+        file.render = defaultSceneRender();
+        file.renderWhere = "default scene";
+    } else {
+        SceneLoadOptions options;
+        options.camera = o.camera;
+        file = loadSceneFile(o.scene, options);
     }
-    SceneLoadOptions options;
-    options.camera = o.camera;
-    SceneFile file = loadSceneFile(o.scene, options);
-    // The command's own defaults (bench's photon count), then the file's render block, then the
+    // The command's own defaults (bench's photon count), then the scene's render block, then the
     // options given.
-    RenderSettings fromFile = RenderSettings::fromJson(file.render, file.renderWhere, o.settings);
-    o.settings = RenderSettings::fromJson(explicitSettings(o), "command line", fromFile);
+    RenderSettings fromScene = RenderSettings::fromJson(file.render, file.renderWhere, o.settings);
+    o.settings = RenderSettings::fromJson(explicitSettings(o), "command line", fromScene);
     o.settings.validate();
     return std::move(file.scene);
 }
