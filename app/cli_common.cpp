@@ -10,9 +10,9 @@
 #include <nlohmann/json.hpp>
 #include <regex>
 
-#include "core/default_scene.h"
+#include "loading/default_scene.h"
 #include "core/error.h"
-#include "core/scene_file.h"
+#include "loading/scene_file.h"
 
 namespace tyndall::app {
 

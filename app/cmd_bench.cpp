@@ -8,7 +8,7 @@
 #include "app/bench_hybrid.h"
 #include "app/bench_media.h"
 #include "app/cli_common.h"
-#include "core/default_smoke_scene.h"
+#include "loading/default_smoke_scene.h"
 
 namespace tyndall::app {
 

@@ -13,7 +13,7 @@
 #include "app/interrupt.h"
 #include "app/label_text.h"
 #include "core/accumulator.h"
-#include "core/default_smoke_scene.h"
+#include "loading/default_smoke_scene.h"
 #include "core/error.h"
 #include "cpu/progressive_render.h"
 #include "hybrid/pass_scheduler.h"

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "core/beam_estimator.h"
-#include "core/default_smoke_scene.h"
+#include "loading/default_smoke_scene.h"
 #include "core/phase.h"
 #include "core/radius_schedule.h"
 #include "core/rng.h"

@@ -5,7 +5,7 @@
 //
 // The grid has its own cell space, an affine image of world space: cell (i, j, k) is the box
 // [i, i+1] x [j, j+1] x [k, k+1], and worldToCell maps world points there. Contract for whoever
-// fills it (core/vdb_grid.cpp, the analytic test grids): at(i, j, k) bounds the density at every
+// fills it (loading/vdb_grid.cpp, the analytic test grids): at(i, j, k) bounds the density at every
 // world point whose cell coordinates lie in that closed box, with margin for float rounding at the
 // faces; the density is zero outside [0, nx] x [0, ny] x [0, nz]. Read-only after construction,
 // so any number of threads may walk it at once.

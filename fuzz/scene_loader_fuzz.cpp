@@ -7,7 +7,7 @@
 #include <string>
 
 #include "core/error.h"
-#include "core/scene_file.h"
+#include "loading/scene_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     std::string bytes(reinterpret_cast<const char*>(data), size);

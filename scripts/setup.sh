@@ -13,6 +13,7 @@ packages=(
   libgtest-dev libbenchmark-dev
   clang libclang-rt-14-dev
   libopenmpi-dev openmpi-bin xvfb xauth
+  libimgui-dev libstb-dev libhwy-dev xdotool x11-apps imagemagick
 )
 
 missing=()

@@ -1,6 +1,6 @@
 #pragma once
 // Small scenes shared by renderer-level tests.
-#include "core/mesh_builders.h"
+#include "loading/mesh_builders.h"
 #include "core/scene.h"
 
 namespace tyndall::test {

@@ -16,7 +16,7 @@
 #include <string>
 
 #include "core/accumulator.h"
-#include "core/default_scene.h"
+#include "loading/default_scene.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "cpu/pass_renderer.h"

@@ -11,7 +11,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "core/mesh_builders.h"
+#include "loading/mesh_builders.h"
 
 namespace tyndall {
 namespace {

@@ -5,10 +5,10 @@
 
 #include <gtest/gtest.h>
 
-#include "core/default_scene.h"
+#include "loading/default_scene.h"
 #include "core/error.h"
 #include "core/light_sampler.h"
-#include "core/mesh_builders.h"
+#include "loading/mesh_builders.h"
 
 using namespace tyndall;
 

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/default_scene.h"
+#include "loading/default_scene.h"
 #include "core/rng.h"
 #include "core/sampling.h"
 #include "cpu/pass_renderer.h"

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
-#include "core/default_scene.h"
+#include "loading/default_scene.h"
 #include "cpu/pass_renderer.h"
 #include "tests/test_scenes.h"
 #include "tests/test_util.h"

@@ -12,7 +12,7 @@
 #include "core/accumulator.h"
 #include "core/density_grid.h"
 #include "core/image_io.h"
-#include "core/mesh_builders.h"
+#include "loading/mesh_builders.h"
 #include "core/scene.h"
 #include "cpu/pass_renderer.h"
 #include "cpu/reference_tracer.h"

@@ -18,7 +18,7 @@
 #include <cstring>
 
 #include "core/error.h"
-#include "core/mesh_builders.h"
+#include "loading/mesh_builders.h"
 #include "tests/cpu/reference_fixtures.h"
 
 namespace tyndall {

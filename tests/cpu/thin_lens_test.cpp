@@ -17,7 +17,7 @@
 #include <cstdio>
 
 #include "core/accumulator.h"
-#include "core/mesh_builders.h"
+#include "loading/mesh_builders.h"
 #include "cpu/pass_renderer.h"
 
 namespace tyndall {

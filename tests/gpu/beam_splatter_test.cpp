@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/default_scene.h"
+#include "loading/default_scene.h"
 #include "core/error.h"
 #include "core/rng.h"
 #include "cpu/beam_rasterizer.h"

@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "core/default_scene.h"
+#include "loading/default_scene.h"
 #include "core/error.h"
 #include "hybrid/gl_thread.h"
 #include "tests/gpu/gpu_test_util.h"

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/gltf_material_mapping.h"
+#include "loading/gltf_material_mapping.h"
 #include "core/photometry.h"
 #include "tests/scene/scene_test_util.h"
 

@@ -1,6 +1,6 @@
 // Procedural shapes for scene files: closed where they bound volumes, outward, the right size,
 // and the reflector actually focuses.
-#include "core/mesh_builders.h"
+#include "loading/mesh_builders.h"
 
 #include <gtest/gtest.h>
 

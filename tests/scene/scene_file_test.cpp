@@ -4,8 +4,8 @@
 
 #include <filesystem>
 
-#include "core/default_scene.h"
-#include "core/json_reader.h"
+#include "loading/default_scene.h"
+#include "loading/json_reader.h"
 #include "core/settings.h"
 #include "tests/scene/scene_test_util.h"
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "core/error.h"
-#include "core/scene_file.h"
+#include "loading/scene_file.h"
 #include "tests/test_util.h"
 
 namespace tyndall::test {

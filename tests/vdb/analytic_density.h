@@ -14,7 +14,7 @@
 
 #include "core/density_grid.h"
 #include "core/majorant_grid.h"
-#include "core/vdb_grid.h"
+#include "loading/vdb_grid.h"
 
 namespace tyndall::test {
 

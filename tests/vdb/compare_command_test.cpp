@@ -17,8 +17,8 @@
 
 #include "app/cmd_compare.h"
 #include "app/label_text.h"
-#include "core/default_scene.h"
-#include "core/default_smoke_scene.h"
+#include "loading/default_scene.h"
+#include "loading/default_smoke_scene.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "tests/test_util.h"

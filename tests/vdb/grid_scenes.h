@@ -6,10 +6,10 @@
 
 #include "core/accumulator.h"
 #include "core/image_io.h"
-#include "core/mesh_builders.h"
+#include "loading/mesh_builders.h"
 #include "core/scene.h"
 #include "core/settings.h"
-#include "core/vdb_grid.h"
+#include "loading/vdb_grid.h"
 #include "cpu/pass_renderer.h"
 
 namespace tyndall::test {

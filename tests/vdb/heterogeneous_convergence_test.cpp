@@ -26,10 +26,10 @@
 #include <string>
 #include <vector>
 
-#include "core/default_scene.h"
+#include "loading/default_scene.h"
 #include "core/image_io.h"
 #include "core/phase.h"
-#include "core/vdb_grid.h"
+#include "loading/vdb_grid.h"
 #include "tests/test_util.h"
 #include "tests/vdb/grid_scenes.h"
 

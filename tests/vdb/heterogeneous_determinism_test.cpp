@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
-#include "core/default_smoke_scene.h"
+#include "loading/default_smoke_scene.h"
 #include "cpu/pass_renderer.h"
 #include "tests/test_util.h"
 

@@ -1,6 +1,6 @@
 // Procedural grids: deterministic for a seed, values in [0, 1], inside the box they were asked to
 // fill, and not trivially empty or full.
-#include "core/procedural_media.h"
+#include "loading/procedural_media.h"
 
 #include <gtest/gtest.h>
 

@@ -9,10 +9,10 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "core/default_smoke_scene.h"
+#include "loading/default_smoke_scene.h"
 #include "core/error.h"
-#include "core/scene_file.h"
-#include "core/vdb_grid.h"
+#include "loading/scene_file.h"
+#include "loading/vdb_grid.h"
 #include "tests/scene/scene_test_util.h"
 #include "tests/test_util.h"
 

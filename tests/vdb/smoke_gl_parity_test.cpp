@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "core/default_smoke_scene.h"
+#include "loading/default_smoke_scene.h"
 #include "cpu/pass_renderer.h"
 #include "gpu/beam_splatter.h"
 #include "gpu/gl_context.h"

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "core/error.h"
-#include "core/vdb_grid.h"
+#include "loading/vdb_grid.h"
 #include "tests/test_util.h"
 #include "tests/vdb/grid_scenes.h"
 

@@ -1,7 +1,7 @@
 // VdbDensityGrid: trilinear sampling under rotated, anisotropic transforms; bounds; the majorant
 // grid really bounds the density along rays; the dense export reproduces density(); thread
 // safety of the per-thread accessors; empty grids; and the loader's errors on files written here.
-#include "core/vdb_grid.h"
+#include "loading/vdb_grid.h"
 
 #include <gtest/gtest.h>
 #include <openvdb/io/File.h>

@@ -15,7 +15,7 @@
 #include <cstdio>
 #include <memory>
 
-#include "core/vdb_grid.h"
+#include "loading/vdb_grid.h"
 #include "cpu/reference_tracer.h"
 #include "tests/cpu/reference_fixtures.h"
 

@@ -1,13 +1,13 @@
 #pragma once
-// The Tyndall scene description (.json, docs/scene-format.md) -> SceneDraft. Internal to core/;
+// The Tyndall scene description (.json, docs/scene-format.md) -> SceneDraft. Internal to loading/;
 // the public entry point is loadSceneFile (scene_file.h). Each element kind is read by one
 // function so the format stays easy to extend (heterogeneous media add keys in readMedium).
 #include <memory>
 #include <string>
 
 #include "core/density_grid.h"
-#include "core/json_reader.h"
-#include "core/scene_assembly.h"
+#include "loading/json_reader.h"
+#include "loading/scene_assembly.h"
 #include "core/transform.h"
 
 namespace tyndall {

@@ -1,11 +1,11 @@
-// "shapes" in scene descriptions: procedural meshes built by core/mesh_builders.h, so that the
+// "shapes" in scene descriptions: procedural meshes built by loading/mesh_builders.h, so that the
 // scene library is text without binary blobs. Keys per type are documented in
 // docs/scene-format.md; every shape also takes name, material and transform.
 #include <cmath>
 
 #include "core/error.h"
-#include "core/mesh_builders.h"
-#include "core/scene_json.h"
+#include "loading/mesh_builders.h"
+#include "loading/scene_json.h"
 
 namespace tyndall {
 

@@ -8,13 +8,13 @@
 // Exactly one of "file" and "procedural". File grids: "grid" (default: "density", else the first
 // float grid), "scale" (>= 0, default 1), "transform" (applied after the file's own index-to-world
 // map), the path relative to the scene file. Procedural grids take their parameters in world
-// units, plus "scale"; see core/procedural_media.h for what each builds.
+// units, plus "scale"; see loading/procedural_media.h for what each builds.
 #include <filesystem>
 
 #include "core/error.h"
-#include "core/procedural_media.h"
-#include "core/scene_json.h"
-#include "core/vdb_grid.h"
+#include "loading/procedural_media.h"
+#include "loading/scene_json.h"
+#include "loading/vdb_grid.h"
 
 namespace tyndall {
 

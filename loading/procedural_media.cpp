@@ -1,4 +1,4 @@
-#include "core/procedural_media.h"
+#include "loading/procedural_media.h"
 
 #include <cmath>
 #include <cstdint>

@@ -1,4 +1,4 @@
-#include "core/json_reader.h"
+#include "loading/json_reader.h"
 
 #include <algorithm>
 #include <cmath>

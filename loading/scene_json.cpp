@@ -1,4 +1,4 @@
-#include "core/scene_json.h"
+#include "loading/scene_json.h"
 
 #include <cmath>
 #include <filesystem>
@@ -6,7 +6,7 @@
 #include <map>
 
 #include "core/error.h"
-#include "core/gltf_loader.h"
+#include "loading/gltf_loader.h"
 #include "core/settings.h"
 
 namespace tyndall {

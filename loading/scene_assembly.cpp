@@ -1,4 +1,4 @@
-#include "core/scene_assembly.h"
+#include "loading/scene_assembly.h"
 
 #include <cmath>
 #include <cstdio>

@@ -2,7 +2,7 @@
 // Procedural density grids made with OpenVDB at start-up (no file needed), deterministic for a
 // given seed so every process that builds one gets the same voxels:
 // - smoke: a rising, widening column with fractal value noise carved into it; the density grid
-//   of the built-in heterogeneous scene (core/default_smoke_scene.h) and of `tyndall compare`
+//   of the built-in heterogeneous scene (loading/default_smoke_scene.h) and of `tyndall compare`
 //   without a scene;
 // - rolling fog: a ground-hugging layer whose thickness and density roll in long horizontal
 //   banks (the street lamp's heterogeneous variant).
@@ -11,7 +11,7 @@
 #include <memory>
 
 #include "core/math.h"
-#include "core/vdb_grid.h"
+#include "loading/vdb_grid.h"
 
 namespace tyndall {
 

@@ -4,7 +4,7 @@
 // index is checked before any byte is read, and any mismatch throws Error naming `where` and the
 // accessor. Handles all component types (normalised integers included, so KHR_mesh_quantization
 // works), byte strides, accessors without a buffer view (zeros) and sparse accessors.
-// Internal to core/: includes tiny_gltf.h.
+// Internal to loading/: includes tiny_gltf.h.
 #include <tiny_gltf.h>
 
 #include <cstdint>

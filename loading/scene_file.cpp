@@ -1,11 +1,11 @@
-#include "core/scene_file.h"
+#include "loading/scene_file.h"
 
 #include <filesystem>
 #include <fstream>
 
 #include "core/error.h"
-#include "core/gltf_loader.h"
-#include "core/scene_json.h"
+#include "loading/gltf_loader.h"
+#include "loading/scene_json.h"
 
 namespace tyndall {
 

@@ -84,7 +84,7 @@ public:
     const Affine3& indexToWorld() const;
     const Affine3& worldToIndex() const;
 
-    struct Impl;  // OpenVDB state, core/vdb_grid_openvdb.h
+    struct Impl;  // OpenVDB state, loading/vdb_grid_openvdb.h
     explicit VdbDensityGrid(std::unique_ptr<Impl> impl);
 
 private:

@@ -1,4 +1,4 @@
-#include "core/mesh_builders.h"
+#include "loading/mesh_builders.h"
 
 #include <map>
 

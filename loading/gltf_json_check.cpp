@@ -1,11 +1,11 @@
-#include "core/gltf_json_check.h"
+#include "loading/gltf_json_check.h"
 
 #include <cstdint>
 #include <cstring>
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
-#include "core/json_reader.h"
+#include "loading/json_reader.h"
 
 namespace tyndall {
 

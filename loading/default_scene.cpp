@@ -1,8 +1,8 @@
-#include "core/default_scene.h"
+#include "loading/default_scene.h"
 
 #include <nlohmann/json.hpp>
 
-#include "core/mesh_builders.h"
+#include "loading/mesh_builders.h"
 
 namespace tyndall {
 

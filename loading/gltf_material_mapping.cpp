@@ -1,4 +1,4 @@
-#include "core/gltf_material_mapping.h"
+#include "loading/gltf_material_mapping.h"
 
 #include <cmath>
 #include <sstream>

@@ -7,7 +7,7 @@
 #include <memory>
 #include <string>
 
-#include "core/vdb_grid.h"
+#include "loading/vdb_grid.h"
 
 namespace tyndall {
 

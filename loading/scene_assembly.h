@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "core/scene.h"
-#include "core/scene_file.h"
+#include "loading/scene_file.h"
 
 namespace tyndall {
 

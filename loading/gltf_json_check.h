@@ -24,7 +24,7 @@
 //     <file>: <glTF path>: expected <what>, got <what was there>
 // e.g. "car.gltf: nodes[3].translation: expected an array of 3 numbers, got the string \"x\"".
 // Text that is not JSON (or a .glb without a readable JSON chunk) is left for tinygltf to report.
-// Internal to core/; called by importGltf. Pure functions of their arguments (thread-safe).
+// Internal to loading/; called by importGltf. Pure functions of their arguments (thread-safe).
 #include <nlohmann/json.hpp>
 #include <string>
 

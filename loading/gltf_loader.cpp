@@ -1,4 +1,4 @@
-#include "core/gltf_loader.h"
+#include "loading/gltf_loader.h"
 
 #include <tiny_gltf.h>
 
@@ -10,10 +10,10 @@
 #include <sstream>
 
 #include "core/error.h"
-#include "core/gltf_accessor.h"
-#include "core/gltf_json_check.h"
-#include "core/gltf_material_mapping.h"
-#include "core/json_reader.h"
+#include "loading/gltf_accessor.h"
+#include "loading/gltf_json_check.h"
+#include "loading/gltf_material_mapping.h"
+#include "loading/json_reader.h"
 #include "core/photometry.h"
 #include "core/transform.h"
 

@@ -1,4 +1,4 @@
-#include "core/vdb_grid.h"
+#include "loading/vdb_grid.h"
 
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
@@ -13,7 +13,7 @@
 #include <sstream>
 
 #include "core/error.h"
-#include "core/vdb_grid_openvdb.h"
+#include "loading/vdb_grid_openvdb.h"
 
 namespace tyndall {
 

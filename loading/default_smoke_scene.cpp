@@ -1,8 +1,8 @@
-#include "core/default_smoke_scene.h"
+#include "loading/default_smoke_scene.h"
 
-#include "core/default_scene.h"
+#include "loading/default_scene.h"
 #include "core/error.h"
-#include "core/procedural_media.h"
+#include "loading/procedural_media.h"
 
 namespace tyndall {
 

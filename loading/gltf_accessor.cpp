@@ -1,4 +1,4 @@
-#include "core/gltf_accessor.h"
+#include "loading/gltf_accessor.h"
 
 #include <cmath>
 #include <cstring>

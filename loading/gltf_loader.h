@@ -5,7 +5,7 @@
 // KHR_lights_punctual, and materials through mapGltfMaterial (gltf_material_mapping.h).
 #include <string>
 
-#include "core/scene_assembly.h"
+#include "loading/scene_assembly.h"
 
 namespace tyndall {
 
