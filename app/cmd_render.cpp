@@ -1,5 +1,6 @@
 #include "app/cmd_render.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <memory>
@@ -9,12 +10,34 @@
 #include "app/cli_common.h"
 #include "app/interrupt.h"
 #include "core/accumulator.h"
+#include "cpu/radius_defaults.h"
 #include "cpu/progressive_render.h"
 #include "hybrid/pass_scheduler.h"
 
 namespace tyndall::app {
 
 namespace {
+/// --time with automatic radii: the radii plan for the photon paths the budget will trace, so a
+/// short warm-up (5% of the budget, 0.5 to 3 s, thrown away) measures the rate; the rest of the
+/// budget is then planned as rate x remaining seconds. The planned count and the remaining budget
+/// are written into the settings (and so into the metadata), which makes the schedule a plain
+/// function of recorded settings.
+RenderSettings planTimeBudget(PassScheduler& scheduler, const Scene& scene, RenderSettings s) {
+    if (s.timeBudget <= 0 || s.plannedPaths > 0 || !hasAutomaticRadii(s)) return s;
+    RenderSettings warm = s;
+    warm.timeBudget = std::clamp(0.05 * s.timeBudget, 0.5, 3.0);
+    PassRenderer renderer(scene, warm);
+    Accumulator acc(s.width, s.height);
+    CallbackDisplay display([&](const Accumulator&, const RenderProgress&) {
+        return interruptRequested() ? DisplayCommand::Exit : DisplayCommand::Continue;
+    });
+    RenderProgress p = scheduler.run(renderer, acc, 0, display);
+    double rate = double(p.totals.photonPaths) / std::max(p.elapsedSeconds, 1e-9);
+    s.timeBudget = std::max(1e-3, s.timeBudget - p.elapsedSeconds);
+    s.plannedPaths = std::max<uint64_t>(s.photonsPerPass, uint64_t(rate * s.timeBudget));
+    return s;
+}
+
 ImageMetadata renderMetadata(const Scene& scene, const RenderSettings& s, const RadiusSetup& radii, uint64_t passes) {
     nlohmann::json j = s.toJson();
     j["resolved_radius"] = radii.beamRadius;
@@ -42,9 +65,10 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
         Scene scene = loadScene(*o);
         ThreadLimit threads(o->settings.threads);
         PassScheduler scheduler(parseGpuMode(o->settings.gpu));
-        PassRenderer renderer(scene, o->settings);
-        Accumulator acc(o->settings.width, o->settings.height);
+        scheduler.bind(scene);
         installInterruptHandler();
+        PassRenderer renderer(scene, planTimeBudget(scheduler, scene, o->settings));
+        Accumulator acc(o->settings.width, o->settings.height);
         bool tty = isatty(fileno(stderr));
         CallbackDisplay display([&](const Accumulator&, const RenderProgress& pr) {
             if (tty) {
@@ -54,11 +78,10 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
             }
             return interruptRequested() ? DisplayCommand::Exit : DisplayCommand::Continue;
         });
-        scheduler.bind(scene);
         if (!scheduler.notice().empty()) std::fprintf(stderr, "tyndall: %s\n", scheduler.notice().c_str());
         RenderProgress p = scheduler.run(renderer, acc, 0, display);
         if (tty) std::fprintf(stderr, "\n");
-        writeImage(o->output, acc.mean(), renderMetadata(scene, o->settings, renderer.radii(), acc.passCount()), o->exposure);
+        writeImage(o->output, acc.mean(), renderMetadata(scene, renderer.settings(), renderer.radii(), acc.passCount()), o->exposure);
         std::printf("rendered %s: %llu passes, %llu photon paths, %llu beams, %.2f s (%.2f passes/s, %s)%s -> %s\n",
                     scene.name.c_str(), (unsigned long long)acc.passCount(), (unsigned long long)p.totals.photonPaths,
                     (unsigned long long)p.totals.beams, p.elapsedSeconds,

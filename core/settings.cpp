@@ -32,7 +32,8 @@ nlohmann::json RenderSettings::toJson() const {
             {"alpha", alpha},
             {"radius", radius},
             {"surface_radius", surfaceRadius},
-            {"radius_offset", radiusOffset},
+            {"radius_offset", radiusOffset == kAutoRadiusOffset ? nlohmann::json("auto") : nlohmann::json(radiusOffset)},
+            {"planned_paths", plannedPaths},
             {"seed", seed},
             {"threads", threads},
             {"max_photon_bounces", maxPhotonBounces},
@@ -70,7 +71,7 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
 RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::string& where, RenderSettings s) {
     if (!j.is_object()) throw Error(where + ": expected an object of render settings");
     static const char* kKeys[] = {"width", "height", "passes", "time", "photons", "alpha", "radius",
-                                  "surface_radius", "radius_offset", "seed", "threads",
+                                  "surface_radius", "radius_offset", "planned_paths", "seed", "threads",
                                   "max_photon_bounces", "max_camera_bounces", "free_flights", "gpu"};
     for (auto it = j.begin(); it != j.end(); ++it) {
         bool known = false;
@@ -85,7 +86,13 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
     read(j, "alpha", s.alpha, where);
     read(j, "radius", s.radius, where);
     read(j, "surface_radius", s.surfaceRadius, where);
-    read(j, "radius_offset", s.radiusOffset, where);
+    if (auto it = j.find("radius_offset"); it != j.end() && it->is_string()) {
+        if (*it != "auto") throw Error(where + "/radius_offset: expected a non-negative integer or \"auto\"");
+        s.radiusOffset = kAutoRadiusOffset;
+    } else {
+        read(j, "radius_offset", s.radiusOffset, where);
+    }
+    read(j, "planned_paths", s.plannedPaths, where);
     read(j, "seed", s.seed, where);
     read(j, "threads", s.threads, where);
     read(j, "max_photon_bounces", s.maxPhotonBounces, where);

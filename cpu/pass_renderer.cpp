@@ -2,6 +2,8 @@
 
 #include <chrono>
 
+#include "cpu/radius_defaults.h"
+
 namespace tyndall {
 
 namespace {
@@ -38,12 +40,12 @@ PassStats& PassStats::operator+=(const PassStats& o) {
 
 PassRenderer::PassRenderer(const Scene& scene, const RenderSettings& settings, BeamBvh::Kind beamBvh)
     : m_scene(scene),
-      m_settings(settings),
-      m_radii(RadiusSetup::resolve(settings, scene)),
-      m_bvhKind(beamBvh),
       m_rt(std::make_unique<EmbreeScene>(scene)),
-      m_photons(std::make_unique<PhotonTracer>(*m_rt, settings, m_radii)),
-      m_camera(std::make_unique<CameraTracer>(*m_rt, settings)),
+      m_settings(resolveRadiusDefaults(settings, *m_rt)),
+      m_radii(RadiusSetup::resolve(m_settings, scene)),
+      m_bvhKind(beamBvh),
+      m_photons(std::make_unique<PhotonTracer>(*m_rt, m_settings, m_radii)),
+      m_camera(std::make_unique<CameraTracer>(*m_rt, m_settings)),
       m_rasterizer(scene) {}
 
 PhotonMap PassRenderer::tracePhotons(uint64_t pass) const {

@@ -44,6 +44,7 @@ struct PassStats {
 
 class PassRenderer {
 public:
+    /// Resolves the automatic radius settings (cpu/radius_defaults.h) against the scene's camera.
     PassRenderer(const Scene& scene, const RenderSettings& settings, BeamBvh::Kind beamBvh = BeamBvh::Kind::FlatCurves);
 
     PhotonMap tracePhotons(uint64_t pass) const;
@@ -59,6 +60,8 @@ public:
     void sceneChanged();
 
     const Scene& scene() const { return m_scene; }
+    /// The settings with the automatic radii resolved for this scene and camera: plain numbers
+    /// that reproduce the render bit for bit (what the EXR metadata records).
     const RenderSettings& settings() const { return m_settings; }
     const RadiusSetup& radii() const { return m_radii; }
     const EmbreeScene& rayTracer() const { return *m_rt; }
@@ -66,10 +69,10 @@ public:
 
 private:
     const Scene& m_scene;
-    RenderSettings m_settings;
+    std::unique_ptr<EmbreeScene> m_rt;
+    RenderSettings m_settings;  // automatic radii resolved (cpu/radius_defaults.h)
     RadiusSetup m_radii;
     BeamBvh::Kind m_bvhKind;
-    std::unique_ptr<EmbreeScene> m_rt;
     std::unique_ptr<PhotonTracer> m_photons;
     std::unique_ptr<CameraTracer> m_camera;
     BeamRasterizer m_rasterizer;

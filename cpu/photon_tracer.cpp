@@ -16,7 +16,9 @@ RadiusSetup RadiusSetup::resolve(const RenderSettings& settings, const Scene& sc
     float diagonal = scene.bounds.empty() ? 1.0f : length(scene.bounds.diagonal());
     r.beamRadius = settings.radius > 0 ? settings.radius : 0.005f * diagonal;
     r.surfaceRadius = settings.surfaceRadius > 0 ? settings.surfaceRadius : 0.02f * diagonal;
-    r.schedule = RadiusSchedule(settings.alpha, settings.radiusOffset);
+    // Settings that were not resolved (cpu/radius_defaults.h) get the scene-relative defaults.
+    uint64_t offset = settings.radiusOffset == RenderSettings::kAutoRadiusOffset ? 1000 : settings.radiusOffset;
+    r.schedule = RadiusSchedule(settings.alpha, offset);
     return r;
 }
 

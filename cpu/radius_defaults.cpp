@@ -1,0 +1,46 @@
+#include "cpu/radius_defaults.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/radius_schedule.h"
+#include "cpu/pixel_footprint.h"
+
+namespace tyndall {
+
+bool hasAutomaticRadii(const RenderSettings& s) {
+    return s.radius <= 0 || s.surfaceRadius <= 0 || s.radiusOffset == RenderSettings::kAutoRadiusOffset;
+}
+
+uint64_t plannedPhotonPaths(const RenderSettings& s) {
+    if (s.plannedPaths > 0) return s.plannedPaths;
+    if (s.timeBudget <= 0) return std::max<uint64_t>(1, s.passes * s.photonsPerPass);
+    return RadiusDefaults::kOpenEndedPathsPerPixel * uint64_t(s.width) * uint64_t(s.height);
+}
+
+RenderSettings resolveRadiusDefaults(const RenderSettings& in, const EmbreeScene& rt) {
+    if (!hasAutomaticRadii(in)) return in;
+    RenderSettings s = in;
+    const Scene& scene = rt.scene();
+    s.plannedPaths = plannedPhotonPaths(s);
+    // Without media or surfaces in view, footprints that start the radii at 0.5% and 2% of the
+    // scene's diagonal (the scene-relative defaults of earlier versions) stand in.
+    const double k = RadiusDefaults::kStartOverEnd;
+    const double kb = RadiusDefaults::kBeamEndFootprints, ks = RadiusDefaults::kSurfaceEndFootprints;
+    double diagonal = scene.bounds.empty() ? 1.0 : double(length(scene.bounds.diagonal()));
+    PixelFootprint fp = measurePixelFootprint(rt, scene.camera, s.width, s.height);
+    const double beamEnd = kb * fp.beam(0.005 * diagonal / (k * kb));
+    const double surfaceEnd = ks * fp.surfaces(0.02 * diagonal / (std::sqrt(k) * ks));
+
+    double endFactor = 1.0 / k;  // beam factor at the end of the plan
+    if (s.radiusOffset == RenderSettings::kAutoRadiusOffset) {
+        double start = s.radius > 0 ? double(s.radius) : k * beamEnd;
+        s.radiusOffset = RadiusSchedule::offsetForRatio(s.alpha, s.plannedPaths, std::min(1.0, beamEnd / start));
+        endFactor = RadiusSchedule(s.alpha, s.radiusOffset).beamFactor(s.plannedPaths);
+    }
+    if (s.radius <= 0) s.radius = float(beamEnd / endFactor);
+    if (s.surfaceRadius <= 0) s.surfaceRadius = float(surfaceEnd / std::sqrt(endFactor));
+    return s;
+}
+
+}  // namespace tyndall

@@ -1,0 +1,44 @@
+#pragma once
+// The automatic photon radii: the settings left at "automatic" (radius 0, surface radius 0,
+// radius offset kAutoRadiusOffset) resolved into plain numbers from the camera's pixel footprint
+// where the media and surfaces are (cpu/pixel_footprint.h) and the planned photon-path count.
+// The model and the measurements behind the constants: docs/algorithm.md ("Where the radius
+// sits") and docs/performance.md ("Equal-work quality").
+//
+//   beam radius at the end of the plan    = kBeamEndFootprints    x media footprint
+//   surface radius at the end of the plan = kSurfaceEndFootprints x surface footprint
+//   first beam radius                     = kStartOverEnd x the end radius (auto radius)
+//   offset                                = the one whose schedule shrinks the first radius to the
+//                                           end radius over the planned paths (auto offset)
+// With an explicit offset, automatic radii start at kStartOverEnd x their end footprints (surface:
+// sqrt of it, the 2D kernel's rate). An explicit radius with an automatic offset is shrunk to the
+// end radius by the plan (kept constant when it is already smaller). Explicit values are never
+// changed. The result is a plain RenderSettings: rendering with it reproduces the image bit for bit.
+#include <cstdint>
+
+#include "core/settings.h"
+#include "cpu/embree_scene.h"
+
+namespace tyndall {
+
+struct RadiusDefaults {
+    static constexpr double kBeamEndFootprints = 1.0;
+    static constexpr double kSurfaceEndFootprints = 3.0;
+    static constexpr double kStartOverEnd = 4.0;
+    /// Horizon of an open-ended render (no pass count, time not yet measured): photon paths per
+    /// image pixel, about a minute of a 2-core machine at 256x256 (docs/performance.md).
+    static constexpr uint64_t kOpenEndedPathsPerPixel = 100;
+};
+
+/// True when any radius setting is left automatic.
+bool hasAutomaticRadii(const RenderSettings& s);
+
+/// The photon-path count the automatic radii plan for: settings.plannedPaths when set, else
+/// passes x photons without a time budget, else the open-ended horizon for the image size.
+uint64_t plannedPhotonPaths(const RenderSettings& s);
+
+/// `s` with every automatic radius setting replaced by its value for `rt`'s scene and camera
+/// (and plannedPaths filled in when anything was automatic); `s` unchanged when nothing is.
+RenderSettings resolveRadiusDefaults(const RenderSettings& s, const EmbreeScene& rt);
+
+}  // namespace tyndall
