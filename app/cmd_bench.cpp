@@ -61,10 +61,11 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                   "Instead of throughput: image error against cached path-traced references, legacy against "
                   "automatic radii at equal work (docs/performance.md, 'Equal-work quality'); --photons "
                   "defaults to 4000 here");
-    o->qualityOptions.scenes = {"bench/scenes/fog-box.json:1584", "bench/scenes/walls-fog-box.json:421"};
+    o->qualityOptions.scenes = {"bench/scenes/fog-box.json:1584", "bench/scenes/walls-fog-box.json:421",
+                                "bench/scenes/fog-lamp-box.json:1584"};
     cmd->add_option("--quality-scene", o->qualityOptions.scenes,
-                    "With --quality: FILE:PASSES, repeatable (default: the fog box at 1584 passes and the box "
-                    "with walls at 421, the pass counts of 60 s at 256x256 on an idle 2-core machine)");
+                    "With --quality: FILE:PASSES, repeatable (default: bench/scenes' fog box and fog box with a lamp "
+                    "in view at 1584 passes and the box with walls at 421: 60 s at 256x256 on an idle 2-core machine)");
     cmd->add_option("--reference-dir", o->qualityOptions.referenceDir, "With --quality: the reference cache")
         ->capture_default_str();
     cmd->add_option("--reference-spp", o->qualityOptions.referenceSpp,
