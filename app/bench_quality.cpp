@@ -30,6 +30,7 @@ double processCpuSeconds() {
 struct Reference {
     Image mean;
     double noiseVariance = 0;  ///< the reference's own variance of the mean, averaged over pixels and channels
+    Image variance;            ///< per pixel (cached beside the mean); empty in caches written without it
 };
 
 Reference loadOrRenderReference(const Scene& scene, const std::string& name, const RenderSettings& s,
@@ -42,6 +43,8 @@ Reference loadOrRenderReference(const Scene& scene, const std::string& name, con
     if (fs::exists(path)) {
         ref.mean = readImage(path);
         ref.noiseVariance = std::stod(readImageAttribute(path, "tyndall:mean_variance_of_mean"));
+        std::string variancePath = path.substr(0, path.size() - 4) + "-variance.exr";
+        if (fs::exists(variancePath)) ref.variance = readImage(variancePath);
         std::printf("  reference %s (cached)\n", path.c_str());
         return ref;
     }
@@ -62,6 +65,8 @@ Reference loadOrRenderReference(const Scene& scene, const std::string& name, con
     writeImage(path, image.mean,
                {{"Software", "tyndall"}, {"tyndall:renderer", "reference"}, {"tyndall:scene", scene.source},
                 {"tyndall:reference_settings", rs.toJson().dump()}, {"tyndall:mean_variance_of_mean", text}});
+    writeImage(path.substr(0, path.size() - 4) + "-variance.exr", image.varianceOfMean);
+    ref.variance = image.varianceOfMean;
     std::printf("  reference %s rendered (%u spp, %.0f CPU s)\n", path.c_str(), o.referenceSpp, processCpuSeconds() - t0);
     ref.mean = std::move(image.mean);
     ref.noiseVariance = v;
@@ -83,21 +88,26 @@ ImageError measure(const Image& x, const Reference& ref) {
     size_t k = size_t(0.99 * double(sorted.size()));
     std::nth_element(sorted.begin(), sorted.begin() + k, sorted.end());
     const float cut = sorted[k];
-    double se = 0, sum = 0, sumRef = 0, se99 = 0, sumRef99 = 0, n99 = 0;
+    double se = 0, sum = 0, sumRef = 0, se99 = 0, sumRef99 = 0, n99 = 0, noise99 = 0;
+    const bool perPixelNoise = !ref.variance.pixels.empty();
     for (size_t i = 0; i < x.pixels.size(); ++i)
         for (int c = 0; c < 3; ++c) {
             double d = double(x.pixels[i][c]) - ref.mean.pixels[i][c];
             se += d * d;
             sum += x.pixels[i][c];
             sumRef += ref.mean.pixels[i][c];
-            if (brightness[i] < cut) se99 += d * d, sumRef99 += ref.mean.pixels[i][c], n99 += 1;
+            if (brightness[i] < cut) {
+                se99 += d * d, sumRef99 += ref.mean.pixels[i][c], n99 += 1;
+                noise99 += perPixelNoise ? ref.variance.pixels[i][c] : ref.noiseVariance;
+            }
         }
     double n = 3.0 * double(x.pixels.size()), meanRef = sumRef / n;
     ImageError e;
     e.relRmse = std::sqrt(std::max(0.0, se / n - ref.noiseVariance)) / meanRef;
     e.relBias = (sum - sumRef) / sumRef;
-    // The reference's noise is recorded as an image average; its share below the cut is taken as the same.
-    if (n99 > 0) e.relRmse99 = std::sqrt(std::max(0.0, se99 / n99 - ref.noiseVariance)) / (sumRef99 / n99);
+    // Below the cut, the reference's own noise is that of those pixels (the image average, an
+    // overestimate there, for caches written without the variance image).
+    if (n99 > 0) e.relRmse99 = std::sqrt(std::max(0.0, (se99 - noise99) / n99)) / (sumRef99 / n99);
     return e;
 }
 
@@ -162,8 +172,8 @@ void writePlot(const std::string& path, const std::vector<std::pair<std::string,
             double xs = xmin, ys = ye * std::pow(xs / xe, -alpha / 2);
             drawLine(img, X(xs), Y(std::min(ys, std::pow(10.0, ly1))), X(xe), Y(ye), grey);
             char t[48];
-            std::snprintf(t, sizeof(t), "SLOPE N^-%.2g", alpha / 2);
-            drawLabel(img, ox + pw - 110, 46, t, 1, grey, white);
+            std::snprintf(t, sizeof(t), "GREY: SLOPE -%.2g", alpha / 2);
+            drawLabel(img, ox + pw - 200, 46, t, 1, Rgb(0.3f), white);
         }
         int legendY = 60;
         for (const Curve& c : curves) {
