@@ -18,7 +18,7 @@ struct ViewCommandOptions {
     std::string script, stats, saveStem = "tyndall-view";
     bool compare = false;
     float density = -1.0f;
-    int previewScale = 2, previewPhotons = 4;
+    int previewScale = 4, previewPhotons = 16;
 };
 }  // namespace
 

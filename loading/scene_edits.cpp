@@ -1,5 +1,7 @@
 #include "loading/scene_edits.h"
 
+#include <cmath>
+
 #include "core/error.h"
 #include "loading/json_reader.h"
 
@@ -74,6 +76,10 @@ void applySceneEdits(Scene& scene, const nlohmann::json& edits, const std::strin
             m.sigmaS = o.require("sigma_s").rgb();
             m.sigmaA = o.require("sigma_a").rgb();
             m.g = float(o.require("g").number(-0.999, 0.999));
+            Rgb t = m.sigmaT();
+            if (!(t.r > 0 || t.g > 0 || t.b > 0)) o.fail("sigma_s + sigma_a must not be 0");
+            if (m.density && (std::abs(t.r - t.g) > 1e-5f * t.r || std::abs(t.r - t.b) > 1e-5f * t.r))
+                o.fail("a density-grid medium needs grey extinction (sigma_s + sigma_a equal in r, g, b)");
             o.finish();
         }
     }

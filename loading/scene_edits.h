@@ -26,7 +26,9 @@ nlohmann::json sceneEdits(const Scene& scene);
 /// light/medium of the scene, by the same names in the same order). The camera is rebuilt with
 /// Camera::lookAt(position, position + forward, up, y_fov); light directions are normalized.
 /// Throws Error naming `where` and the JSON place on unknown keys, wrong types, counts or names.
-/// Does not re-finalize: call scene.validate() (and PassRenderer::sceneChanged) after.
+/// Checks what it sets (finite values, g in range, a non-zero and, for grid media, grey
+/// extinction) but not the rest of the scene (Scene::validate checks every mesh: too slow for
+/// every mouse motion); call PassRenderer::sceneChanged after.
 void applySceneEdits(Scene& scene, const nlohmann::json& edits, const std::string& where);
 
 /// The "base" of a view file for the built-in scenes.

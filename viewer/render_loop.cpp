@@ -115,6 +115,7 @@ std::string RenderLoop::notice() const {
 void RenderLoop::publish(const Accumulator& acc, const RenderProgress& progress, const PreviewRefine::Job& job,
                          const PassRenderer& renderer, double jobStart) {
     ViewFrame f;
+    f.setupSeconds = m_jobSetupSeconds;
     f.mean = acc.mean();
     f.passes = acc.passCount();
     f.mode = job.mode;
@@ -134,6 +135,7 @@ void RenderLoop::run() {
     try {
         while (!m_quit) {
             PreviewRefine::Job job = m_control.nextJob();
+            double setupStart = now();
             nlohmann::json edits;
             {
                 std::lock_guard<std::mutex> lock(m_mutex);
@@ -146,7 +148,6 @@ void RenderLoop::run() {
                 }
             }
             applySceneEdits(m_scene, edits, "viewer edits");
-            m_scene.validate();
             // Open-ended: a job runs until it is stale; the saved settings record the passes done.
             RenderSettings full = m_settings;
             full.passes = std::numeric_limits<uint64_t>::max();
@@ -159,7 +160,7 @@ void RenderLoop::run() {
             renderer.sceneChanged();
             m_jobEdits = edits;
             Accumulator acc(renderer.settings().width, renderer.settings().height);
-            double jobStart = now();
+            double jobStart = setupStart;
             CallbackDisplay display([&](const Accumulator& a, const RenderProgress& progress) {
                 publish(a, progress, job, renderer, jobStart);
                 if (m_quit || m_control.stale(job)) return DisplayCommand::Exit;
@@ -176,6 +177,7 @@ void RenderLoop::run() {
                 m_glDescription = m_scheduler->hybrid() ? m_scheduler->glDescription() : std::string();
                 m_notice = m_scheduler->notice();
             }
+            m_jobSetupSeconds = now() - setupStart;
             m_scheduler->run(renderer, acc, 0, display);
         }
     } catch (const std::exception& e) {

@@ -28,8 +28,8 @@
 namespace tyndall {
 
 struct PreviewOptions {
-    int scale = 2;           ///< preview resolution = full / scale (per axis), >= 1
-    int photonDivisor = 4;   ///< preview photon paths per pass = full / divisor, >= 1
+    int scale = 4;           ///< preview resolution = full / scale (per axis), >= 1 (bench/viewer_bench.sh)
+    int photonDivisor = 16;  ///< preview photon paths per pass = full / divisor, >= 1
 };
 
 /// The preview settings for `full` (resolution and photons reduced, everything else equal).
@@ -43,6 +43,7 @@ struct ViewFrame {
     RenderMode mode = RenderMode::Refine;
     uint64_t version = 0;      ///< the PreviewRefine version it shows
     double elapsedSeconds = 0; ///< since the job started
+    double setupSeconds = 0;   ///< of that, the job's setup before its first pass (edits, renderers)
     PassStats totals;          ///< summed over the job's passes
     RenderSettings settings;   ///< the job's settings (resolved radii: see `radii`)
     RadiusSetup radii;         ///< resolved first radii and schedule
@@ -102,6 +103,7 @@ private:
     std::unique_ptr<PassScheduler> m_scheduler;
     std::unique_ptr<PassRenderer> m_full, m_cheap;
     nlohmann::json m_jobEdits;  // the edits of the job under way (render thread only)
+    double m_jobSetupSeconds = 0;
 
     mutable std::mutex m_mutex;  // guards the fields below
     std::condition_variable m_wake;

@@ -136,6 +136,8 @@ private:
     std::vector<double> m_latencies;       // input change -> first image of the new view
     std::deque<std::pair<uint64_t, double>> m_pendingChanges;  // (version, time)
     uint64_t m_previewImages = 0;
+    std::vector<double> m_previewSetup, m_previewJob;  // per preview image: job setup, setup + passes
+    double m_refinePassRate = 0, m_previewPassRate = 0;  // passes/s of the newest job of each mode
     double m_previewSeconds = 0;
     double m_previewSince = -1;
 };
@@ -468,6 +470,10 @@ void Viewer::writeStats() {
     j["preview_images"] = m_previewImages;
     j["preview_seconds"] = m_previewSeconds;
     j["preview_images_per_s"] = m_previewSeconds > 0 ? double(m_previewImages) / m_previewSeconds : 0.0;
+    j["refine_passes_per_s"] = m_refinePassRate;
+    j["preview_passes_per_s"] = m_previewPassRate;
+    j["preview_setup_ms_p50"] = 1000 * percentile(m_previewSetup, 0.5);
+    j["preview_job_ms_p50"] = 1000 * percentile(m_previewJob, 0.5);
     j["latency_ms"] = nlohmann::json::array();
     for (double l : m_latencies) j["latency_ms"].push_back(1000 * l);
     j["latency_ms_p50"] = 1000 * percentile(m_latencies, 0.5);
@@ -622,7 +628,12 @@ int Viewer::run() {
                             // Changes superseded before their own image arrived count from this image too.
                             m_pendingChanges.pop_front();
                         }
-                        if (m_frames[0].mode == RenderMode::Preview) ++m_previewImages;
+                        const ViewFrame& f = m_frames[0];
+                        double rate = f.elapsedSeconds > 0 ? double(f.passes) / f.elapsedSeconds : 0;
+                        if (f.mode == RenderMode::Preview) ++m_previewImages, m_previewSetup.push_back(f.setupSeconds),
+                                                           m_previewJob.push_back(f.elapsedSeconds);
+                        // A job's first pass also carries its setup; rates from the second on.
+                        if (f.passes >= 2) (f.mode == RenderMode::Preview ? m_previewPassRate : m_refinePassRate) = rate;
                     }
                 }
             }
