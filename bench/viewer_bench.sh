@@ -23,9 +23,9 @@ for k in half quarter full; do
   printf '%s: ' "$k"
   python3 -c "
 import json,sys; j=json.load(open('$out/$k.json'))
-print('preview images/s %.1f (%d in %.1f s; per image: setup %.0f ms, setup+pass %.0f ms), refine passes/s %.2f, frame ms p50 %.1f p95 %.1f max %.1f, event->image ms p50 %.0f p95 %.0f' % (
+print('preview images/s %.1f (%d in %.1f s; per image: setup %.0f ms, setup+pass %.0f ms), refine passes/s %.2f, frame ms p50 %.1f p95 %.1f max %.1f, drag event->preview image ms p50 %.0f p95 %.0f (%d events), release->first refined image ms %s' % (
  j['preview_images_per_s'], j['preview_images'], j['preview_seconds'], j['preview_setup_ms_p50'], j['preview_job_ms_p50'], j['refine_passes_per_s'],
- j['frame_ms_p50'], j['frame_ms_p95'], j['frame_ms_max'], j['latency_ms_p50'], j['latency_ms_p95']))"
+ j['frame_ms_p50'], j['frame_ms_p95'], j['frame_ms_max'], j['latency_ms_p50'], j['latency_ms_p95'], j['latency_events'], '/'.join('%.0f' % x for x in j['refine_latency_ms'])))"
 done
 uptime
 rm -rf "$out"

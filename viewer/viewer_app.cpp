@@ -133,8 +133,15 @@ private:
 
     // Statistics for --stats and the HUD.
     std::vector<double> m_frameSeconds;
-    std::vector<double> m_latencies;       // input change -> first image of the new view
-    std::deque<std::pair<uint64_t, double>> m_pendingChanges;  // (version, time)
+    // Input change -> first image of the new view: during a drag (a preview image) and on release
+    // or at rest (the first refined pass).
+    std::vector<double> m_latencies, m_refineLatencies;
+    struct PendingChange {
+        uint64_t version;
+        double time;
+        bool refine;
+    };
+    std::deque<PendingChange> m_pendingChanges;
     uint64_t m_previewImages = 0;
     std::vector<double> m_previewSetup, m_previewJob;  // per preview image: job setup, setup + passes
     double m_refinePassRate = 0, m_previewPassRate = 0;  // passes/s of the newest job of each mode
@@ -165,7 +172,7 @@ void Viewer::pushEdits() {
     }
     nlohmann::json edits = sceneEdits(m_edited);
     if (m_o.compare) edits.erase("media");  // the twin's media differ: only camera and lights are shared
-    m_pendingChanges.emplace_back(m_loops[0]->control().version() + 1, seconds(Clock::now()));
+    m_pendingChanges.push_back({m_loops[0]->control().version() + 1, seconds(Clock::now()), m_dragButton < 0});
     for (auto& loop : m_loops) loop->setEdits(edits);
 }
 
@@ -229,7 +236,7 @@ void Viewer::release(int button, float x, float y) {
     if (m_dragButton != button) return;
     move(x, y);
     m_dragButton = -1;
-    m_pendingChanges.emplace_back(m_loops[0]->control().version() + 1, seconds(Clock::now()));
+    m_pendingChanges.push_back({m_loops[0]->control().version() + 1, seconds(Clock::now()), true});
     for (auto& loop : m_loops) loop->endInteraction();
 }
 
@@ -382,6 +389,7 @@ void Viewer::drawPanel() {
     ImGui::SetNextWindowPos(ImVec2(0, 0), ImGuiCond_Always);
     ImGui::SetNextWindowSize(ImVec2(float(kPanelWidth), io.DisplaySize.y), ImGuiCond_Always);
     ImGui::Begin("Tyndall", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+    ImGui::PushItemWidth(-110.0f);  // room for the labels
     const ViewFrame& f = m_frames[0];
     bool paused = m_loops[0]->paused();
     ImGui::Text("%s", m_o.scene.name.c_str());
@@ -425,8 +433,8 @@ void Viewer::drawPanel() {
         for (size_t i = 0; i < m_edited.lights.size(); ++i) {
             ImGui::PushID(int(i));
             ImGui::RadioButton(m_edited.lights[i].name.c_str(), &m_selectedLight, int(i));
-            interactive(ImGui::ColorEdit3("colour", m_lightUi[i].colour, ImGuiColorEditFlags_NoInputs));
             ImGui::SameLine();
+            interactive(ImGui::ColorEdit3("##colour", m_lightUi[i].colour, ImGuiColorEditFlags_NoInputs));
             interactive(ImGui::DragFloat("power", &m_lightUi[i].power, 0.01f * std::max(m_lightUi[i].power, 0.1f),
                                          0.0f, 1e9f, "%.3g"));
             ImGui::PopID();
@@ -457,6 +465,7 @@ void Viewer::drawPanel() {
     if (ImGui::CollapsingHeader("Keys and mouse")) {
         for (const auto& b : kBindings) ImGui::TextWrapped("%s: %s", b[0], b[1]);
     }
+    ImGui::PopItemWidth();
     ImGui::End();
 }
 
@@ -474,10 +483,11 @@ void Viewer::writeStats() {
     j["preview_passes_per_s"] = m_previewPassRate;
     j["preview_setup_ms_p50"] = 1000 * percentile(m_previewSetup, 0.5);
     j["preview_job_ms_p50"] = 1000 * percentile(m_previewJob, 0.5);
-    j["latency_ms"] = nlohmann::json::array();
-    for (double l : m_latencies) j["latency_ms"].push_back(1000 * l);
     j["latency_ms_p50"] = 1000 * percentile(m_latencies, 0.5);
     j["latency_ms_p95"] = 1000 * percentile(m_latencies, 0.95);
+    j["latency_events"] = m_latencies.size();
+    j["refine_latency_ms"] = nlohmann::json::array();
+    for (double l : m_refineLatencies) j["refine_latency_ms"].push_back(1000 * l);
     std::ofstream(m_o.statsPath) << j.dump(2) << "\n";
 }
 
@@ -623,8 +633,9 @@ int Viewer::run() {
                     m_view->upload(int(i), m_frames[i].mean);
                     if (i == 0) {
                         double t = seconds(Clock::now());
-                        while (!m_pendingChanges.empty() && m_pendingChanges.front().first <= m_frames[0].version) {
-                            m_latencies.push_back(t - m_pendingChanges.front().second);
+                        while (!m_pendingChanges.empty() && m_pendingChanges.front().version <= m_frames[0].version) {
+                            const PendingChange& c = m_pendingChanges.front();
+                            (c.refine ? m_refineLatencies : m_latencies).push_back(t - c.time);
                             // Changes superseded before their own image arrived count from this image too.
                             m_pendingChanges.pop_front();
                         }
