@@ -84,6 +84,9 @@ std::vector<ScriptEvent> parseViewScript(const std::string& text, const std::str
         } else if (cmd == "wait-passes") {
             e.op = ScriptOp::WaitPasses, e.value = std::floor(r.number("passes", 1, 1e9));
             if (r.more()) e.timeout = r.number("seconds", 0.001, 1e6);
+        } else if (cmd == "wait-input") {
+            e.op = ScriptOp::WaitInput, e.value = std::floor(r.number("releases", 1, 1e9));
+            if (r.more()) e.timeout = r.number("seconds", 0.001, 1e6);
         } else if (cmd == "press" || cmd == "release") {
             e.op = cmd == "press" ? ScriptOp::Press : ScriptOp::Release;
             e.button = r.button();
@@ -129,7 +132,7 @@ std::vector<ScriptEvent> parseViewScript(const std::string& text, const std::str
             e.op = ScriptOp::Quit;
         } else {
             r.fail("unknown command '" + cmd +
-                   "' (expected sleep, wait-frames, wait-passes, press, move, release, drag, double-click, scroll, "
+                   "' (expected sleep, wait-frames, wait-passes, wait-input, press, move, release, drag, double-click, scroll, "
                    "key, exposure, save, screenshot or quit)");
         }
         r.done();

@@ -6,6 +6,8 @@
 //   wait-frames N                 let N UI frames pass
 //   wait-passes N [SECONDS]       wait until the refinement of the current view has >= N passes
 //                                 (error after SECONDS, default 600)
+//   wait-input N [SECONDS]        wait until N mouse-button releases have come from the window
+//                                 system since the start (real input, e.g. xdotool in tests)
 //   press BUTTON X Y [MODS]       BUTTON: left | right | middle; MODS: shift, ctrl, alt joined by +
 //   move X Y                      the cursor moves (drags when a button is down)
 //   release BUTTON X Y
@@ -23,7 +25,7 @@
 
 namespace tyndall {
 
-enum class ScriptOp { Sleep, WaitFrames, WaitPasses, Press, Move, Release, DoubleClick, Scroll, Key, Exposure, Save,
+enum class ScriptOp { Sleep, WaitFrames, WaitPasses, WaitInput, Press, Move, Release, DoubleClick, Scroll, Key, Exposure, Save,
                       Screenshot, Quit };
 
 enum ScriptModifier : int { kModShift = 1, kModCtrl = 2, kModAlt = 4 };

@@ -130,6 +130,7 @@ private:
     double m_waitUntil = 0;
     uint64_t m_waitFrames = 0;
     double m_waitPassesSince = 0;
+    uint64_t m_windowReleases = 0;  // mouse-button releases from the window system (wait-input)
 
     // Statistics for --stats and the HUD.
     std::vector<double> m_frameSeconds;
@@ -357,6 +358,17 @@ bool Viewer::stepScript() {
                 m_waitPassesSince = 0;
                 ++m_scriptNext;
                 continue;
+            case ScriptOp::WaitInput:
+                if (m_waitPassesSince == 0) m_waitPassesSince = t;
+                if (m_windowReleases < uint64_t(e.value)) {
+                    if (t - m_waitPassesSince > e.timeout)
+                        throw Error(m_o.script + ": line " + std::to_string(e.line) + ": wait-input timed out after " +
+                                    std::to_string(e.timeout) + " s");
+                    return true;
+                }
+                m_waitPassesSince = 0;
+                ++m_scriptNext;
+                continue;
             case ScriptOp::Press: press(e.button, e.x, e.y, e.modifiers); break;
             case ScriptOp::Move: move(e.x, e.y); break;
             case ScriptOp::Release: release(e.button, e.x, e.y); break;
@@ -577,7 +589,7 @@ int Viewer::run() {
         int m = (mods & GLFW_MOD_SHIFT ? kModShift : 0) | (mods & GLFW_MOD_CONTROL ? kModCtrl : 0) |
                 (mods & GLFW_MOD_ALT ? kModAlt : 0);
         if (action == GLFW_PRESS && inside && v->m_dragButton < 0) v->press(b, x, y, m);
-        if (action == GLFW_RELEASE) v->release(b, x, y);
+        if (action == GLFW_RELEASE) v->release(b, x, y), ++v->m_windowReleases;
     });
     glfwSetCursorPosCallback(m_window, [](GLFWwindow* win, double cx, double cy) {
         Viewer* v = self(win);

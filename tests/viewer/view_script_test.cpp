@@ -14,9 +14,12 @@ TEST(ViewScript, ParsesEveryCommandAndExpandsDrags) {
         "drag left 10 20 30 20 4 ctrl+shift  # orbit\n"
         "press right 5 6\nmove 7 8\nrelease right 7 8\n"
         "double-click 1 2\nscroll 3 4 -2\nkey F\nkey 3\nexposure 2.5\nsave out/a\nscreenshot s.png\n"
-        "sleep 100\nwait-frames 3\nquit\n",
+        "sleep 100\nwait-frames 3\nwait-input 2 9\nquit\n",
         "t.txt");
-    ASSERT_EQ(e.size(), 1u + 6u + 3u + 10u);
+    ASSERT_EQ(e.size(), 1u + 6u + 3u + 11u);
+    EXPECT_EQ(e[e.size() - 2].op, ScriptOp::WaitInput);
+    EXPECT_EQ(e[e.size() - 2].value, 2);
+    EXPECT_EQ(e[e.size() - 2].timeout, 9);
     EXPECT_EQ(e[0].op, ScriptOp::WaitPasses);
     EXPECT_EQ(e[0].value, 4);
     EXPECT_EQ(e[0].timeout, 30);
