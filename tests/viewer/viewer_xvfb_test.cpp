@@ -193,6 +193,23 @@ TEST(ViewerXvfb, RealMouseDragThroughTheXServerOrbits) {
     expectRenderReproduces(d, "after");
 }
 
+TEST(ViewerXvfb, WithGlSplattingTheSavedViewReproducesUnderGpuOn) {
+    SKIP_WITHOUT_XVFB();
+    fs::path d = outDir("gl");
+    test::CliRun r = runView(d, "--gpu on --size 128x128 --photons 500",
+                             "wait-passes 1\ndrag left 64 64 80 64 4\nwait-passes 2\nsave " + (d / "view").string() +
+                                 "\nscreenshot " + (d / "window.png").string() + "\nquit\n");
+    if (r.exitCode != 0 && r.output.find("--gpu on") != std::string::npos)
+        GTEST_SKIP() << "no headless OpenGL for the splatter here: " << r.output;
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    test::CliRun render = test::runTyndall("render " + (d / "view.json").string() + " --gpu on -o " +
+                                           (d / "render.exr").string());
+    ASSERT_EQ(render.exitCode, 0) << render.output;
+    EXPECT_NE(render.output.find("hybrid"), std::string::npos) << render.output;
+    // The same GL splatter in the same primitive order: llvmpipe's float blending is exact.
+    EXPECT_TRUE(test::identicalImages(readImage((d / "view.exr").string()), readImage((d / "render.exr").string())));
+}
+
 TEST(ViewerXvfb, CompareShowsTwoDifferentHalves) {
     SKIP_WITHOUT_XVFB();
     fs::path d = outDir("compare");
