@@ -182,24 +182,14 @@ void Viewer::pushSettings() {
 }
 
 void Viewer::resetControllerTo(const Camera& camera) {
-    m_camera = CameraController(camera, camera.focusDistance > 0 ? camera.focusDistance
-                                                                 : 0.5f * length(m_o.scene.bounds.diagonal()));
+    // Orbit about what the camera looks at (the surface at the centre of the view), else about its
+    // focus distance; the lens keeps the focus the scene gave it.
+    float pivot = camera.focusDistance > 0 ? camera.focusDistance : 0.5f * length(m_o.scene.bounds.diagonal());
+    SurfaceHit hit;
+    Ray centre{camera.position, camera.forward, 0.0f, kInfinity};
+    if (m_picker && m_picker->intersect(centre, &hit)) pivot = hit.t;
+    m_camera = CameraController(camera, pivot);
     m_camera.setViewport(m_o.settings.width, m_o.settings.height);
-    if (m_picker) {
-        SurfaceHit hit;
-        Ray r = m_camera.ray(0.5f * m_o.settings.width, 0.5f * m_o.settings.height);
-        if (m_picker->intersect(r, &hit)) {
-            // Orbit about what the camera looks at, keep the lens focused where it was.
-            float focus = camera.focusDistance;
-            m_camera.setPivot(hit.p);
-            Camera c = m_camera.camera();
-            if (c.lensRadius > 0) {
-                m_camera = CameraController(camera, length(hit.p - camera.position));
-                m_camera.setViewport(m_o.settings.width, m_o.settings.height);
-            }
-            (void)focus;
-        }
-    }
 }
 
 void Viewer::press(int button, float x, float y, int mods) {
