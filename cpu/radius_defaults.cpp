@@ -14,7 +14,9 @@ bool hasAutomaticRadii(const RenderSettings& s) {
 
 uint64_t plannedPhotonPaths(const RenderSettings& s) {
     if (s.plannedPaths > 0) return s.plannedPaths;
-    if (s.timeBudget <= 0) return std::max<uint64_t>(1, s.passes * s.photonsPerPass);
+    // A pass count whose paths overflow (the viewer's "until stopped") is open-ended too.
+    bool openEnded = s.timeBudget > 0 || s.passes > (uint64_t(1) << 50) / std::max<uint64_t>(1, s.photonsPerPass);
+    if (!openEnded) return std::max<uint64_t>(1, s.passes * s.photonsPerPass);
     return RadiusDefaults::kOpenEndedPathsPerPixel * uint64_t(s.width) * uint64_t(s.height);
 }
 

@@ -34,7 +34,8 @@ struct RadiusDefaults {
 bool hasAutomaticRadii(const RenderSettings& s);
 
 /// The photon-path count the automatic radii plan for: settings.plannedPaths when set, else
-/// passes x photons without a time budget, else the open-ended horizon for the image size.
+/// passes x photons without a time budget, else (time budget, or a pass count too large to plan
+/// for such as the viewer's "until stopped") the open-ended horizon for the image size.
 uint64_t plannedPhotonPaths(const RenderSettings& s);
 
 /// `s` with every automatic radius setting replaced by its value for `rt`'s scene and camera

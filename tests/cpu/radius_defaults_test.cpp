@@ -108,6 +108,19 @@ TEST(RadiusDefaults, BeamRadiusEndsThePlannedBudgetAtThePixelFootprint) {
     EXPECT_LT(endRadiusInFootprints(s, legacy), 0.5);
 }
 
+TEST(RadiusDefaults, AnUnboundedPassCountIsOpenEnded) {
+    // The viewer renders "until stopped" with passes = 2^64 - 1: the plan must not overflow.
+    RenderSettings s;
+    s.width = 40;
+    s.height = 30;
+    s.passes = ~uint64_t(0);
+    EXPECT_EQ(plannedPhotonPaths(s), RadiusDefaults::kOpenEndedPathsPerPixel * 1200);
+    s.passes = 10;
+    EXPECT_EQ(plannedPhotonPaths(s), 10u * s.photonsPerPass);
+    s.timeBudget = 5;
+    EXPECT_EQ(plannedPhotonPaths(s), RadiusDefaults::kOpenEndedPathsPerPixel * 1200);
+}
+
 TEST(RadiusDefaults, AreScaleFreeAndFollowTheImageSize) {
     RenderSettings in;
     in.width = 64;
