@@ -40,9 +40,10 @@ constexpr double kImageMeanTolerance = 0.02;
 constexpr double kQuadrantMeanTolerance = 0.04;
 // Regions (the pixels seeing the mirror, the glass sphere, the floor), on top of 4 standard
 // errors: measured 0.996 +- 0.011, 1.032 +- 0.028, 0.997 +- 0.010. A 15% error on the mirror's
-// secondary paths is 13 standard errors out; the glass, seen by fewer pixels through a caustic, is
-// noisier (a 15% error there is ~4.5 standard errors).
-constexpr double kRegionBias = 0.02;
+// secondary paths moves its region by 7% (the fog in front of the mirror is splatted on primary
+// segments and unaffected): 1.070 +- 0.012, outside 4 standard errors plus 1%; the glass, seen by
+// fewer pixels through a caustic, is noisier.
+constexpr double kRegionBias = 0.01;
 
 
 TEST(PpbConsistency, RelMseAgainstReferenceFallsWithPasses) {

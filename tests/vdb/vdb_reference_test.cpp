@@ -29,7 +29,7 @@ namespace {
 constexpr double kFinalBound = 0.04;
 constexpr double kImageMeanTolerance = 0.02;
 constexpr double kQuadrantMeanTolerance = 0.04;
-constexpr double kRegionBias = 0.02;
+constexpr double kRegionBias = 0.01;
 
 /// Blobs of smoke over a thin haze, voxelised at 0.1 over [-1.2, 1.2] x [-0.2, 2.2] x [-1.2, 1.2]
 /// (beyond the room, so the room never sees the grid's edge).
