@@ -11,7 +11,7 @@
 //   steeper for both alphas; per pixel the slopes are -0.326 and -0.794.) A radius that never
 //   shrinks gives a difference of 0 (both slopes -1), one that ignores alpha 0, a schedule that
 //   follows alpha only partly (0.7 alpha + 0.1) 0.33. Each checkpoint
-//   has its own independent ensemble of runs (disjoint seeds: 256 runs of 8 passes, 128 of 256),
+//   has its own independent ensemble of runs (disjoint seeds: 512 runs of 8 passes, 128 of 256),
 //   so the two variance estimates are independent; each pixel of the 8 x 8 film gives a slope and
 //   their mean is the measurement; its standard error comes from a jackknife over 8 groups of
 //   runs and must be small enough (< 0.035) for the 0.1 window to mean something.
@@ -128,7 +128,7 @@ double standardError(const test::MeanVar& m) {
     return std::sqrt(m.var / double(m.n));
 }
 
-constexpr int kRuns1 = 256, kRuns2 = 128;
+constexpr int kRuns1 = 512, kRuns2 = 128;
 
 }  // namespace
 
