@@ -132,7 +132,7 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                 if (!sampleSpecular(mat, mesh, hit, dir, medium, rng.uniform(), TransportMode::Radiance, &ev)) break;
                 throughput *= ev.weight;
                 medium = ev.medium;
-                Ray ray{m_rt.offsetOrigin(hit.p, hit.ng, ev.d), ev.d};
+                Ray ray{m_rt.offsetOrigin(hit.p, hit.t, hit.ng, ev.d), ev.d};
                 dir = ray.d;
                 if (++depth > m_settings.maxCameraBounces) break;
 

@@ -97,7 +97,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
     // The ray is o + t d, t in (0, infinity), as every emitted and scattered ray is.
     Vec3 o = e.ray.o, d = e.ray.d;
     // Area-light photons start on their triangle: nudge them off it along the emitted direction.
-    if (e.emitterMesh >= 0) o = m_rt.offsetOrigin(o, d, d);
+    if (e.emitterMesh >= 0) o = m_rt.offsetOrigin(o, 0.0f, d, d);
 
     for (int bounce = 0; bounce < m_settings.maxPhotonBounces; ++bounce) {
         RTCRayHit rh;
@@ -160,7 +160,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
             if (!(rng.uniform() < q)) return;
             power *= 1.0f / q;
             d = Frame(nf).toWorld(sampleCosineHemisphere(rng.uniform(), rng.uniform()));
-            o = m_rt.offsetOrigin(p, nf, d);
+            o = m_rt.offsetOrigin(p, tHit, nf, d);
             continue;
         }
         SurfaceHit hit;
@@ -171,7 +171,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
         power *= ev.weight;
         if (power.isBlack()) return;
         medium = ev.medium;
-        o = m_rt.offsetOrigin(p, ng, ev.d);
+        o = m_rt.offsetOrigin(p, tHit, ng, ev.d);
         d = ev.d;
     }
 }
