@@ -53,7 +53,9 @@ PassRenderer::PassRenderer(const Scene& scene, const RenderSettings& settings, B
       m_rt(std::make_unique<EmbreeScene>(scene)),
       m_photons(std::make_unique<PhotonTracer>(*m_rt, settings, m_radii)),
       m_camera(std::make_unique<CameraTracer>(*m_rt, settings)),
-      m_rasterizer(scene) {}
+      m_rasterizer(scene) {
+    for (const Material& m : scene.materials) m_anyNonDiffuse |= m.type != MaterialType::Diffuse;
+}
 
 PhotonMap PassRenderer::tracePhotons(uint64_t pass) const {
     return m_photons->trace(pass);
@@ -79,7 +81,10 @@ Image PassRenderer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
     return allocating("the beam BVH and surface-photon grid of " + std::to_string(photons.beams.size()) +
                           " beams and " + std::to_string(photons.surfacePhotons.size()) + " surface photons",
                       photons.pathCount * m_memory.bytesPerPath, [&] {
-                          BeamBvh bvh(*m_rt->device(), photons.beams, m_bvhKind);
+                          // Camera paths reach secondary segments only through non-diffuse
+                          // surfaces: without any, no query would ever read the BVH.
+                          static const std::vector<PhotonBeam> kNoBeams;
+                          BeamBvh bvh(*m_rt->device(), m_anyNonDiffuse ? photons.beams : kNoBeams, m_bvhKind);
                           SurfacePhotonGrid grid(photons.surfacePhotons);
                           return m_camera->traceSecondary(primary, photons, bvh, grid, stats, emission);
                       });

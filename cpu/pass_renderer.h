@@ -84,6 +84,7 @@ private:
     RadiusSetup m_radii;
     MemoryPlan m_memory;
     BeamBvh::Kind m_bvhKind;
+    bool m_anyNonDiffuse = false;  // a camera path can have secondary segments
     std::unique_ptr<EmbreeScene> m_rt;
     std::unique_ptr<PhotonTracer> m_photons;
     std::unique_ptr<CameraTracer> m_camera;
