@@ -94,6 +94,12 @@ void addPpbOptions(CLI::App* cmd, CommonOptions& o) {
     cmd->add_option("--free-flights", o.settings.freeFlightSamples,
                     "Stored free-flight distances per beam and pixel (heterogeneous media)")
         ->capture_default_str();
+    cmd->add_option("--memory", o.settings.memoryMiB,
+                    "Working-memory budget in MiB: the image buffers (~400 bytes per pixel) plus the photon "
+                    "batches a pass is traced in, whatever --photons is; peak use is about this plus the "
+                    "scene and ~100 MiB (docs/performance.md)")
+        ->check(nonNegativeInteger())
+        ->capture_default_str();
 }
 
 void finishOptions(CommonOptions& o) {
@@ -119,7 +125,8 @@ nlohmann::json explicitSettings(const CommonOptions& o) {
                                                                       {"--free-flights", "free_flights"},
                                                                       {"--seed", "seed"},
                                                                       {"--threads", "threads"},
-                                                                      {"--gpu", "gpu"}};
+                                                                      {"--gpu", "gpu"},
+                                                                      {"--memory", "memory"}};
     nlohmann::json all = o.settings.toJson(), given = nlohmann::json::object();
     auto isGiven = [&](const char* name) {
         const CLI::Option* opt = o.command ? o.command->get_option_no_throw(name) : nullptr;

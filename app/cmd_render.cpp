@@ -43,7 +43,12 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
         ThreadLimit threads(o->settings.threads);
         PassScheduler scheduler(parseGpuMode(o->settings.gpu));
         PassRenderer renderer(scene, o->settings);
-        Accumulator acc(o->settings.width, o->settings.height);
+        Accumulator acc = allocating("the accumulator of a " + std::to_string(o->settings.width) + "x" +
+                                         std::to_string(o->settings.height) + " image",
+                                     uint64_t(o->settings.width) * o->settings.height * 3 * sizeof(double),
+                                     [&] { return Accumulator(o->settings.width, o->settings.height); });
+        if (renderer.memoryPlan().batches > 1)
+            std::fprintf(stderr, "tyndall: %s\n", renderer.memoryPlan().describe().c_str());
         installInterruptHandler();
         bool tty = isatty(fileno(stderr));
         CallbackDisplay display([&](const Accumulator&, const RenderProgress& pr) {

@@ -99,7 +99,8 @@ PrimaryPass CameraTracer::tracePrimary(uint64_t pass) const {
 }
 
 Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& photons, const BeamBvh& beams,
-                                   const SurfacePhotonGrid& surfacePhotons, CameraPassStats* stats) const {
+                                   const SurfacePhotonGrid& surfacePhotons, CameraPassStats* stats,
+                                   bool emission) const {
     const int w = m_settings.width, h = m_settings.height;
     const int nff = m_anyHeterogeneous ? m_settings.freeFlightSamples : 0;
     const uint64_t pass = primary.pass;
@@ -123,7 +124,7 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                 const TriangleMesh& mesh = m_scene.meshes[hit.mesh];
                 const Material& mat = m_scene.materials[mesh.material];
                 HitSide side = hitSide(hit, dir);
-                if (mat.isEmissive() && side.entering) L += throughput * mat.emission;
+                if (emission && mat.isEmissive() && side.entering) L += throughput * mat.emission;
                 if (mat.type == MaterialType::Diffuse) {
                     L += throughput * mat.albedo * kInvPi * surfacePhotons.density(hit.p, side.nf);
                     break;
@@ -132,7 +133,7 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                 if (!sampleSpecular(mat, mesh, hit, dir, medium, rng.uniform(), TransportMode::Radiance, &ev)) break;
                 throughput *= ev.weight;
                 medium = ev.medium;
-                Ray ray{m_rt.offsetOrigin(hit.p, hit.ng, ev.d), ev.d};
+                Ray ray{m_rt.offsetOrigin(hit.p, hit.t, hit.ng, ev.d), ev.d};
                 dir = ray.d;
                 if (++depth > m_settings.maxCameraBounces) break;
 

@@ -61,8 +61,10 @@ public:
 
     PrimaryPass tracePrimary(uint64_t pass) const;
     /// The pass's radiance except the primary segments' media; `stats.rays` counts this stage's.
+    /// With `photons` one batch of the pass, the photon estimates of that batch; `emission` adds
+    /// what the paths see of emitters, which belongs to one batch only (the pass's first).
     Image traceSecondary(const PrimaryPass& primary, const PhotonMap& photons, const BeamBvh& beams,
-                         const SurfacePhotonGrid& surface, CameraPassStats* stats) const;
+                         const SurfacePhotonGrid& surface, CameraPassStats* stats, bool emission = true) const;
 
 private:
     const EmbreeScene& m_rt;

@@ -74,7 +74,7 @@ EmbreeScene::EmbreeScene(const Scene& scene, std::shared_ptr<EmbreeDevice> devic
     rtcCommitScene(m_rtcScene);
     m_device->check("building the scene BVH");
     Bounds3 b = scene.bounds;
-    if (!b.empty()) m_epsilon = 2e-6f * std::max(1.0f, length(b.diagonal()));
+    if (!b.empty() && length(b.diagonal()) > 0) m_sceneDiagonal = length(b.diagonal());
     m_mediumBounds = b;
 }
 
@@ -123,7 +123,7 @@ MediumId EmbreeScene::mediumAt(const Vec3& p) const {
         const TriangleMesh& mesh = m_scene.meshes[hit.mesh];
         if (mesh.interiorMedium != mesh.exteriorMedium)
             return dot(ray.d, hit.ng) > 0 ? mesh.interiorMedium : mesh.exteriorMedium;
-        ray.o = offsetOrigin(hit.p, hit.ng, ray.d);
+        ray.o = offsetOrigin(hit.p, hit.t, hit.ng, ray.d);
     }
     return m_scene.globalMedium;
 }

@@ -1,12 +1,20 @@
 #include "cpu/pass_renderer.h"
 
+#include <algorithm>
 #include <chrono>
+#include <string>
 
 namespace tyndall {
 
 namespace {
 double secondsSince(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+// Free-flight distances stored per beam and per pixel: only scenes with grid media store any.
+int storedFreeFlights(const Scene& scene, const RenderSettings& settings) {
+    for (const Medium& m : scene.media)
+        if (!m.homogeneous()) return settings.freeFlightSamples;
+    return 0;
 }
 }  // namespace
 
@@ -40,24 +48,46 @@ PassRenderer::PassRenderer(const Scene& scene, const RenderSettings& settings, B
     : m_scene(scene),
       m_settings(settings),
       m_radii(RadiusSetup::resolve(settings, scene)),
+      m_memory(MemoryPlan::resolve(settings, storedFreeFlights(scene, settings))),
       m_bvhKind(beamBvh),
       m_rt(std::make_unique<EmbreeScene>(scene)),
       m_photons(std::make_unique<PhotonTracer>(*m_rt, settings, m_radii)),
       m_camera(std::make_unique<CameraTracer>(*m_rt, settings)),
-      m_rasterizer(scene) {}
+      m_rasterizer(scene) {
+    for (const Material& m : scene.materials) m_anyNonDiffuse |= m.type != MaterialType::Diffuse;
+}
 
 PhotonMap PassRenderer::tracePhotons(uint64_t pass) const {
     return m_photons->trace(pass);
 }
 
-PrimaryPass PassRenderer::tracePrimary(uint64_t pass) const {
-    return m_camera->tracePrimary(pass);
+PhotonMap PassRenderer::tracePhotons(uint64_t pass, uint32_t batch) const {
+    const uint64_t begin = uint64_t(batch) * m_memory.batchPaths;
+    const uint64_t end = std::min<uint64_t>(begin + m_memory.batchPaths, m_settings.photonsPerPass);
+    return allocating("the photon beams and surface photons of a batch of " + std::to_string(end - begin) +
+                          " photon paths",
+                      (end - begin) * m_memory.bytesPerPath,
+                      [&] { return m_photons->traceBatch(pass, uint32_t(begin), uint32_t(end)); });
 }
 
-Image PassRenderer::traceSecondary(const PrimaryPass& primary, const PhotonMap& photons, CameraPassStats* stats) const {
-    BeamBvh bvh(*m_rt->device(), photons.beams, m_bvhKind);
-    SurfacePhotonGrid grid(photons.surfacePhotons);
-    return m_camera->traceSecondary(primary, photons, bvh, grid, stats);
+PrimaryPass PassRenderer::tracePrimary(uint64_t pass) const {
+    return allocating("the primary camera rays of a " + std::to_string(m_settings.width) + "x" +
+                          std::to_string(m_settings.height) + " pass",
+                      m_memory.imageBytes / 2, [&] { return m_camera->tracePrimary(pass); });
+}
+
+Image PassRenderer::traceSecondary(const PrimaryPass& primary, const PhotonMap& photons, CameraPassStats* stats,
+                                   bool emission) const {
+    return allocating("the beam BVH and surface-photon grid of " + std::to_string(photons.beams.size()) +
+                          " beams and " + std::to_string(photons.surfacePhotons.size()) + " surface photons",
+                      photons.pathCount * m_memory.bytesPerPath, [&] {
+                          // Camera paths reach secondary segments only through non-diffuse
+                          // surfaces: without any, no query would ever read the BVH.
+                          static const std::vector<PhotonBeam> kNoBeams;
+                          BeamBvh bvh(*m_rt->device(), m_anyNonDiffuse ? photons.beams : kNoBeams, m_bvhKind);
+                          SurfacePhotonGrid grid(photons.surfacePhotons);
+                          return m_camera->traceSecondary(primary, photons, bvh, grid, stats, emission);
+                      });
 }
 
 CameraPassResult PassRenderer::traceCamera(uint64_t pass, const PhotonMap& photons) const {
@@ -78,22 +108,36 @@ void PassRenderer::sceneChanged() {
 }
 
 Image PassRenderer::renderPass(uint64_t pass, PassStats* stats) const {
-    auto t0 = std::chrono::steady_clock::now();
-    PhotonMap photons = tracePhotons(pass);
-    auto t1 = std::chrono::steady_clock::now();
-    CameraPassResult camera = traceCamera(pass, photons);
-    auto t2 = std::chrono::steady_clock::now();
-    RasterStats raster;
-    Image image = splatPrimary(camera.primary, photons, &raster);
-    image += camera.radiance;
-    if (stats) {
-        stats->add(photons);
-        stats->add(camera.stats);
-        stats->rasterTests += raster.pixelTests;
-        stats->photonSeconds += std::chrono::duration<double>(t1 - t0).count();
-        stats->cameraSeconds += std::chrono::duration<double>(t2 - t1).count();
-        stats->splatSeconds += secondsSince(t2);
+    using Clock = std::chrono::steady_clock;
+    PassStats local;
+    auto t0 = Clock::now();
+    const PrimaryPass primary = tracePrimary(pass);
+    local.cameraRays += primary.rays;
+    local.cameraSeconds += secondsSince(t0);
+    Image image;
+    // One batch at a time: its beams and photons are freed before the next is traced.
+    for (uint32_t batch = 0; batch < m_memory.batches; ++batch) {
+        auto t1 = Clock::now();
+        const PhotonMap photons = tracePhotons(pass, batch);
+        auto t2 = Clock::now();
+        CameraPassStats camera;
+        Image radiance = traceSecondary(primary, photons, &camera, batch == 0);
+        auto t3 = Clock::now();
+        RasterStats raster;
+        Image part = splatPrimary(primary.segments, photons, &raster);
+        part += radiance;
+        if (batch == 0)
+            image = std::move(part);
+        else
+            image += part;
+        local.add(photons);
+        local.add(camera);
+        local.rasterTests += raster.pixelTests;
+        local.photonSeconds += std::chrono::duration<double>(t2 - t1).count();
+        local.cameraSeconds += std::chrono::duration<double>(t3 - t2).count();
+        local.splatSeconds += secondsSince(t3);
     }
+    if (stats) *stats += local;
     return image;
 }
 

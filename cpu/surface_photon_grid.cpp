@@ -16,7 +16,12 @@ SurfacePhotonGrid::SurfacePhotonGrid(const std::vector<SurfacePhoton>& photons) 
         m_maxRadius = std::max(m_maxRadius, p.radius);
     }
     m_origin = b.lo;
-    m_cellSize = std::max(2.0f * m_maxRadius, 1e-6f);
+    // Cells as wide as the largest photon diameter, but never so small that a cell index along the
+    // photons' extent passes 2^20 (relative, so a scene in millimetres or kilometres hashes alike).
+    const Vec3 extent = b.hi - b.lo;
+    const float span = std::max(extent.x, std::max(extent.y, extent.z));
+    m_cellSize = std::max(2.0f * m_maxRadius, span * 0x1p-20f);
+    if (!(m_cellSize > 0)) m_cellSize = 1.0f;  // one photon, radius 0: any cell size will do
     m_buckets = 1;
     while (m_buckets < 2 * photons.size()) m_buckets <<= 1;
     std::vector<uint32_t> counts(m_buckets + 1, 0);

@@ -110,7 +110,8 @@ TEST(Cli, HelpListsEveryOptionWithDefaults) {
     const std::vector<std::string> scene = {"--camera", "--size", "--seed", "--threads"};
     const std::vector<std::string> output = {"--output", "--exposure"};
     const std::vector<std::string> ppb = {"--passes", "--time",           "--photons",       "--alpha",
-                                          "--radius", "--surface-radius", "--radius-offset", "--free-flights"};
+                                          "--radius", "--surface-radius", "--radius-offset", "--free-flights",
+                                          "--memory"};
     auto join = [](std::initializer_list<std::vector<std::string>> parts) {
         std::set<std::string> all = {"--help", "--help-all"};
         for (const auto& p : parts) all.insert(p.begin(), p.end());

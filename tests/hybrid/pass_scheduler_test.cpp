@@ -336,3 +336,22 @@ TEST(PassScheduler, GridWithoutDenseFormFailsOnAndFallsBackOnAuto) {
     automatic.bind(defaultScene());
     EXPECT_TRUE(automatic.hybrid()) << "a scene it can splat brings the GL side back";
 }
+
+TEST(PassScheduler, BatchedPassesAgreeOnGlAndCpuAndWithTheWholePass) {
+    // Bounded-memory passes (issue 15): with --memory 64 each pass of 3000 photon paths is traced in
+    // several batches; the GL splats of the batches are summed in batch order, the CPU twin sums
+    // its per-batch images: both equal the one-batch render up to float rounding.
+    RenderSettings whole = smallSettings(6);
+    whole.photonsPerPass = 3000;
+    RenderSettings batched = whole;
+    batched.memoryMiB = 64;
+    ASSERT_GT(PassRenderer(defaultScene(), batched).memoryPlan().batches, 2u);
+    Rendered reference = render(GpuMode::Off, defaultScene(), whole);
+    Rendered cpu = render(GpuMode::Off, defaultScene(), batched);
+    Rendered hybrid = render(GpuMode::On, defaultScene(), batched);
+    double rmsCpu = relativeRms(cpu.image, reference.image), rmsGl = relativeRms(hybrid.image, reference.image);
+    std::printf("batched vs one batch: CPU relative RMS %.3g, hybrid %.3g\n", rmsCpu, rmsGl);
+    EXPECT_LT(rmsCpu, 1e-5);
+    EXPECT_LT(rmsGl, 1e-5);
+    if (rmsGl >= 1e-5) tyndall::test::writeEvidence("batched_hybrid_vs_cpu", hybrid.image, reference.image);
+}
