@@ -94,6 +94,13 @@ void addPpbOptions(CLI::App* cmd, CommonOptions& o) {
     cmd->add_option("--free-flights", o.settings.freeFlightSamples,
                     "Stored free-flight distances per beam and pixel (heterogeneous media)")
         ->capture_default_str();
+    addSimdOption(cmd, o);
+}
+
+void addSimdOption(CLI::App* cmd, CommonOptions& o) {
+    cmd->add_option("--simd", o.settings.simd,
+                    "on|off: the CPU beam splat's SIMD kernel; off runs the scalar estimator (its definition)")
+        ->capture_default_str();
 }
 
 void finishOptions(CommonOptions& o) {
@@ -119,7 +126,8 @@ nlohmann::json explicitSettings(const CommonOptions& o) {
                                                                       {"--free-flights", "free_flights"},
                                                                       {"--seed", "seed"},
                                                                       {"--threads", "threads"},
-                                                                      {"--gpu", "gpu"}};
+                                                                      {"--gpu", "gpu"},
+                                                                      {"--simd", "simd"}};
     nlohmann::json all = o.settings.toJson(), given = nlohmann::json::object();
     auto isGiven = [&](const char* name) {
         const CLI::Option* opt = o.command ? o.command->get_option_no_throw(name) : nullptr;

@@ -21,6 +21,7 @@ void RenderSettings::validate() const {
     if (maxPhotonBounces <= 0 || maxCameraBounces <= 0) fail("bounce limits must be positive");
     if (freeFlightSamples < 1 || freeFlightSamples > 64) fail("--free-flights must be in 1..64");
     if (gpu != "auto" && gpu != "on" && gpu != "off") fail("--gpu must be auto, on or off (got '" + gpu + "')");
+    if (simd != "on" && simd != "off") fail("--simd must be on or off (got '" + simd + "')");
 }
 
 nlohmann::json RenderSettings::toJson() const {
@@ -38,7 +39,8 @@ nlohmann::json RenderSettings::toJson() const {
             {"max_photon_bounces", maxPhotonBounces},
             {"max_camera_bounces", maxCameraBounces},
             {"free_flights", freeFlightSamples},
-            {"gpu", gpu}};
+            {"gpu", gpu},
+            {"simd", simd}};
 }
 
 namespace {
@@ -71,7 +73,7 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
     if (!j.is_object()) throw Error(where + ": expected an object of render settings");
     static const char* kKeys[] = {"width", "height", "passes", "time", "photons", "alpha", "radius",
                                   "surface_radius", "radius_offset", "seed", "threads",
-                                  "max_photon_bounces", "max_camera_bounces", "free_flights", "gpu"};
+                                  "max_photon_bounces", "max_camera_bounces", "free_flights", "gpu", "simd"};
     for (auto it = j.begin(); it != j.end(); ++it) {
         bool known = false;
         for (const char* k : kKeys) known |= it.key() == k;
@@ -92,6 +94,7 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
     read(j, "max_camera_bounces", s.maxCameraBounces, where);
     read(j, "free_flights", s.freeFlightSamples, where);
     read(j, "gpu", s.gpu, where);
+    read(j, "simd", s.simd, where);
     return s;
 }
 

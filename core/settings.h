@@ -27,6 +27,9 @@ struct RenderSettings {
     int maxCameraBounces = 16;       ///< specular camera-path vertices before termination
     int freeFlightSamples = 4;       ///< stored free-flight distances per beam/ray (heterogeneous)
     std::string gpu = "auto";        ///< auto | on | off
+    /// on | off: the CPU beam rasterizer's SIMD kernel (off = the scalar definition; the two agree
+    /// to ~1e-7 relative per pixel, docs/performance.md)
+    std::string simd = "on";
 
     /// Throws Error naming the option when a value is out of range.
     void validate() const;

@@ -44,7 +44,7 @@ PassRenderer::PassRenderer(const Scene& scene, const RenderSettings& settings, B
       m_rt(std::make_unique<EmbreeScene>(scene)),
       m_photons(std::make_unique<PhotonTracer>(*m_rt, settings, m_radii)),
       m_camera(std::make_unique<CameraTracer>(*m_rt, settings)),
-      m_rasterizer(scene) {}
+      m_rasterizer(scene, settings.simd == "off" ? SplatKernel::Scalar : SplatKernel::Simd) {}
 
 PhotonMap PassRenderer::tracePhotons(uint64_t pass) const {
     return m_photons->trace(pass);
