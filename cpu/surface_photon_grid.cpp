@@ -28,8 +28,8 @@ SurfacePhotonGrid::SurfacePhotonGrid(const std::vector<SurfacePhoton>& photons) 
     }
     for (uint32_t i = 0; i < m_buckets; ++i) counts[i + 1] += counts[i];
     m_cellStart = counts;
-    m_order.resize(photons.size());
-    for (size_t i = 0; i < photons.size(); ++i) m_order[counts[bucketOf[i]]++] = uint32_t(i);
+    m_sorted.resize(photons.size());
+    for (size_t i = 0; i < photons.size(); ++i) m_sorted[counts[bucketOf[i]]++] = photons[i];
 }
 
 uint32_t SurfacePhotonGrid::cellHash(int x, int y, int z) const {
@@ -52,7 +52,7 @@ Rgb SurfacePhotonGrid::density(const Vec3& x, const Vec3& n) const {
                 if (std::find(visited, visited + nVisited, h) != visited + nVisited) continue;
                 visited[nVisited++] = h;
                 for (uint32_t k = m_cellStart[h]; k < m_cellStart[h + 1]; ++k) {
-                    const SurfacePhoton& p = m_photons[m_order[k]];
+                    const SurfacePhoton& p = m_sorted[k];
                     Vec3 diff = p.position - x;
                     float d2 = dot(diff, diff);
                     if (d2 >= p.radius * p.radius) continue;
