@@ -195,13 +195,5 @@ void splatSpanHeterogeneous(const SplatBeam& beam, const SplatBlock& block, size
 
 const char* splatSimdTarget() { return HWY_DYNAMIC_DISPATCH(SplatTargetName)(); }
 
-bool splatSimdDispatchesAtRunTime() {
-#ifdef HWY_COMPILE_ONLY_STATIC
-    return false;
-#else
-    return true;
-#endif
-}
-
 }  // namespace tyndall
 #endif  // HWY_ONCE

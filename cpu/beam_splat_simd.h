@@ -74,7 +74,5 @@ void splatSpanHeterogeneous(const SplatBeam& beam, const SplatBlock& block, size
 
 /// The instruction set the dispatch chose on this CPU (for the bench), e.g. "AVX3" or "AVX2".
 const char* splatSimdTarget();
-/// False in a TYNDALL_SIMD_STATIC build (one instruction set, chosen at compile time).
-bool splatSimdDispatchesAtRunTime();
 
 }  // namespace tyndall
