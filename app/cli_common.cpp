@@ -100,6 +100,13 @@ void addPpbOptions(CLI::App* cmd, CommonOptions& o) {
                     "scene and ~100 MiB (docs/performance.md)")
         ->check(nonNegativeInteger())
         ->capture_default_str();
+    addSimdOption(cmd, o);
+}
+
+void addSimdOption(CLI::App* cmd, CommonOptions& o) {
+    cmd->add_option("--simd", o.settings.simd,
+                    "on|off: the CPU beam splat's SIMD kernel; off runs the scalar estimator (its definition)")
+        ->capture_default_str();
 }
 
 void finishOptions(CommonOptions& o) {
@@ -126,7 +133,8 @@ nlohmann::json explicitSettings(const CommonOptions& o) {
                                                                       {"--seed", "seed"},
                                                                       {"--threads", "threads"},
                                                                       {"--gpu", "gpu"},
-                                                                      {"--memory", "memory"}};
+                                                                      {"--memory", "memory"},
+                                                                      {"--simd", "simd"}};
     nlohmann::json all = o.settings.toJson(), given = nlohmann::json::object();
     auto isGiven = [&](const char* name) {
         const CLI::Option* opt = o.command ? o.command->get_option_no_throw(name) : nullptr;

@@ -23,6 +23,7 @@ void RenderSettings::validate() const {
     if (memoryMiB < 64 || memoryMiB > (uint64_t(1) << 30))
         fail("--memory must be in 64..2^30 MiB (got " + std::to_string(memoryMiB) + ")");
     if (gpu != "auto" && gpu != "on" && gpu != "off") fail("--gpu must be auto, on or off (got '" + gpu + "')");
+    if (simd != "on" && simd != "off") fail("--simd must be on or off (got '" + simd + "')");
 }
 
 nlohmann::json RenderSettings::toJson() const {
@@ -41,7 +42,8 @@ nlohmann::json RenderSettings::toJson() const {
             {"max_camera_bounces", maxCameraBounces},
             {"free_flights", freeFlightSamples},
             {"gpu", gpu},
-            {"memory", memoryMiB}};
+            {"memory", memoryMiB},
+            {"simd", simd}};
 }
 
 namespace {
@@ -74,7 +76,7 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
     if (!j.is_object()) throw Error(where + ": expected an object of render settings");
     static const char* kKeys[] = {"width", "height", "passes", "time", "photons", "alpha", "radius",
                                   "surface_radius", "radius_offset", "seed", "threads",
-                                  "max_photon_bounces", "max_camera_bounces", "free_flights", "gpu", "memory"};
+                                  "max_photon_bounces", "max_camera_bounces", "free_flights", "gpu", "memory", "simd"};
     for (auto it = j.begin(); it != j.end(); ++it) {
         bool known = false;
         for (const char* k : kKeys) known |= it.key() == k;
@@ -96,6 +98,7 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
     read(j, "free_flights", s.freeFlightSamples, where);
     read(j, "gpu", s.gpu, where);
     read(j, "memory", s.memoryMiB, where);
+    read(j, "simd", s.simd, where);
     return s;
 }
 

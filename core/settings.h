@@ -30,6 +30,9 @@ struct RenderSettings {
     /// Working-memory budget of the pass loop, MiB: image buffers plus the photon batches a pass
     /// is traced in (cpu/memory_plan.h). Sets the batch size, never the image.
     uint64_t memoryMiB = 2048;
+    /// on | off: the CPU beam rasterizer's SIMD kernel (off = the scalar definition; the two agree
+    /// to ~1e-7 relative per pixel, docs/performance.md)
+    std::string simd = "on";
 
     /// Throws Error naming the option when a value is out of range.
     void validate() const;

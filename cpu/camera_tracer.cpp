@@ -3,6 +3,8 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
+
 #include "core/beam_estimator.h"
 #include "core/transmittance.h"
 #include "cpu/free_flight.h"
@@ -51,6 +53,30 @@ struct ThreadScratch {
 };
 }  // namespace
 
+PrimaryHitBuffer CameraTracer::acquireHits(size_t pixels) const {
+    std::unique_ptr<std::vector<PrimaryHit>> hits;
+    {
+        std::lock_guard<std::mutex> lock(m_hitPool->mutex);
+        auto& free = m_hitPool->free;
+        auto it = std::find_if(free.begin(), free.end(), [&](const auto& v) { return v->size() == pixels; });
+        if (it == free.end() && !free.empty()) it = free.begin();
+        if (it != free.end()) {
+            hits = std::move(*it);
+            free.erase(it);
+        }
+    }
+    if (!hits) hits = std::make_unique<std::vector<PrimaryHit>>();
+    hits->resize(pixels);
+    std::weak_ptr<HitPool> pool = m_hitPool;
+    return PrimaryHitBuffer(hits.release(), [pool](std::vector<PrimaryHit>* v) {
+        std::unique_ptr<std::vector<PrimaryHit>> owned(v);
+        if (auto p = pool.lock()) {
+            std::lock_guard<std::mutex> lock(p->mutex);
+            if (p->free.size() < 2) p->free.push_back(std::move(owned));
+        }
+    });
+}
+
 PrimaryPass CameraTracer::tracePrimary(uint64_t pass) const {
     const int w = m_settings.width, h = m_settings.height;
     const int nff = m_anyHeterogeneous ? m_settings.freeFlightSamples : 0;
@@ -64,7 +90,8 @@ PrimaryPass CameraTracer::tracePrimary(uint64_t pass) const {
     primary.rays.resize(size_t(w) * h);
     primary.freeFlightsPerRay = nff;
     primary.freeFlights.assign(size_t(w) * h * nff, kInfinity);
-    out.hits.resize(size_t(w) * h);
+    out.hits = acquireHits(size_t(w) * h);
+    std::vector<PrimaryHit>& hits = *out.hits;
 
     tbb::parallel_for(0, h, [&](int y) {
         for (int x = 0; x < w; ++x) {
@@ -73,7 +100,7 @@ PrimaryPass CameraTracer::tracePrimary(uint64_t pass) const {
             float jx = jitter.uniform(), jy = jitter.uniform();
             Vec2 lens{jitter.uniform(), jitter.uniform()};
             Ray ray = camera.generateRay(float(x) + jx, float(y) + jy, w, h, lens);
-            PrimaryHit& ph = out.hits[pixel];
+            PrimaryHit& ph = hits[pixel];
             ph.medium = cameraMedium;
             ph.throughput = Rgb(1.0f);
             ph.surface = m_rt.intersect(ray, &ph.hit);
@@ -112,7 +139,7 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
         tls.freeFlights.resize(std::max(nff, 1));
         for (int x = 0; x < w; ++x) {
             const uint64_t pixel = uint64_t(y) * w + x;
-            const PrimaryHit& ph = primary.hits[pixel];
+            const PrimaryHit& ph = (*primary.hits)[pixel];
             Rgb throughput = ph.throughput, L;
             if (!ph.surface || throughput.isBlack()) continue;
             Rng rng = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::CameraPath);

@@ -53,7 +53,7 @@ PassRenderer::PassRenderer(const Scene& scene, const RenderSettings& settings, B
       m_rt(std::make_unique<EmbreeScene>(scene)),
       m_photons(std::make_unique<PhotonTracer>(*m_rt, settings, m_radii)),
       m_camera(std::make_unique<CameraTracer>(*m_rt, settings)),
-      m_rasterizer(scene) {
+      m_rasterizer(scene, settings.simd == "off" ? SplatKernel::Scalar : SplatKernel::Simd) {
     for (const Material& m : scene.materials) m_anyNonDiffuse |= m.type != MaterialType::Diffuse;
 }
 

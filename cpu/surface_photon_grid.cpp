@@ -33,8 +33,11 @@ SurfacePhotonGrid::SurfacePhotonGrid(const std::vector<SurfacePhoton>& photons) 
     }
     for (uint32_t i = 0; i < m_buckets; ++i) counts[i + 1] += counts[i];
     m_cellStart = counts;
-    m_order.resize(photons.size());
-    for (size_t i = 0; i < photons.size(); ++i) m_order[counts[bucketOf[i]]++] = uint32_t(i);
+    m_sorted.resize(photons.size());
+    for (size_t i = 0; i < photons.size(); ++i) m_sorted[counts[bucketOf[i]]++] = photons[i];
+    m_candidates.resize(photons.size());
+    for (size_t i = 0; i < m_sorted.size(); ++i)
+        m_candidates[i] = {m_sorted[i].position, m_sorted[i].radius * m_sorted[i].radius};
 }
 
 uint32_t SurfacePhotonGrid::cellHash(int x, int y, int z) const {
@@ -57,10 +60,11 @@ Rgb SurfacePhotonGrid::density(const Vec3& x, const Vec3& n) const {
                 if (std::find(visited, visited + nVisited, h) != visited + nVisited) continue;
                 visited[nVisited++] = h;
                 for (uint32_t k = m_cellStart[h]; k < m_cellStart[h + 1]; ++k) {
-                    const SurfacePhoton& p = m_photons[m_order[k]];
-                    Vec3 diff = p.position - x;
+                    const Candidate& c = m_candidates[k];
+                    Vec3 diff = c.position - x;
                     float d2 = dot(diff, diff);
-                    if (d2 >= p.radius * p.radius) continue;
+                    if (d2 >= c.radius2) continue;
+                    const SurfacePhoton& p = m_sorted[k];
                     // Same side of the surface, and close to its plane (no leaks round corners).
                     if (dot(p.normal, n) < 0.7f) continue;
                     if (std::abs(dot(diff, n)) > 0.25f * p.radius) continue;

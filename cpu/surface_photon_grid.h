@@ -30,8 +30,17 @@ private:
     uint32_t cellHash(int x, int y, int z) const;
 
     const std::vector<SurfacePhoton>& m_photons;
-    std::vector<uint32_t> m_order;       // photon indices sorted by cell hash
-    std::vector<uint32_t> m_cellStart;   // per hash bucket: start in m_order (size buckets + 1)
+    // The photons in bucket order (a copy: a lookup streams through a bucket's photons instead of
+    // chasing indices; perf put density() at 9.5% of a 1080p pass). Within a bucket, index order.
+    std::vector<SurfacePhoton> m_sorted;
+    // Position and squared radius of m_sorted[i], 16 bytes each: the scan that rejects most
+    // visited photons reads only these (about 200 visited per lookup, a few dozen accepted).
+    struct Candidate {
+        Vec3 position;
+        float radius2;
+    };
+    std::vector<Candidate> m_candidates;
+    std::vector<uint32_t> m_cellStart;   // per hash bucket: start in m_sorted (size buckets + 1)
     float m_cellSize = 1;
     float m_maxRadius = 0;
     Vec3 m_origin;

@@ -111,7 +111,7 @@ TEST(Cli, HelpListsEveryOptionWithDefaults) {
     const std::vector<std::string> output = {"--output", "--exposure"};
     const std::vector<std::string> ppb = {"--passes", "--time",           "--photons",       "--alpha",
                                           "--radius", "--surface-radius", "--radius-offset", "--free-flights",
-                                          "--memory"};
+                                          "--memory", "--simd"};
     auto join = [](std::initializer_list<std::vector<std::string>> parts) {
         std::set<std::string> all = {"--help", "--help-all"};
         for (const auto& p : parts) all.insert(p.begin(), p.end());
@@ -120,7 +120,8 @@ TEST(Cli, HelpListsEveryOptionWithDefaults) {
     const std::map<std::string, std::set<std::string>> expected = {
         {"render", join({scene, output, ppb, {"--gpu"}})},
         {"reference", join({scene, output, {"--spp", "--max-depth", "--no-nee"}})},
-        {"bench", join({scene, {"--passes", "--photons", "--rays", "--queries", "--free-flights", "--no-hybrid"}})},
+        {"bench", join({scene, {"--passes", "--photons", "--rays", "--queries", "--free-flights", "--no-hybrid",
+                                "--radius", "--radius-offset", "--simd"}})},
         {"compare", join({scene, output, ppb, {"--gpu", "--density"}})}};
     for (const auto& [command, names] : expected) {
         CliRun r = runTyndall(command + " --help");
