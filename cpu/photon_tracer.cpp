@@ -155,7 +155,9 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
             sp.wi = -d;
             sp.normal = nf;
             sp.power = power;
-            power *= mat.albedo;
+            power *= mat.isTextured()
+                         ? evalSurface(m_scene, mesh, rh.hit.primID, rh.hit.u, rh.hit.v, surfaceRadius).baseColor
+                         : mat.albedo;
             float q = std::min(1.0f, power.maxComponent() / startMax);
             if (!(rng.uniform() < q)) return;
             power *= 1.0f / q;
@@ -166,8 +168,11 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
         SurfaceHit hit;
         hit.ng = ng;
         hit.ns = m_rt.shadingNormal(int(rh.hit.geomID), rh.hit.primID, rh.hit.u, rh.hit.v, ng);
+        const Rgb tint = mat.isTextured()
+                             ? evalSurface(m_scene, mesh, rh.hit.primID, rh.hit.u, rh.hit.v, surfaceRadius).baseColor
+                             : mat.albedo;
         SpecularEvent ev;
-        if (!sampleSpecular(mat, mesh, hit, d, medium, rng.uniform(), TransportMode::Importance, &ev)) return;
+        if (!sampleSpecular(mat, tint, mesh, hit, d, medium, rng.uniform(), TransportMode::Importance, &ev)) return;
         power *= ev.weight;
         if (power.isBlack()) return;
         medium = ev.medium;

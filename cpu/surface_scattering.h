@@ -3,6 +3,7 @@
 // path tracer: which way it leaves, the throughput factor, and the medium it ends up in.
 #include "core/fresnel.h"
 #include "core/material.h"
+#include "core/material_eval.h"
 #include "core/scene.h"
 #include "cpu/embree_scene.h"
 
@@ -34,8 +35,15 @@ struct SpecularEvent {
     bool transmitted = false;
 };
 
-inline bool sampleSpecular(const Material& mat, const TriangleMesh& mesh, const SurfaceHit& hit, const Vec3& dIn,
-                           MediumId currentMedium, float u, TransportMode mode, SpecularEvent* ev) {
+/// The material at a hit, textures filtered over `footprint` world units (core/material_eval.h).
+inline SurfacePoint surfaceAt(const Scene& scene, const SurfaceHit& hit, float footprint) {
+    return evalSurface(scene, scene.meshes[size_t(hit.mesh)], hit.triangle, hit.b1, hit.b2, footprint);
+}
+
+/// `tint`: the mirror reflectance / dielectric transmission tint at the hit (Material::albedo, times
+/// baseColorTexture where the material has one).
+inline bool sampleSpecular(const Material& mat, const Rgb& tint, const TriangleMesh& mesh, const SurfaceHit& hit,
+                           const Vec3& dIn, MediumId currentMedium, float u, TransportMode mode, SpecularEvent* ev) {
     HitSide side = hitSide(hit, dIn);
     Vec3 wo = -dIn;
     ev->medium = currentMedium;
@@ -43,7 +51,7 @@ inline bool sampleSpecular(const Material& mat, const TriangleMesh& mesh, const 
     switch (mat.type) {
         case MaterialType::Mirror:
             ev->d = reflect(wo, side.nsf);
-            ev->weight = mat.albedo;
+            ev->weight = tint;
             return dot(ev->d, side.nf) > 0;
         case MaterialType::Interface:
             ev->d = dIn;
@@ -65,7 +73,7 @@ inline bool sampleSpecular(const Material& mat, const TriangleMesh& mesh, const 
                 return dot(ev->d, side.nf) > 0;
             }
             ev->d = wt;
-            ev->weight = mat.albedo;
+            ev->weight = tint;
             if (mode == TransportMode::Radiance) {
                 float etaRatio = side.entering ? 1.0f / mat.ior : mat.ior;  // eta_i / eta_t
                 ev->weight *= etaRatio * etaRatio;
@@ -78,6 +86,12 @@ inline bool sampleSpecular(const Material& mat, const TriangleMesh& mesh, const 
             break;
     }
     return false;
+}
+
+/// sampleSpecular with the material's untextured tint.
+inline bool sampleSpecular(const Material& mat, const TriangleMesh& mesh, const SurfaceHit& hit, const Vec3& dIn,
+                           MediumId currentMedium, float u, TransportMode mode, SpecularEvent* ev) {
+    return sampleSpecular(mat, mat.albedo, mesh, hit, dIn, currentMedium, u, mode, ev);
 }
 
 }  // namespace tyndall

@@ -67,6 +67,9 @@ GltfMaterialMapping mapGltfMaterial(const GltfMaterialInput& in) {
         if (in.metallic >= 0.5f) note("rough metal", "rough metal (roughness > 0.5) rendered as diffuse");
     }
     m.emission = in.emissive * in.emissiveStrength;
+    m.alpha = in.alpha;
+    m.metallic = in.metallic;
+    m.roughness = in.roughness;
 
     if (in.hasVolume) {
         if (m.type != MaterialType::Dielectric) {
