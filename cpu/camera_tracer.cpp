@@ -132,9 +132,20 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                     break;
                 }
                 SpecularEvent ev;
-                if (!sampleSpecular(mat, sp.baseColor, mesh, hit, dir, medium, rng.uniform(), TransportMode::Radiance,
-                                    &ev))
+                if (mat.isGlossy()) {
+                    // docs/algorithm.md "Glossy vertices": photons stored here (from delta lights through
+                    // delta interactions only) with the BSDF evaluated, then continue by sampling it.
+                    const GlossyBsdf bsdf = glossyBsdf(mat, sp, hit, dir);
+                    const Vec3 wo = -dir;
+                    L += throughput * surfacePhotons.gather(hit.p, hit.ng, [&](const SurfacePhoton& p) {
+                             return bsdf.eval(wo, p.wi, TransportMode::Radiance);
+                         });
+                    float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+                    if (!sampleGlossy(bsdf, mesh, hit, dir, medium, u0, u1, u2, TransportMode::Radiance, &ev)) break;
+                } else if (!sampleSpecular(mat, sp.baseColor, mesh, hit, dir, medium, rng.uniform(),
+                                           TransportMode::Radiance, &ev)) {
                     break;
+                }
                 throughput *= ev.weight;
                 medium = ev.medium;
                 Ray ray{m_rt.offsetOrigin(hit.p, hit.ng, ev.d), ev.d};

@@ -98,6 +98,9 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
     Vec3 o = e.ray.o, d = e.ray.d;
     // Area-light photons start on their triangle: nudge them off it along the emitted direction.
     if (e.emitterMesh >= 0) o = m_rt.offsetOrigin(o, d, d);
+    // From a point, spot or directional light through delta interactions only: what glossy surfaces
+    // store (docs/algorithm.md, "Glossy vertices").
+    bool deltaDirect = e.light >= 0;
 
     for (int bounce = 0; bounce < m_settings.maxPhotonBounces; ++bounce) {
         RTCRayHit rh;
@@ -136,6 +139,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
                 Vec3 x = seg.at(ff.t);
                 d = sampleHg(d, med.g, rng.uniform(), rng.uniform());
                 o = x;
+                deltaDirect = false;
                 continue;
             }
         }
@@ -163,16 +167,38 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
             power *= 1.0f / q;
             d = Frame(nf).toWorld(sampleCosineHemisphere(rng.uniform(), rng.uniform()));
             o = m_rt.offsetOrigin(p, nf, d);
+            deltaDirect = false;
             continue;
         }
         SurfaceHit hit;
         hit.ng = ng;
         hit.ns = m_rt.shadingNormal(int(rh.hit.geomID), rh.hit.primID, rh.hit.u, rh.hit.v, ng);
-        const Rgb tint = mat.isTextured()
-                             ? evalSurface(m_scene, mesh, rh.hit.primID, rh.hit.u, rh.hit.v, surfaceRadius).baseColor
-                             : mat.albedo;
         SpecularEvent ev;
-        if (!sampleSpecular(mat, tint, mesh, hit, d, medium, rng.uniform(), TransportMode::Importance, &ev)) return;
+        if (mat.isGlossy()) {
+            if (deltaDirect) {
+                SurfacePhoton& sp = out.surfacePhotons.emplace_back();
+                sp.position = p;
+                sp.radius = surfaceRadius;
+                sp.wi = -d;
+                sp.normal = dot(d, ng) < 0 ? ng : -ng;
+                sp.power = power;
+            }
+            const SurfacePoint at = evalSurface(m_scene, mesh, rh.hit.primID, rh.hit.u, rh.hit.v, surfaceRadius);
+            const GlossyBsdf bsdf = glossyBsdf(mat, at, hit, d);
+            float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+            if (!sampleGlossy(bsdf, mesh, hit, d, medium, u0, u1, u2, TransportMode::Importance, &ev)) return;
+            deltaDirect = false;
+            float q = std::min(1.0f, (power * ev.weight).maxComponent() / startMax);
+            if (!(rng.uniform() < q)) return;
+            ev.weight *= 1.0f / q;
+        } else {
+            const Rgb tint =
+                mat.isTextured()
+                    ? evalSurface(m_scene, mesh, rh.hit.primID, rh.hit.u, rh.hit.v, surfaceRadius).baseColor
+                    : mat.albedo;
+            if (!sampleSpecular(mat, tint, mesh, hit, d, medium, rng.uniform(), TransportMode::Importance, &ev))
+                return;
+        }
         power *= ev.weight;
         if (power.isBlack()) return;
         medium = ev.medium;

@@ -205,6 +205,40 @@ Rgb ReferenceTracer::radiance(Ray ray, MediumId medium, Rng& rng) const {
             continue;
         }
 
+        if (mat.isGlossy()) {
+            const GlossyBsdf bsdf = glossyBsdf(mat, sp, hit, ray.d);
+            const Vec3 wo = -ray.d;
+            if (nee) {
+                DirectLightSample ls = m_lights.sampleDirect(hit.p, rng);
+                Rgb f = ls.pdf > 0 && !ls.incident.isBlack() ? bsdf.eval(wo, ls.wi, TransportMode::Radiance) : Rgb();
+                if (!f.isBlack()) {
+                    bool crosses = dot(ls.wi, hit.ng) * dot(wo, hit.ng) < 0;
+                    MediumId shadowMedium =
+                        crosses ? (side.entering ? mesh.interiorMedium : mesh.exteriorMedium) : medium;
+                    Rgb tr = shadowTransmittance(m_rt.offsetOrigin(hit.p, hit.ng, ls.wi), ls, shadowMedium, rng);
+                    float mis = ls.delta ? 1.0f : powerHeuristic(ls.pdf, bsdf.pdf(wo, ls.wi));
+                    float cosine = std::abs(dot(ls.wi, bsdf.frame.n));
+                    L += beta * f * ls.incident * tr * (cosine * mis / ls.pdf);
+                }
+            }
+            SpecularEvent ev;
+            float pdf = 0;
+            float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+            if (!sampleGlossy(bsdf, mesh, hit, ray.d, medium, u0, u1, u2, TransportMode::Radiance, &ev, &pdf)) break;
+            beta *= ev.weight;
+            if (ev.transmitted) {
+                float etaRatio = side.entering ? 1.0f / mat.ior : mat.ior;  // eta_i / eta_t
+                etaScale /= etaRatio * etaRatio;
+            }
+            lastPdf = pdf;
+            lastVertex = hit.p;
+            afterSpecular = false;
+            medium = ev.medium;
+            if (beta.isBlack() || !survives()) break;
+            ray = Ray{m_rt.offsetOrigin(hit.p, hit.ng, ev.d), ev.d};
+            continue;
+        }
+
         SpecularEvent ev;
         if (!sampleSpecular(mat, sp.baseColor, mesh, hit, ray.d, medium, rng.uniform(), TransportMode::Radiance, &ev)) break;
         beta *= ev.weight;

@@ -4,6 +4,7 @@
 #include "core/fresnel.h"
 #include "core/material.h"
 #include "core/material_eval.h"
+#include "core/microfacet.h"
 #include "core/scene.h"
 #include "cpu/embree_scene.h"
 
@@ -92,6 +93,63 @@ inline bool sampleSpecular(const Material& mat, const Rgb& tint, const TriangleM
 inline bool sampleSpecular(const Material& mat, const TriangleMesh& mesh, const SurfaceHit& hit, const Vec3& dIn,
                            MediumId currentMedium, float u, TransportMode mode, SpecularEvent* ev) {
     return sampleSpecular(mat, mat.albedo, mesh, hit, dIn, currentMedium, u, mode, ev);
+}
+
+/// The GGX lobe of a glossy material (Material::isGlossy) at a hit, in the shading frame.
+/// Conductors (Mirror) reflect on the side the path arrives from; dielectrics use the exterior
+/// side (+z = hit.ns, toward the mesh exterior) so eta = interior / exterior holds from both sides.
+struct GlossyBsdf {
+    Frame frame;
+    bool conductor = true;
+    RoughConductor metal;
+    RoughDielectric glass;
+
+    Rgb eval(const Vec3& woWorld, const Vec3& wiWorld, TransportMode mode) const {
+        Vec3 wo = frame.toLocal(woWorld), wi = frame.toLocal(wiWorld);
+        if (conductor) return metal.eval(wo, wi);
+        return glass.eval(wo, wi, mode == TransportMode::Radiance ? MicrofacetMode::Radiance : MicrofacetMode::Importance);
+    }
+    float pdf(const Vec3& woWorld, const Vec3& wiWorld) const {
+        Vec3 wo = frame.toLocal(woWorld), wi = frame.toLocal(wiWorld);
+        return conductor ? metal.pdf(wo, wi) : glass.pdf(wo, wi);
+    }
+};
+
+/// `sp`: the material at the hit (roughness and tint from textures); `dIn`: the arriving direction.
+inline GlossyBsdf glossyBsdf(const Material& mat, const SurfacePoint& sp, const SurfaceHit& hit, const Vec3& dIn) {
+    GlossyBsdf b;
+    Ggx ggx = Ggx::fromRoughness(std::max(sp.roughness, Material::kSmoothRoughness));
+    b.conductor = mat.type == MaterialType::Mirror;
+    if (b.conductor) {
+        b.frame = Frame(hitSide(hit, dIn).nsf);
+        b.metal = RoughConductor{ggx, sp.baseColor};
+    } else {
+        b.frame = Frame(hit.ns);
+        b.glass = RoughDielectric{ggx, mat.ior, sp.baseColor};
+    }
+    return b;
+}
+
+/// Samples the glossy lobe: like sampleSpecular, with `ev->weight` = f |cos| / pdf and `*pdf` the
+/// solid-angle pdf (for MIS). False when the path must end (sampled below the geometric surface,
+/// or a back-facing microfacet).
+inline bool sampleGlossy(const GlossyBsdf& bsdf, const TriangleMesh& mesh, const SurfaceHit& hit, const Vec3& dIn,
+                         MediumId currentMedium, float u0, float u1, float u2, TransportMode mode, SpecularEvent* ev,
+                         float* pdf = nullptr) {
+    HitSide side = hitSide(hit, dIn);
+    Vec3 wo = bsdf.frame.toLocal(-dIn);
+    MicrofacetSample s = bsdf.conductor
+                             ? bsdf.metal.sample(wo, u1, u2)
+                             : bsdf.glass.sample(wo, u0, u1, u2,
+                                                 mode == TransportMode::Radiance ? MicrofacetMode::Radiance
+                                                                                 : MicrofacetMode::Importance);
+    if (!s.valid) return false;
+    ev->d = normalize(bsdf.frame.toWorld(s.wi));
+    ev->weight = s.weight;
+    ev->transmitted = s.transmitted;
+    ev->medium = s.transmitted ? (side.entering ? mesh.interiorMedium : mesh.exteriorMedium) : currentMedium;
+    if (pdf) *pdf = s.pdf;
+    return s.transmitted ? dot(ev->d, side.nf) < 0 : dot(ev->d, side.nf) > 0;
 }
 
 }  // namespace tyndall

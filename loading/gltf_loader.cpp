@@ -454,6 +454,7 @@ int GltfImporter::material(int index, const std::string& primWhere) {
     in.roughness = float(pbr.roughnessFactor);
     in.emissive = rgbOf(gm.emissiveFactor, Rgb(0.0f), 3, in.where, "emissiveFactor");
     in.alphaMode = gm.alphaMode;
+    in.alphaCutoff = float(gm.alphaCutoff);
     // occlusionTexture is ignored on purpose: it is a baked estimate of the ambient shadowing that
     // Tyndall's light transport computes (applying it would darken crevices twice).
     if (gm.normalTexture.index >= 0) in.textures.push_back("normalTexture");

@@ -336,7 +336,7 @@ TEST(GltfMaterialMapping, TransmissionBecomesDielectricWithIorAndTint) {
     EXPECT_FALSE(m.interior);
 }
 
-TEST(GltfMaterialMapping, MetalsBecomeMirrorsUnlessRough) {
+TEST(GltfMaterialMapping, MetalsBecomeSmoothOrGgxConductors) {
     GltfMaterialInput in = input("chrome");
     in.metallic = 1.0f;
     in.roughness = 0.0f;
@@ -345,13 +345,25 @@ TEST(GltfMaterialMapping, MetalsBecomeMirrorsUnlessRough) {
     EXPECT_EQ(smooth.material.type, MaterialType::Mirror);
     EXPECT_FLOAT_EQ(smooth.material.albedo.r, 0.95f);
     EXPECT_TRUE(smooth.notes.empty());
-    in.roughness = 0.3f;
-    GltfMaterialMapping brushed = mapGltfMaterial(in);
-    EXPECT_EQ(brushed.material.type, MaterialType::Mirror);
-    ASSERT_EQ(brushed.notes.size(), 1u);
-    EXPECT_EQ(brushed.notes[0].kind, "rough metal");
-    in.roughness = 0.8f;
-    EXPECT_EQ(mapGltfMaterial(in).material.type, MaterialType::Diffuse);
+    EXPECT_FALSE(smooth.material.isGlossy());
+    for (float r : {0.3f, 0.8f}) {
+        in.roughness = r;
+        GltfMaterialMapping brushed = mapGltfMaterial(in);
+        EXPECT_EQ(brushed.material.type, MaterialType::Mirror);
+        EXPECT_TRUE(brushed.material.isGlossy());
+        EXPECT_FLOAT_EQ(brushed.material.roughness, r);
+        EXPECT_TRUE(brushed.notes.empty()) << brushed.notes[0].message;
+    }
+}
+
+TEST(GltfMaterialMapping, RoughTransmissionIsGgxGlass) {
+    GltfMaterialInput in = input("frosted");
+    in.transmission = 1.0f;
+    in.roughness = 0.4f;
+    GltfMaterialMapping m = mapGltfMaterial(in);
+    EXPECT_EQ(m.material.type, MaterialType::Dielectric);
+    EXPECT_TRUE(m.material.isGlossy());
+    EXPECT_TRUE(m.notes.empty());
 }
 
 TEST(GltfMaterialMapping, DielectricPbrIsDiffuseWithBaseColourAndEmission) {
@@ -379,7 +391,7 @@ TEST(GltfMaterialMapping, ApproximationsAreNotedByKind) {
         kinds.push_back(n.kind);
         EXPECT_EQ(n.message.rfind("m.gltf: material 'leaf' (index 0): ", 0), 0u) << n.message;
     }
-    EXPECT_EQ(kinds, (std::vector<std::string>{"partial transmission", "volume without transmission", "alpha",
+    EXPECT_EQ(kinds, (std::vector<std::string>{"partial transmission", "volume without transmission",
                                                "texture baseColorTexture", "texture normalTexture"}));
 }
 
