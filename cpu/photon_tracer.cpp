@@ -159,6 +159,13 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
             sp.wi = -d;
             sp.normal = nf;
             sp.power = power;
+            // alphaMode BLEND stops a photon with probability alpha (the filter): the stored photons
+            // stand for the irradiance on the covered part, so they carry 1/alpha (the camera path
+            // stops with probability alpha too, and must not apply the coverage twice).
+            if (mat.alphaMode == AlphaMode::Blend) {
+                float a = evalSurface(m_scene, mesh, rh.hit.primID, rh.hit.u, rh.hit.v, 0.0f).alpha;
+                if (a > 0) sp.power *= 1.0f / a;
+            }
             power *= mat.isTextured()
                          ? evalSurface(m_scene, mesh, rh.hit.primID, rh.hit.u, rh.hit.v, surfaceRadius).baseColor
                          : mat.albedo;

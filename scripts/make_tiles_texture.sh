@@ -1,8 +1,8 @@
 #!/bin/sh
-# Regenerates scenes/textures/tiles.png (64x64, 8x8 tiles of two terracotta shades, sRGB) with
-# ImageMagick, for scenes/frosted-lantern.json.
+# Regenerates scenes/textures/tiles.png (64x64 sRGB: 8x8-texel tiles alternating cream and
+# terracotta) with ImageMagick, for scenes/frosted-lantern.json.
 set -e
 cd "$(dirname "$0")/.."
-convert -size 64x64 xc:'#b5651d' \( -size 8x8 pattern:checkerboard -scale 800% -fill '#e8d9b5' -opaque white \
-  -fill '#6b3e1f' -opaque black \) -compose over -composite -colorspace sRGB -type TrueColor \
-  -define png:color-type=2 -strip scenes/textures/tiles.png
+convert \( xc:'#e8d9b5' xc:'#a0522d' +append \) \( xc:'#a0522d' xc:'#e8d9b5' +append \) -append \
+  -filter point -scale 800% -write mpr:t +delete -size 64x64 tile:mpr:t \
+  -type TrueColor -define png:color-type=2 -strip scenes/textures/tiles.png
