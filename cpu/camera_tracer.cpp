@@ -131,6 +131,7 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
     const int w = m_settings.width, h = m_settings.height;
     const int nff = m_anyHeterogeneous ? m_settings.freeFlightSamples : 0;
     const uint64_t pass = primary.pass;
+    const float spread = pixelSpread(m_scene.camera.yFov, h);  // texture footprint per unit path length
     Image radiance(w, h);
     tbb::enumerable_thread_specific<ThreadScratch> scratch;
 
@@ -146,18 +147,33 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
             MediumId medium = ph.medium;
             SurfaceHit hit = ph.hit;
             Vec3 dir = primary.segments.rays[pixel].dir;
+            float pathLength = hit.t;
 
             for (int depth = 0;;) {
                 const TriangleMesh& mesh = m_scene.meshes[hit.mesh];
                 const Material& mat = m_scene.materials[mesh.material];
                 HitSide side = hitSide(hit, dir);
-                if (emission && mat.isEmissive() && side.entering) L += throughput * mat.emission;
+                const SurfacePoint sp = surfaceAt(m_scene, hit, spread * pathLength);
+                if (emission && mat.isEmissive() && side.entering) L += throughput * sp.emission;
                 if (mat.type == MaterialType::Diffuse) {
-                    L += throughput * mat.albedo * kInvPi * surfacePhotons.density(hit.p, side.nf);
+                    L += throughput * sp.baseColor * kInvPi * surfacePhotons.density(hit.p, side.nf);
                     break;
                 }
                 SpecularEvent ev;
-                if (!sampleSpecular(mat, mesh, hit, dir, medium, rng.uniform(), TransportMode::Radiance, &ev)) break;
+                if (mat.isGlossy()) {
+                    // docs/algorithm.md "Glossy vertices": photons stored here (from delta lights through
+                    // delta interactions only) with the BSDF evaluated, then continue by sampling it.
+                    const GlossyBsdf bsdf = glossyBsdf(mat, sp, hit, dir);
+                    const Vec3 wo = -dir;
+                    L += throughput * surfacePhotons.gather(hit.p, hit.ng, [&](const SurfacePhoton& p) {
+                             return bsdf.eval(wo, p.wi, TransportMode::Radiance);
+                         });
+                    float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+                    if (!sampleGlossy(bsdf, mesh, hit, dir, medium, u0, u1, u2, TransportMode::Radiance, &ev)) break;
+                } else if (!sampleSpecular(mat, sp.baseColor, mesh, hit, dir, medium, rng.uniform(),
+                                           TransportMode::Radiance, &ev)) {
+                    break;
+                }
                 throughput *= ev.weight;
                 medium = ev.medium;
                 Ray ray{m_rt.offsetOrigin(hit.p, hit.t, hit.ng, ev.d), ev.d};
@@ -166,6 +182,7 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
 
                 bool surface = m_rt.intersect(ray, &hit);
                 tls.stats.rays++;
+                if (surface) pathLength += hit.t;
                 float tHit = surface ? hit.t : kInfinity;
                 Ray seg;
                 if (medium != kVacuum && m_rt.mediumSegment(ray.o, ray.d, tHit, &seg)) {

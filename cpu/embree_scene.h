@@ -184,6 +184,12 @@ private:
     struct TriangleNormals {
         Vec3 n[3];
     };
+    /// Geometry user data of a mesh with alphaMode Mask or Blend (the filter's context).
+    struct AlphaGeometry {
+        const Scene* scene;
+        int mesh;
+    };
+    static void alphaFilter(const RTCFilterFunctionNArguments* args);
 
     const Scene& m_scene;
     std::shared_ptr<EmbreeDevice> m_device;
@@ -193,6 +199,7 @@ private:
     /// Per mesh: the vertex normals of each triangle, packed (one cache line, no index fetch), for
     /// specular meshes with normals; empty for every other mesh.
     std::vector<std::vector<TriangleNormals>> m_shadingNormals;
+    std::vector<AlphaGeometry> m_alpha;  ///< one per mesh, addressed by Embree's user pointers
 };
 
 }  // namespace tyndall

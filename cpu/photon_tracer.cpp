@@ -109,6 +109,9 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
     Vec3 o = e.ray.o, d = e.ray.d;
     // Area-light photons start on their triangle: nudge them off it along the emitted direction.
     if (e.emitterMesh >= 0) o = m_rt.offsetOrigin(o, 0.0f, d, d);
+    // From a point, spot or directional light through delta interactions only: what glossy surfaces
+    // store (docs/algorithm.md, "Glossy vertices").
+    bool deltaDirect = e.light >= 0;
 
     for (int bounce = 0; bounce < m_settings.maxPhotonBounces; ++bounce) {
         RTCRayHit rh;
@@ -147,6 +150,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
                 Vec3 x = seg.at(ff.t);
                 d = sampleHg(d, med.g, rng.uniform(), rng.uniform());
                 o = x;
+                deltaDirect = false;
                 continue;
             }
         }
@@ -166,19 +170,53 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
             sp.wi = -d;
             sp.normal = nf;
             sp.power = power;
-            power *= mat.albedo;
+            // alphaMode BLEND stops a photon with probability alpha (the filter): the stored photons
+            // stand for the irradiance on the covered part, so they carry 1/alpha (the camera path
+            // stops with probability alpha too, and must not apply the coverage twice).
+            if (mat.alphaMode == AlphaMode::Blend) {
+                float a = evalSurface(m_scene, mesh, rh.hit.primID, rh.hit.u, rh.hit.v, 0.0f).alpha;
+                if (a > 0) sp.power *= 1.0f / a;
+            }
+            power *= mat.isTextured()
+                         ? evalSurface(m_scene, mesh, rh.hit.primID, rh.hit.u, rh.hit.v, surfaceRadius).baseColor
+                         : mat.albedo;
             float q = std::min(1.0f, power.maxComponent() / startMax);
             if (!(rng.uniform() < q)) return;
             power *= 1.0f / q;
             d = Frame(nf).toWorld(sampleCosineHemisphere(rng.uniform(), rng.uniform()));
             o = m_rt.offsetOrigin(p, tHit, nf, d);
+            deltaDirect = false;
             continue;
         }
         SurfaceHit hit;
         hit.ng = ng;
         hit.ns = m_rt.shadingNormal(int(rh.hit.geomID), rh.hit.primID, rh.hit.u, rh.hit.v, ng);
         SpecularEvent ev;
-        if (!sampleSpecular(mat, mesh, hit, d, medium, rng.uniform(), TransportMode::Importance, &ev)) return;
+        if (mat.isGlossy()) {
+            if (deltaDirect) {
+                SurfacePhoton& sp = out.surfacePhotons.emplace_back();
+                sp.position = p;
+                sp.radius = surfaceRadius;
+                sp.wi = -d;
+                sp.normal = dot(d, ng) < 0 ? ng : -ng;
+                sp.power = power;
+            }
+            const SurfacePoint at = evalSurface(m_scene, mesh, rh.hit.primID, rh.hit.u, rh.hit.v, surfaceRadius);
+            const GlossyBsdf bsdf = glossyBsdf(mat, at, hit, d);
+            float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+            if (!sampleGlossy(bsdf, mesh, hit, d, medium, u0, u1, u2, TransportMode::Importance, &ev)) return;
+            deltaDirect = false;
+            float q = std::min(1.0f, (power * ev.weight).maxComponent() / startMax);
+            if (!(rng.uniform() < q)) return;
+            ev.weight *= 1.0f / q;
+        } else {
+            const Rgb tint =
+                mat.isTextured()
+                    ? evalSurface(m_scene, mesh, rh.hit.primID, rh.hit.u, rh.hit.v, surfaceRadius).baseColor
+                    : mat.albedo;
+            if (!sampleSpecular(mat, tint, mesh, hit, d, medium, rng.uniform(), TransportMode::Importance, &ev))
+                return;
+        }
         power *= ev.weight;
         if (power.isBlack()) return;
         medium = ev.medium;

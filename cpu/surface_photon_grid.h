@@ -6,6 +6,7 @@
 // over photons on the same side of the surface (normal agreement) and near its plane, with the
 // normalised 2D Epanechnikov kernel K(d, r) = 2/(pi r^2) (1 - d^2/r^2), each photon with its own
 // (scheduled) radius.
+#include <cmath>
 #include <vector>
 
 #include "core/photon_beam.h"
@@ -20,6 +21,12 @@ public:
     /// sum_p Phi_p K_2D(|x - x_p|, r_p) for photons whose normal agrees with `n` (the side the
     /// query looks from); multiply by the BRDF (rho/pi) to get outgoing radiance.
     Rgb density(const Vec3& x, const Vec3& n) const;
+
+    /// sum_p weight(p) Phi_p K_2D(|x - x_p|, r_p) over photons near the plane through x with normal
+    /// n, from either side (|n_p . n| >= 0.7): a glossy vertex evaluates its BSDF per photon
+    /// (weight = f(wo, p.wi)), transmission included.
+    template <class Weight>
+    Rgb gather(const Vec3& x, const Vec3& n, const Weight& weight) const;
 
     static float kernel(float d2, float r) {
         float r2 = r * r;
@@ -46,5 +53,33 @@ private:
     Vec3 m_origin;
     uint32_t m_buckets = 1;
 };
+
+template <class Weight>
+Rgb SurfacePhotonGrid::gather(const Vec3& x, const Vec3& n, const Weight& weight) const {
+    Rgb sum;
+    if (m_photons.empty()) return sum;
+    Vec3 c = (x - m_origin) / m_cellSize;
+    int x0 = int(std::floor(c.x - 0.5f)), y0 = int(std::floor(c.y - 0.5f)), z0 = int(std::floor(c.z - 0.5f));
+    uint32_t visited[8];
+    int nVisited = 0;
+    for (int dz = 0; dz < 2; ++dz)
+        for (int dy = 0; dy < 2; ++dy)
+            for (int dx = 0; dx < 2; ++dx) {
+                uint32_t h = cellHash(x0 + dx, y0 + dy, z0 + dz);
+                bool seen = false;
+                for (int v = 0; v < nVisited; ++v) seen |= visited[v] == h;
+                if (seen) continue;
+                visited[nVisited++] = h;
+                for (uint32_t k = m_cellStart[h]; k < m_cellStart[h + 1]; ++k) {
+                    const SurfacePhoton& p = m_photons[m_order[k]];
+                    Vec3 diff = p.position - x;
+                    float d2 = dot(diff, diff);
+                    if (d2 >= p.radius * p.radius) continue;
+                    if (std::abs(dot(p.normal, n)) < 0.7f || std::abs(dot(diff, n)) > 0.25f * p.radius) continue;
+                    sum += weight(p) * p.power * kernel(d2, p.radius);
+                }
+            }
+    return sum;
+}
 
 }  // namespace tyndall
