@@ -99,11 +99,13 @@ PrimaryPass CameraTracer::tracePrimary(uint64_t pass) const {
 }
 
 Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& photons, const BeamBvh& beams,
-                                   const SurfacePhotonGrid& surfacePhotons, CameraPassStats* stats) const {
+                                   const SurfacePhotonGrid& surfacePhotons, CameraPassStats* stats,
+                                   SecondaryLayers* layers) const {
     const int w = m_settings.width, h = m_settings.height;
     const int nff = m_anyHeterogeneous ? m_settings.freeFlightSamples : 0;
     const uint64_t pass = primary.pass;
     Image radiance(w, h);
+    if (layers) *layers = SecondaryLayers{Image(w, h), Image(w, h)};
     tbb::enumerable_thread_specific<ThreadScratch> scratch;
 
     tbb::parallel_for(0, h, [&](int y) {
@@ -112,7 +114,7 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
         for (int x = 0; x < w; ++x) {
             const uint64_t pixel = uint64_t(y) * w + x;
             const PrimaryHit& ph = primary.hits[pixel];
-            Rgb throughput = ph.throughput, L;
+            Rgb throughput = ph.throughput, L, Lmedia, Lsurface;
             if (!ph.surface || throughput.isBlack()) continue;
             Rng rng = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::CameraPath);
             MediumId medium = ph.medium;
@@ -123,9 +125,14 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                 const TriangleMesh& mesh = m_scene.meshes[hit.mesh];
                 const Material& mat = m_scene.materials[mesh.material];
                 HitSide side = hitSide(hit, dir);
-                if (mat.isEmissive() && side.entering) L += throughput * mat.emission;
+                if (mat.isEmissive() && side.entering) {
+                    L += throughput * mat.emission;
+                    Lsurface += throughput * mat.emission;
+                }
                 if (mat.type == MaterialType::Diffuse) {
-                    L += throughput * mat.albedo * kInvPi * surfacePhotons.density(hit.p, side.nf);
+                    Rgb density = throughput * mat.albedo * kInvPi * surfacePhotons.density(hit.p, side.nf);
+                    L += density;
+                    Lsurface += density;
                     break;
                 }
                 SpecularEvent ev;
@@ -147,13 +154,19 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                     beams.query(seg.o, seg.d, seg.tMax, tls.hits);
                     tls.stats.beamQueries++;
                     tls.stats.beamHits += tls.hits.size();
-                    L += throughput * gatherBeams(m_scene, photons, tls.hits, medium, seg.o, seg.d, ff, nff);
+                    Rgb media = throughput * gatherBeams(m_scene, photons, tls.hits, medium, seg.o, seg.d, ff, nff);
+                    L += media;
+                    Lmedia += media;
                     throughput *=
                         med.homogeneous() ? med.transmittance(seg.tMax) : Rgb(storedTransmittance(ff, nff, seg.tMax));
                 }
                 if (!surface || throughput.isBlack()) break;
             }
             radiance.at(x, y) = L;
+            if (layers) {
+                layers->media.at(x, y) = Lmedia;
+                layers->surface.at(x, y) = Lsurface;
+            }
         }
     });
     if (stats) {

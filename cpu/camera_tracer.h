@@ -49,6 +49,13 @@ struct PrimaryPass {
     uint64_t rays = 0;             ///< surface rays traced
 };
 
+/// The secondary stage's radiance split by what it comes from (AOV layers); the two add up to
+/// the stage's radiance (up to float rounding).
+struct SecondaryLayers {
+    Image media;    ///< media seen through mirrors and glass (the secondary segments' beams)
+    Image surface;  ///< surface photons and emission
+};
+
 struct CameraPassResult {
     Image radiance;  ///< everything except the primary segments' medium radiance
     PrimarySegments primary;
@@ -61,8 +68,10 @@ public:
 
     PrimaryPass tracePrimary(uint64_t pass) const;
     /// The pass's radiance except the primary segments' media; `stats.rays` counts this stage's.
+    /// `layers`, when given, also receives that radiance split in two (it does not change it).
     Image traceSecondary(const PrimaryPass& primary, const PhotonMap& photons, const BeamBvh& beams,
-                         const SurfacePhotonGrid& surface, CameraPassStats* stats) const;
+                         const SurfacePhotonGrid& surface, CameraPassStats* stats,
+                         SecondaryLayers* layers = nullptr) const;
 
 private:
     const EmbreeScene& m_rt;

@@ -97,4 +97,34 @@ Image PassRenderer::renderPass(uint64_t pass, PassStats* stats) const {
     return image;
 }
 
+PassLayers PassRenderer::renderPassLayers(uint64_t pass, PassStats* stats) const {
+    auto t0 = std::chrono::steady_clock::now();
+    PhotonMap photons = tracePhotons(pass);
+    auto t1 = std::chrono::steady_clock::now();
+    PrimaryPass primary = tracePrimary(pass);
+    CameraPassStats camera;
+    camera.rays = primary.rays;
+    BeamBvh bvh(*m_rt->device(), photons.beams, m_bvhKind);
+    SurfacePhotonGrid grid(photons.surfacePhotons);
+    SecondaryLayers secondary;
+    Image radiance = m_camera->traceSecondary(primary, photons, bvh, grid, &camera, &secondary);
+    auto t2 = std::chrono::steady_clock::now();
+    RasterStats raster;
+    PassLayers layers;
+    layers.mediaPrimary = splatPrimary(primary.segments, photons, &raster);
+    layers.beauty = layers.mediaPrimary;
+    layers.beauty += radiance;
+    layers.mediaSecondary = std::move(secondary.media);
+    layers.surface = std::move(secondary.surface);
+    if (stats) {
+        stats->add(photons);
+        stats->add(camera);
+        stats->rasterTests += raster.pixelTests;
+        stats->photonSeconds += std::chrono::duration<double>(t1 - t0).count();
+        stats->cameraSeconds += std::chrono::duration<double>(t2 - t1).count();
+        stats->splatSeconds += secondsSince(t2);
+    }
+    return layers;
+}
+
 }  // namespace tyndall

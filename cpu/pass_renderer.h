@@ -42,6 +42,15 @@ struct PassStats {
     void add(const CameraPassStats& camera);  ///< the counts of its camera stages
 };
 
+/// One pass split by where its light comes from (the AOV layers): beauty = mediaPrimary +
+/// mediaSecondary + surface up to float rounding; beauty itself has the same bits as renderPass's.
+struct PassLayers {
+    Image beauty;
+    Image mediaPrimary;    ///< media seen directly by the camera (the primary segments' beams)
+    Image mediaSecondary;  ///< media seen through mirrors and glass
+    Image surface;         ///< surface photons and emission
+};
+
 class PassRenderer {
 public:
     PassRenderer(const Scene& scene, const RenderSettings& settings, BeamBvh::Kind beamBvh = BeamBvh::Kind::FlatCurves);
@@ -53,6 +62,8 @@ public:
     CameraPassResult traceCamera(uint64_t pass, const PhotonMap& photons) const;
     Image splatPrimary(const PrimarySegments& primary, const PhotonMap& photons, RasterStats* stats = nullptr) const;
     Image renderPass(uint64_t pass, PassStats* stats = nullptr) const;
+    /// renderPass with the image's components kept apart as well.
+    PassLayers renderPassLayers(uint64_t pass, PassStats* stats = nullptr) const;
 
     /// Re-reads what the photon tracer derives from the lights (their sampling distribution and
     /// the media they sit in). Not thread-safe: call with no pass running.
