@@ -56,6 +56,18 @@ uint64_t fnv1a(const void* data, size_t size, uint64_t hash) {
     return hash;
 }
 
+uint64_t checksum64(const void* data, size_t size) {
+    const unsigned char* p = static_cast<const unsigned char*>(data);
+    uint64_t hash = 0xcbf29ce484222325ull;
+    size_t i = 0;
+    for (; i + 8 <= size; i += 8) {
+        uint64_t word;
+        std::memcpy(&word, p + i, 8);
+        hash = (hash ^ word) * 0x100000001b3ull;
+    }
+    return fnv1a(p + i, size - i, hash);
+}
+
 const Accumulator& Checkpoint::layer(const std::string& name, const std::string& file) const {
     for (const auto& [n, acc] : layers)
         if (n == name) return acc;
@@ -65,6 +77,9 @@ const Accumulator& Checkpoint::layer(const std::string& name, const std::string&
 std::string serializeCheckpoint(const Checkpoint& c) {
     std::string out(kMagic, sizeof kMagic);
     std::string header = c.header.dump();
+    size_t total = sizeof kMagic + 8 + header.size() + 4 + 8;
+    for (const auto& [name, acc] : c.layers) total += 4 + name.size() + 24 + acc.sums().size() * sizeof(double);
+    out.reserve(total);
     put(out, uint64_t(header.size()));
     out += header;
     put(out, uint32_t(c.layers.size()));
@@ -77,7 +92,7 @@ std::string serializeCheckpoint(const Checkpoint& c) {
         put(out, acc.rejectedSamples());
         out.append(reinterpret_cast<const char*>(acc.sums().data()), acc.sums().size() * sizeof(double));
     }
-    put(out, fnv1a(out.data(), out.size()));
+    put(out, checksum64(out.data(), out.size()));
     return out;
 }
 
@@ -89,7 +104,7 @@ Checkpoint parseCheckpoint(const std::string& bytes, const std::string& file) {
     const size_t body = bytes.size() - 8;
     uint64_t stored;
     std::memcpy(&stored, bytes.data() + body, 8);
-    if (stored != fnv1a(bytes.data(), body))
+    if (stored != checksum64(bytes.data(), body))
         throw Error(file + ": truncated or damaged checkpoint (checksum mismatch); it cannot be resumed");
     Reader r(bytes, body, file);
     r.take(sizeof kMagic);

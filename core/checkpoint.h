@@ -6,7 +6,8 @@
 //
 // Layout (little-endian): magic "TYNCKPT\x01"; u64 header length; header JSON; u32 layer count;
 // per layer: u32 name length, name, i32 width, i32 height, u64 passes, u64 rejected samples,
-// 3 x width x height f64 sums; then u64 FNV-1a of every byte before it. A file that is cut short
+// 3 x width x height f64 sums; then a u64 checksum of every byte before it (FNV-1a over 64-bit
+// words, the tail byte-wise). A file that is cut short
 // or altered fails the checksum; a file of another kind fails the magic.
 //
 // Writing is atomic (write a temporary file beside the target, fsync it, rename it over the
@@ -45,7 +46,10 @@ void saveCheckpoint(const std::string& path, const Checkpoint& checkpoint, const
 /// Reads and parses; Error "checkpoint '<path>': ..." when missing or bad.
 Checkpoint loadCheckpoint(const std::string& path);
 
-/// 64-bit FNV-1a, continued from `hash` (the scene hash and the file checksum use it).
+/// 64-bit FNV-1a, continued from `hash` (the scene hash uses it).
 uint64_t fnv1a(const void* data, size_t size, uint64_t hash = 0xcbf29ce484222325ull);
+/// The file checksum: FNV-1a's step over 8-byte words (8x fewer dependent multiplies; checkpoints
+/// run to hundreds of MB), the remaining bytes one by one.
+uint64_t checksum64(const void* data, size_t size);
 
 }  // namespace tyndall
