@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -240,23 +241,32 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
         ->capture_default_str();
     cmd->add_option("--checkpoint", o->checkpoint,
                     "Save the render's state to FILE every --checkpoint-every seconds, on Ctrl-C/SIGTERM and at the "
-                    "end (atomically: a kill leaves the old or the new file)");
+                    "end (atomically: a kill leaves the old or the new file) (default: none, no checkpoints)");
     cmd->add_option("--checkpoint-every", o->checkpointEvery, "Seconds between checkpoints")
         ->check(positiveNumber())
         ->capture_default_str();
     cmd->add_option("--resume", o->resume,
                     "Continue the render saved in FILE (scene, settings and output from it; -o, --passes N (total) or "
-                    "--time S (total seconds) may change them); it keeps checkpointing to FILE");
+                    "--time S (total seconds) may change them); it keeps checkpointing to FILE (default: none, a new render)");
     cmd->add_flag("-q,--quiet", o->quiet, "No progress output (the final summary line stays)");
     cmd->add_option("--progress-every", o->progressEvery,
                     "Seconds between progress lines when stderr is not a terminal (0 = every pass)")
-        ->check(CLI::NonNegativeNumber)
+        ->check(CLI::Validator(
+            [](std::string& v) {
+                char* end = nullptr;
+                double x = std::strtod(v.c_str(), &end);
+                return end != v.c_str() && *end == '\0' && !(x >= 0 && std::isfinite(x))
+                           ? "expected a number of seconds >= 0, got '" + v + "'"
+                           : std::string();
+            },
+            "", "non-negative"))
         ->capture_default_str();
     cmd->add_flag("--aov", o->aov,
                   "EXR output gets layers media_primary, media_secondary, surface (they add up to R,G,B) and variance");
-    cmd->add_option("--reference", o->reference, "Reference image (same size) for the --convergence log");
+    cmd->add_option("--reference", o->reference, "Reference image (same size) for the --convergence log (default: none)");
     cmd->add_option("--convergence", o->convergence,
-                    "CSV: per pass elapsed time, photon paths, beam radius, relative RMSE and bias against --reference");
+                    "CSV: per pass elapsed time, photon paths, beam radius, relative RMSE and bias against --reference "
+                    "(default: none)");
     cmd->callback([o, cmd, &exitCode]() {
         try {
             runRender(*o, cmd, exitCode);
