@@ -133,7 +133,7 @@ nlohmann::json explicitSettings(const CommonOptions& o) {
 }
 }  // namespace
 
-Scene loadScene(CommonOptions& o) {
+Scene loadScene(CommonOptions& o, std::vector<std::string>* cameraNames, std::vector<Camera>* cameras) {
     SceneFile file;
     if (o.scene.empty()) {
         file.scene = makeDefaultScene();
@@ -142,6 +142,8 @@ Scene loadScene(CommonOptions& o) {
         file.scene.validate();
         file.render = defaultSceneRender();
         file.renderWhere = "default scene";
+        file.cameras = {"default"};
+        file.cameraViews = {file.scene.camera};
     } else {
         SceneLoadOptions options;
         options.camera = o.camera;
@@ -152,6 +154,8 @@ Scene loadScene(CommonOptions& o) {
     RenderSettings fromScene = RenderSettings::fromJson(file.render, file.renderWhere, o.settings);
     o.settings = RenderSettings::fromJson(explicitSettings(o), "command line", fromScene);
     o.settings.validate();
+    if (cameraNames) *cameraNames = file.cameras;
+    if (cameras) *cameras = file.cameraViews;
     return std::move(file.scene);
 }
 

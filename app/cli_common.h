@@ -3,6 +3,7 @@
 // CLI11 subcommand, and the helpers every command uses to load the scene and write results.
 #include <CLI/CLI.hpp>
 #include <string>
+#include <vector>
 
 #include "core/image_io.h"
 #include "core/scene.h"
@@ -38,7 +39,8 @@ void finishOptions(CommonOptions& o);
 /// The scene named on the command line (or the built-in default), finalized and validated, with
 /// the camera --camera selects. The scene file's "render" block replaces the settings' defaults;
 /// options given on the command line win over it (o.settings is updated and re-validated).
-Scene loadScene(CommonOptions& o);
+/// `cameraNames`/`cameras` (optional) receive the scene's selectable cameras (the viewer's list).
+Scene loadScene(CommonOptions& o, std::vector<std::string>* cameraNames = nullptr, std::vector<Camera>* cameras = nullptr);
 /// Throws Error (naming the file) when `path` cannot be written, before anything is rendered.
 void checkOutputWritable(const std::string& path);
 /// Caps TBB (and Embree through it) at `threads` workers for the life of the returned object.

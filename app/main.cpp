@@ -9,6 +9,7 @@
 #include "app/cmd_compare.h"
 #include "app/cmd_reference.h"
 #include "app/cmd_render.h"
+#include "app/cmd_view.h"
 #include "core/error.h"
 
 int main(int argc, char** argv) {
@@ -20,6 +21,7 @@ int main(int argc, char** argv) {
     tyndall::app::addBenchCommand(app, exitCode);
     tyndall::app::addCompareCommand(app, exitCode);
     tyndall::app::addReferenceCommand(app, exitCode);
+    tyndall::app::addViewCommand(app, exitCode);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

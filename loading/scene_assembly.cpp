@@ -77,7 +77,7 @@ SceneFile finishScene(SceneDraft draft, const std::string& file, const SceneLoad
             for (const Vec3& p : m.positions) b.extend(p);
         draft.cameras.push_back({"automatic", frameBounds(b)});
     }
-    for (const NamedCamera& c : draft.cameras) out.cameras.push_back(c.name);
+    for (const NamedCamera& c : draft.cameras) out.cameras.push_back(c.name), out.cameraViews.push_back(c.camera);
     scene.camera = draft.cameras[size_t(selectCamera(draft.cameras, options.camera, file))].camera;
 
     scene.finalize();

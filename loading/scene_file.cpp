@@ -4,7 +4,12 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "core/settings.h"
+#include "loading/default_scene.h"
+#include "loading/default_smoke_scene.h"
 #include "loading/gltf_loader.h"
+#include "loading/json_reader.h"
+#include "loading/scene_edits.h"
 #include "loading/scene_json.h"
 
 namespace tyndall {
@@ -29,8 +34,57 @@ SceneFile loadSceneFile(const std::string& path, const SceneLoadOptions& options
     return loadSceneData(bytes, format, path, std::filesystem::path(path).parent_path().string(), options);
 }
 
+namespace {
+/// A view file (scene_edits.h): the base scene, loaded with the camera it was viewed from, the
+/// edits applied, the view file's own render block (the base's is not used).
+SceneFile loadViewFile(const nlohmann::json& doc, const std::string& file, const std::string& baseDir,
+                       const SceneLoadOptions& options) {
+    JsonObject top = JsonValue(doc, file, "").object();
+    JsonValue baseKey = top.require("base");
+    auto nameKey = top.get("name"), cameraKey = top.get("base_camera");
+    auto editsKey = top.get("edits"), renderKey = top.get("render");
+    top.finish();
+    if (!options.allowExternalFiles) baseKey.fail("references to other files are disabled");
+    std::string base = baseKey.string();
+    SceneLoadOptions baseOptions = options;
+    baseOptions.camera = cameraKey ? cameraKey->string() : std::string();
+    if (!options.camera.empty()) {
+        if (editsKey && editsKey->raw().contains("camera"))
+            throw Error(file + ": --camera " + options.camera + ": a view file fixes its camera (edits/camera)");
+        baseOptions.camera = options.camera;
+    }
+    SceneFile out;
+    if (base == kBuiltinDefaultScene || base == kBuiltinSmokeScene) {
+        if (!baseOptions.camera.empty() && baseOptions.camera != "0" && baseOptions.camera != "default")
+            baseKey.fail("the built-in scenes have one camera, 0 'default'");
+        out.scene = base == kBuiltinDefaultScene ? makeDefaultScene() : makeDefaultSmokeScene();
+        out.cameras = {"default"};
+        out.cameraViews = {out.scene.camera};
+    } else {
+        std::filesystem::path path(base);
+        if (path.is_relative() && !baseDir.empty()) path = std::filesystem::path(baseDir) / path;
+        out = loadSceneFile(path.string(), baseOptions);
+    }
+    if (editsKey) applySceneEdits(out.scene, editsKey->raw(), file);
+    out.scene.source = file;
+    if (nameKey) out.scene.name = nameKey->string();
+    out.scene.validate();
+    out.render = nlohmann::json::object();
+    if (renderKey) {
+        out.renderWhere = renderKey->where();
+        RenderSettings::fromJson(renderKey->raw(), out.renderWhere);  // reject bad keys now
+        out.render = renderKey->raw();
+    }
+    return out;
+}
+}  // namespace
+
 SceneFile loadSceneData(const std::string& bytes, SceneFormat format, const std::string& file,
                         const std::string& baseDir, const SceneLoadOptions& options) {
+    if (format == SceneFormat::Json) {
+        nlohmann::json doc = parseJsonText(bytes, file);
+        if (isViewFile(doc)) return loadViewFile(doc, file, baseDir, options);
+    }
     WarnOnce warn(options.warn);
     SceneFile out;
     SceneDraft draft;

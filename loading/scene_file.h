@@ -5,6 +5,7 @@
 //          render settings;
 //   .gltf  glTF 2.0 with embedded or external buffers;
 //   .glb   binary glTF 2.0.
+// A .json file with a "base" key is a view file (scene_edits.h): a base scene plus edits.
 // The result is finalize()d and validate()d. Every problem with the input throws Error with one
 // line naming the file and the place in it (a JSON pointer, or a glTF node/mesh/material name
 // and index); features glTF has and Tyndall approximates or ignores are reported once per kind
@@ -46,6 +47,7 @@ struct SceneFile {
     nlohmann::json render = nlohmann::json::object();
     std::string renderWhere;           ///< "<file>: /render", for messages
     std::vector<std::string> cameras;  ///< the selectable cameras' names, in --camera INDEX order
+    std::vector<Camera> cameraViews;   ///< those cameras, same order (the viewer's camera list)
 };
 
 enum class SceneFormat { Json, Gltf, Glb };

@@ -1,0 +1,95 @@
+#include "loading/scene_edits.h"
+
+#include <cmath>
+
+#include "core/error.h"
+#include "loading/json_reader.h"
+
+namespace tyndall {
+
+namespace {
+nlohmann::json vec(const Vec3& v) { return {v.x, v.y, v.z}; }
+nlohmann::json rgb(const Rgb& c) { return {c.r, c.g, c.b}; }
+
+/// Arrays of the edits must match the scene one to one, by name, so that an edited base is noticed.
+std::vector<JsonValue> matching(const JsonValue& list, size_t count, const char* what) {
+    std::vector<JsonValue> items = list.elements();
+    if (items.size() != count)
+        list.fail("expected " + std::to_string(count) + " " + what + " (the base scene has " + std::to_string(count) +
+                  "), got " + std::to_string(items.size()));
+    return items;
+}
+}  // namespace
+
+nlohmann::json sceneEdits(const Scene& scene) {
+    nlohmann::json j;
+    const Camera& c = scene.camera;
+    j["camera"] = {{"position", vec(c.position)}, {"forward", vec(c.forward)},     {"up", vec(c.up)},
+                   {"y_fov", c.yFov},             {"lens_radius", c.lensRadius}, {"focus_distance", c.focusDistance}};
+    j["lights"] = nlohmann::json::array();
+    for (const Light& l : scene.lights)
+        j["lights"].push_back({{"name", l.name},
+                               {"position", vec(l.position)},
+                               {"direction", vec(l.direction)},
+                               {"intensity", rgb(l.intensity)}});
+    j["media"] = nlohmann::json::array();
+    for (const Medium& m : scene.media)
+        j["media"].push_back({{"name", m.name}, {"sigma_s", rgb(m.sigmaS)}, {"sigma_a", rgb(m.sigmaA)}, {"g", m.g}});
+    return j;
+}
+
+void applySceneEdits(Scene& scene, const nlohmann::json& edits, const std::string& where) {
+    JsonObject top = JsonValue(edits, where, "/edits").object();
+    auto camera = top.get("camera"), lights = top.get("lights"), media = top.get("media");
+    top.finish();
+    if (camera) {
+        JsonObject o = camera->object();
+        Vec3 p = o.require("position").vec3(), f = o.require("forward").direction(), up = o.require("up").direction();
+        if (!(length(cross(normalize(f), normalize(up))) > 1e-4f)) o.fail("'up' is parallel to 'forward'");
+        float fov = float(o.require("y_fov").number(1e-5, 3.12));
+        Camera c = Camera::lookAt(p, p + f, up, fov);
+        c.lensRadius = float(o.number("lens_radius", 0.0, 0.0));
+        c.focusDistance = float(o.number("focus_distance", 1.0, 1e-6));
+        o.finish();
+        scene.camera = c;
+    }
+    if (lights) {
+        std::vector<JsonValue> items = matching(*lights, scene.lights.size(), "lights");
+        for (size_t i = 0; i < items.size(); ++i) {
+            JsonObject o = items[i].object();
+            Light& l = scene.lights[i];
+            std::string name = o.require("name").string();
+            if (name != l.name) o.fail("light " + std::to_string(i) + " of the base scene is '" + l.name + "', not '" + name + "'");
+            l.position = o.require("position").vec3();
+            l.direction = normalize(o.require("direction").direction());
+            l.intensity = o.require("intensity").rgb();
+            o.finish();
+        }
+    }
+    if (media) {
+        std::vector<JsonValue> items = matching(*media, scene.media.size(), "media");
+        for (size_t i = 0; i < items.size(); ++i) {
+            JsonObject o = items[i].object();
+            Medium& m = scene.media[i];
+            std::string name = o.require("name").string();
+            if (name != m.name) o.fail("medium " + std::to_string(i) + " of the base scene is '" + m.name + "', not '" + name + "'");
+            m.sigmaS = o.require("sigma_s").rgb();
+            m.sigmaA = o.require("sigma_a").rgb();
+            m.g = float(o.require("g").number(-0.999, 0.999));
+            Rgb t = m.sigmaT();
+            if (!(t.r > 0 || t.g > 0 || t.b > 0)) o.fail("sigma_s + sigma_a must not be 0");
+            if (m.density && (std::abs(t.r - t.g) > 1e-5f * t.r || std::abs(t.r - t.b) > 1e-5f * t.r))
+                o.fail("a density-grid medium needs grey extinction (sigma_s + sigma_a equal in r, g, b)");
+            o.finish();
+        }
+    }
+}
+
+nlohmann::json viewFileJson(const std::string& name, const std::string& base, const std::string& baseCamera,
+                            const nlohmann::json& edits, const nlohmann::json& render) {
+    return {{"name", name}, {"base", base}, {"base_camera", baseCamera}, {"edits", edits}, {"render", render}};
+}
+
+bool isViewFile(const nlohmann::json& doc) { return doc.is_object() && doc.contains("base"); }
+
+}  // namespace tyndall

@@ -1,0 +1,234 @@
+// `tyndall view` in a real X server (Xvfb) with real GL (llvmpipe), driven by --script. Skips with
+// a message when xvfb-run is not installed (scripts/setup.sh installs it).
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "core/image_io.h"
+#include "tests/test_util.h"
+#include "tests/tyndall_cli.h"
+
+namespace tyndall {
+namespace {
+namespace fs = std::filesystem;
+
+const char* kSmall = "--gpu off --size 128x128 --photons 500";
+
+bool haveXvfb() { return std::system("command -v xvfb-run >/dev/null 2>&1") == 0; }
+
+fs::path outDir(const std::string& name) {
+    fs::path d = fs::path(test::outputDir()) / "viewer" / name;
+    fs::remove_all(d);
+    fs::create_directories(d);
+    return d;
+}
+
+/// Runs `tyndall view ARGS --script` with `script` under xvfb-run.
+test::CliRun runView(const fs::path& dir, const std::string& args, const std::string& script) {
+    fs::path file = dir / "script.txt";
+    std::ofstream(file) << script;
+    std::string cmd = std::string("-a -s '-screen 0 1280x1024x24' ") + TYNDALL_BINARY + " view " + args +
+                      " --script " + file.string();
+    std::string full = "xvfb-run " + cmd + " 2>&1";
+    test::CliRun r;
+    FILE* pipe = popen(full.c_str(), "r");
+    char buf[4096];
+    size_t n;
+    while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) r.output.append(buf, n);
+    int status = pclose(pipe);
+    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+double meanLuminance(const Image& img, int x0, int y0, int x1, int y1) {
+    double sum = 0;
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) sum += (img.at(x, y).r + img.at(x, y).g + img.at(x, y).b) / 3.0;
+    return sum / double((x1 - x0) * (y1 - y0));
+}
+
+#define SKIP_WITHOUT_XVFB() \
+    if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup.sh installs xvfb): viewer tests skipped"
+
+TEST(ViewerCli, WithoutADisplayItSaysWhatIsMissingAndExits1) {
+    test::CliRun r = test::runTyndall("view", "-u DISPLAY");
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("no display"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("tyndall render"), std::string::npos) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+}
+
+TEST(ViewerXvfb, OrbitDragThenRefinementEqualsRenderOfTheSavedSceneBitForBit) {
+    SKIP_WITHOUT_XVFB();
+    fs::path d = outDir("orbit");
+    test::CliRun r = runView(d, kSmall,
+                             "wait-passes 1\n"
+                             "drag left 64 64 94 70 6\n"
+                             "wait-passes 3\n"
+                             "save " + (d / "view").string() + "\nquit\n");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const std::string exr = (d / "view.exr").string();
+    EXPECT_EQ(readImageAttribute(exr, "tyndall:viewer"), "refined");
+    std::string passes = readImageAttribute(exr, "tyndall:passes");
+    ASSERT_GE(std::stoi(passes), 3);
+    test::CliRun render = test::runTyndall("render " + (d / "view.json").string() + " --gpu off -o " +
+                                           (d / "render.exr").string());
+    ASSERT_EQ(render.exitCode, 0) << render.output;
+    EXPECT_EQ(readImageAttribute((d / "render.exr").string(), "tyndall:passes"), passes);
+    Image viewer = readImage(exr), rendered = readImage((d / "render.exr").string());
+    EXPECT_TRUE(test::identicalImages(viewer, rendered)) << "viewer and `tyndall render` of its saved scene differ";
+    // And the drag did move the camera: the default view renders differently.
+    test::CliRun unmoved = test::runTyndall("render " + std::string(kSmall) + " --passes " + passes + " -o " +
+                                            (d / "unmoved.exr").string());
+    ASSERT_EQ(unmoved.exitCode, 0) << unmoved.output;
+    EXPECT_FALSE(test::identicalImages(viewer, readImage((d / "unmoved.exr").string())));
+}
+
+TEST(ViewerXvfb, DraggingTheSpotToTheRightMovesTheLitFloorToTheRight) {
+    SKIP_WITHOUT_XVFB();
+    fs::path d = outDir("light");
+    // Ctrl + left drag re-aims the default scene's spot at the floor under the cursor.
+    test::CliRun r = runView(d, kSmall,
+                             "wait-passes 4\nsave " + (d / "before").string() + "\n"
+                             "drag left 40 108 96 108 8 ctrl\n"
+                             "wait-passes 4\nsave " + (d / "after").string() + "\nquit\n");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    Image before = readImage((d / "before.exr").string()), after = readImage((d / "after.exr").string());
+    // Where the floor got brighter vs darker (the bottom third: the floor), luminance-weighted.
+    double brighterX = 0, brighterW = 0, darkerX = 0, darkerW = 0;
+    for (int y = 85; y < 128; ++y)
+        for (int x = 0; x < 128; ++x) {
+            double diff = (after.at(x, y).r + after.at(x, y).g + after.at(x, y).b) -
+                          (before.at(x, y).r + before.at(x, y).g + before.at(x, y).b);
+            if (diff > 0) brighterX += diff * x, brighterW += diff;
+            else darkerX -= diff * x, darkerW -= diff;
+        }
+    ASSERT_GT(brighterW, 0);
+    ASSERT_GT(darkerW, 0);
+    EXPECT_GT(brighterX / brighterW, darkerX / darkerW + 10.0)
+        << "brighter at x=" << brighterX / brighterW << ", darker at x=" << darkerX / darkerW;
+    nlohmann::json b = nlohmann::json::parse(std::ifstream(d / "before.json"));
+    nlohmann::json a = nlohmann::json::parse(std::ifstream(d / "after.json"));
+    EXPECT_NE(a["edits"]["lights"][0]["direction"], b["edits"]["lights"][0]["direction"]);
+    EXPECT_EQ(a["edits"]["camera"], b["edits"]["camera"]);
+}
+
+TEST(ViewerXvfb, ExposureChangesTheWindowNotTheExr) {
+    SKIP_WITHOUT_XVFB();
+    fs::path d = outDir("exposure");
+    // Paused, so both saves hold the same passes.
+    test::CliRun r = runView(d, kSmall,
+                             "wait-passes 2\nkey space\nsleep 1500\n"
+                             "screenshot " + (d / "dim.png").string() + "\nsave " + (d / "dim").string() + "\n"
+                             "exposure 4\nwait-frames 3\n"
+                             "screenshot " + (d / "bright.png").string() + "\nsave " + (d / "bright").string() +
+                             "\nquit\n");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    Image dimExr = readImage((d / "dim.exr").string()), brightExr = readImage((d / "bright.exr").string());
+    EXPECT_TRUE(test::identicalImages(dimExr, brightExr));
+    Image dim = readImage((d / "dim.png").string()), bright = readImage((d / "bright.png").string());
+    // The image area is right of the 330-pixel panel, at the window's top.
+    double a = meanLuminance(dim, 330, 0, 458, 128), b = meanLuminance(bright, 330, 0, 458, 128);
+    EXPECT_GT(b, 1.5 * a) << "window image mean " << a << " at exposure 1, " << b << " at exposure 4";
+    EXPECT_GT(a, 0.005) << "the window shows no image";
+}
+
+/// `tyndall render VIEW.json --gpu off` reproduces the viewer's VIEW.exr bit for bit.
+void expectRenderReproduces(const fs::path& d, const std::string& stem) {
+    const std::string exr = (d / (stem + ".exr")).string();
+    test::CliRun render = test::runTyndall("render " + (d / (stem + ".json")).string() + " --gpu off -o " +
+                                           (d / (stem + "-render.exr")).string());
+    ASSERT_EQ(render.exitCode, 0) << render.output;
+    EXPECT_TRUE(test::identicalImages(readImage(exr), readImage((d / (stem + "-render.exr")).string())))
+        << stem << ": the viewer and `tyndall render` of its saved view differ";
+}
+
+TEST(ViewerXvfb, EveryBindingRunsAndTheSavedViewStillReproduces) {
+    SKIP_WITHOUT_XVFB();
+    fs::path d = outDir("bindings");
+    test::CliRun r = runView(d, std::string(kSmall) + " --save-stem " + (d / "key").string(),
+                             "wait-passes 1\nkey H\nkey plus\nkey minus\nkey F\nscroll 64 64 3\nscroll 64 64 -1\n"
+                             "double-click 64 100\ndrag right 64 64 50 70 4\ndrag middle 50 70 60 60 2\n"
+                             "drag left 64 64 70 40 3\nkey 1\nkey 9\nkey R\nkey space\nkey space\n"
+                             "wait-passes 2\nkey S\nsave " + (d / "view").string() + "\nkey escape\n");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(fs::exists(d / "key-1.exr") && fs::exists(d / "key-1.png") && fs::exists(d / "key-1.json"))
+        << r.output;
+    expectRenderReproduces(d, "view");
+}
+
+TEST(ViewerXvfb, RealMouseDragThroughTheXServerOrbits) {
+    SKIP_WITHOUT_XVFB();
+    if (std::system("command -v xdotool >/dev/null 2>&1") != 0)
+        GTEST_SKIP() << "xdotool is not installed (scripts/setup.sh installs it): real-input test skipped";
+    fs::path d = outDir("xdotool");
+    // The viewer waits for one real button release; xdotool drags in the image area (right of the
+    // 330-pixel panel) once the window exists.
+    std::ofstream(d / "script.txt") << "wait-passes 1\nsave " << (d / "before").string()
+                                    << "\nwait-input 1 300\nwait-passes 2\nsave " << (d / "after").string()
+                                    << "\nquit\n";
+    std::ofstream(d / "run.sh") << "#!/bin/sh\n"
+                                << TYNDALL_BINARY << " view " << kSmall << " --script " << (d / "script.txt").string()
+                                << " &\npid=$!\n"
+                                << "while [ ! -f " << (d / "before.json").string() << " ]; do sleep 0.2; done\n"
+                                << "win=$(xdotool search --sync --name 'tyndall view')\n"
+                                << "xdotool mousemove --window $win 394 64 mousedown 1 mousemove --window $win 404 66 "
+                                   "mousemove --window $win 414 68 mousemove --window $win 424 70 mouseup 1\n"
+                                << "wait $pid\n";
+    fs::permissions(d / "run.sh", fs::perms::owner_all);
+    std::string cmd = "xvfb-run -a -s '-screen 0 1280x1024x24' " + (d / "run.sh").string() + " 2>&1";
+    test::CliRun r;
+    FILE* pipe = popen(cmd.c_str(), "r");
+    char buf[4096];
+    for (size_t n; (n = fread(buf, 1, sizeof buf, pipe)) > 0;) r.output.append(buf, n);
+    int status = pclose(pipe);
+    ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << r.output;
+    nlohmann::json b = nlohmann::json::parse(std::ifstream(d / "before.json"));
+    nlohmann::json a = nlohmann::json::parse(std::ifstream(d / "after.json"));
+    // The real drag moved the camera (an orbit: the eye moved, the pivot distance kept).
+    EXPECT_NE(a["edits"]["camera"]["position"], b["edits"]["camera"]["position"]);
+    expectRenderReproduces(d, "after");
+}
+
+TEST(ViewerXvfb, WithGlSplattingTheSavedViewReproducesUnderGpuOn) {
+    SKIP_WITHOUT_XVFB();
+    fs::path d = outDir("gl");
+    test::CliRun r = runView(d, "--gpu on --size 128x128 --photons 500",
+                             "wait-passes 1\ndrag left 64 64 80 64 4\nwait-passes 2\nsave " + (d / "view").string() +
+                                 "\nscreenshot " + (d / "window.png").string() + "\nquit\n");
+    if (r.exitCode != 0 && r.output.find("--gpu on") != std::string::npos)
+        GTEST_SKIP() << "no headless OpenGL for the splatter here: " << r.output;
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    test::CliRun render = test::runTyndall("render " + (d / "view.json").string() + " --gpu on -o " +
+                                           (d / "render.exr").string());
+    ASSERT_EQ(render.exitCode, 0) << render.output;
+    EXPECT_NE(render.output.find("hybrid"), std::string::npos) << render.output;
+    // The same GL splatter in the same primitive order: llvmpipe's float blending is exact.
+    EXPECT_TRUE(test::identicalImages(readImage((d / "view.exr").string()), readImage((d / "render.exr").string())));
+}
+
+TEST(ViewerXvfb, CompareShowsTwoDifferentHalves) {
+    SKIP_WITHOUT_XVFB();
+    fs::path d = outDir("compare");
+    test::CliRun r = runView(d, "--compare --gpu off --size 96x96 --photons 300",
+                             "wait-passes 2\nscreenshot " + (d / "compare.png").string() + "\nquit\n");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    Image shot = readImage((d / "compare.png").string());
+    ASSERT_EQ(shot.width, 330 + 96 + 4 + 96);
+    double diff = 0, level = 0;
+    for (int y = 0; y < 96; ++y)
+        for (int x = 0; x < 96; ++x) {
+            const Rgb& l = shot.at(330 + x, y);
+            const Rgb& rr = shot.at(330 + 100 + x, y);
+            diff += std::abs(l.r - rr.r) + std::abs(l.g - rr.g) + std::abs(l.b - rr.b);
+            level += l.r + l.g + l.b + rr.r + rr.g + rr.b;
+        }
+    EXPECT_GT(level / (96 * 96 * 6), 0.005) << "the halves are black";
+    EXPECT_GT(diff / (96 * 96 * 3), 0.01) << "the grid and its homogeneous twin look the same";
+}
+
+}  // namespace
+}  // namespace tyndall
