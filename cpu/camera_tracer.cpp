@@ -127,12 +127,13 @@ PrimaryPass CameraTracer::tracePrimary(uint64_t pass) const {
 
 Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& photons, const BeamBvh& beams,
                                    const SurfacePhotonGrid& surfacePhotons, CameraPassStats* stats,
-                                   bool emission) const {
+                                   SecondaryLayers* layers, bool emission) const {
     const int w = m_settings.width, h = m_settings.height;
     const int nff = m_anyHeterogeneous ? m_settings.freeFlightSamples : 0;
     const uint64_t pass = primary.pass;
     const float spread = pixelSpread(m_scene.camera.yFov, h);  // texture footprint per unit path length
     Image radiance(w, h);
+    if (layers) *layers = SecondaryLayers{Image(w, h), Image(w, h)};
     tbb::enumerable_thread_specific<ThreadScratch> scratch;
 
     tbb::parallel_for(0, h, [&](int y) {
@@ -141,7 +142,7 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
         for (int x = 0; x < w; ++x) {
             const uint64_t pixel = uint64_t(y) * w + x;
             const PrimaryHit& ph = (*primary.hits)[pixel];
-            Rgb throughput = ph.throughput, L;
+            Rgb throughput = ph.throughput, L, Lmedia, Lsurface;
             if (!ph.surface || throughput.isBlack()) continue;
             Rng rng = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::CameraPath);
             MediumId medium = ph.medium;
@@ -154,9 +155,14 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                 const Material& mat = m_scene.materials[mesh.material];
                 HitSide side = hitSide(hit, dir);
                 const SurfacePoint sp = surfaceAt(m_scene, hit, spread * pathLength);
-                if (emission && mat.isEmissive() && side.entering) L += throughput * sp.emission;
+                if (emission && mat.isEmissive() && side.entering) {
+                    L += throughput * sp.emission;
+                    Lsurface += throughput * sp.emission;
+                }
                 if (mat.type == MaterialType::Diffuse) {
-                    L += throughput * sp.baseColor * kInvPi * surfacePhotons.density(hit.p, side.nf);
+                    Rgb density = throughput * sp.baseColor * kInvPi * surfacePhotons.density(hit.p, side.nf);
+                    L += density;
+                    Lsurface += density;
                     break;
                 }
                 SpecularEvent ev;
@@ -165,9 +171,11 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                     // delta interactions only) with the BSDF evaluated, then continue by sampling it.
                     const GlossyBsdf bsdf = glossyBsdf(mat, sp, hit, dir);
                     const Vec3 wo = -dir;
-                    L += throughput * surfacePhotons.gather(hit.p, hit.ng, [&](const SurfacePhoton& p) {
-                             return bsdf.eval(wo, p.wi, TransportMode::Radiance);
-                         });
+                    const Rgb glossy = throughput * surfacePhotons.gather(hit.p, hit.ng, [&](const SurfacePhoton& p) {
+                        return bsdf.eval(wo, p.wi, TransportMode::Radiance);
+                    });
+                    L += glossy;
+                    Lsurface += glossy;
                     float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
                     if (!sampleGlossy(bsdf, mesh, hit, dir, medium, u0, u1, u2, TransportMode::Radiance, &ev)) break;
                 } else if (!sampleSpecular(mat, sp.baseColor, mesh, hit, dir, medium, rng.uniform(),
@@ -192,13 +200,19 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                     beams.query(seg.o, seg.d, seg.tMax, tls.hits);
                     tls.stats.beamQueries++;
                     tls.stats.beamHits += tls.hits.size();
-                    L += throughput * gatherBeams(m_scene, photons, tls.hits, medium, seg.o, seg.d, ff, nff);
+                    Rgb media = throughput * gatherBeams(m_scene, photons, tls.hits, medium, seg.o, seg.d, ff, nff);
+                    L += media;
+                    Lmedia += media;
                     throughput *=
                         med.homogeneous() ? med.transmittance(seg.tMax) : Rgb(storedTransmittance(ff, nff, seg.tMax));
                 }
                 if (!surface || throughput.isBlack()) break;
             }
             radiance.at(x, y) = L;
+            if (layers) {
+                layers->media.at(x, y) = Lmedia;
+                layers->surface.at(x, y) = Lsurface;
+            }
         }
     });
     if (stats) {

@@ -57,6 +57,13 @@ struct PrimaryPass {
     uint64_t rays = 0;      ///< surface rays traced
 };
 
+/// The secondary stage's radiance split by what it comes from (AOV layers); the two add up to
+/// the stage's radiance (up to float rounding).
+struct SecondaryLayers {
+    Image media;    ///< media seen through mirrors and glass (the secondary segments' beams)
+    Image surface;  ///< surface photons and emission
+};
+
 struct CameraPassResult {
     Image radiance;  ///< everything except the primary segments' medium radiance
     PrimarySegments primary;
@@ -71,8 +78,10 @@ public:
     /// The pass's radiance except the primary segments' media; `stats.rays` counts this stage's.
     /// With `photons` one batch of the pass, the photon estimates of that batch; `emission` adds
     /// what the paths see of emitters, which belongs to one batch only (the pass's first).
+    /// `layers`, when given, also receives that radiance split in two (it does not change it).
     Image traceSecondary(const PrimaryPass& primary, const PhotonMap& photons, const BeamBvh& beams,
-                         const SurfacePhotonGrid& surface, CameraPassStats* stats, bool emission = true) const;
+                         const SurfacePhotonGrid& surface, CameraPassStats* stats,
+                         SecondaryLayers* layers = nullptr, bool emission = true) const;
 
 private:
     struct HitPool {

@@ -77,7 +77,7 @@ PrimaryPass PassRenderer::tracePrimary(uint64_t pass) const {
 }
 
 Image PassRenderer::traceSecondary(const PrimaryPass& primary, const PhotonMap& photons, CameraPassStats* stats,
-                                   bool emission) const {
+                                   bool emission, SecondaryLayers* layers) const {
     return allocating("the beam BVH and surface-photon grid of " + std::to_string(photons.beams.size()) +
                           " beams and " + std::to_string(photons.surfacePhotons.size()) + " surface photons",
                       photons.pathCount * m_memory.bytesPerPath, [&] {
@@ -86,7 +86,7 @@ Image PassRenderer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                           static const std::vector<PhotonBeam> kNoBeams;
                           BeamBvh bvh(*m_rt->device(), m_anyNonDiffuse ? photons.beams : kNoBeams, m_bvhKind);
                           SurfacePhotonGrid grid(photons.surfacePhotons);
-                          return m_camera->traceSecondary(primary, photons, bvh, grid, stats, emission);
+                          return m_camera->traceSecondary(primary, photons, bvh, grid, stats, layers, emission);
                       });
 }
 
@@ -108,6 +108,25 @@ void PassRenderer::sceneChanged() {
 }
 
 Image PassRenderer::renderPass(uint64_t pass, PassStats* stats) const {
+    return renderBatches(pass, stats, nullptr);
+}
+
+PassLayers PassRenderer::renderPassLayers(uint64_t pass, PassStats* stats) const {
+    PassLayers layers;
+    layers.beauty = renderBatches(pass, stats, &layers);
+    return layers;
+}
+
+namespace {
+void addPart(Image& sum, Image&& part, bool first) {
+    if (first)
+        sum = std::move(part);
+    else
+        sum += part;
+}
+}  // namespace
+
+Image PassRenderer::renderBatches(uint64_t pass, PassStats* stats, PassLayers* layers) const {
     using Clock = std::chrono::steady_clock;
     PassStats local;
     auto t0 = Clock::now();
@@ -117,19 +136,23 @@ Image PassRenderer::renderPass(uint64_t pass, PassStats* stats) const {
     Image image;
     // One batch at a time: its beams and photons are freed before the next is traced.
     for (uint32_t batch = 0; batch < m_memory.batches; ++batch) {
+        const bool first = batch == 0;
         auto t1 = Clock::now();
         const PhotonMap photons = tracePhotons(pass, batch);
         auto t2 = Clock::now();
         CameraPassStats camera;
-        Image radiance = traceSecondary(primary, photons, &camera, batch == 0);
+        SecondaryLayers secondary;
+        Image radiance = traceSecondary(primary, photons, &camera, first, layers ? &secondary : nullptr);
         auto t3 = Clock::now();
         RasterStats raster;
         Image part = splatPrimary(primary.segments, photons, &raster);
+        if (layers) {
+            addPart(layers->mediaPrimary, Image(part), first);
+            addPart(layers->mediaSecondary, std::move(secondary.media), first);
+            addPart(layers->surface, std::move(secondary.surface), first);
+        }
         part += radiance;
-        if (batch == 0)
-            image = std::move(part);
-        else
-            image += part;
+        addPart(image, std::move(part), first);
         local.add(photons);
         local.add(camera);
         local.rasterTests += raster.pixelTests;

@@ -49,6 +49,15 @@ struct PassStats {
     void add(const CameraPassStats& camera);  ///< the counts of its camera stages
 };
 
+/// One pass split by where its light comes from (the AOV layers): beauty = mediaPrimary +
+/// mediaSecondary + surface up to float rounding; beauty itself has the same bits as renderPass's.
+struct PassLayers {
+    Image beauty;
+    Image mediaPrimary;    ///< media seen directly by the camera (the primary segments' beams)
+    Image mediaSecondary;  ///< media seen through mirrors and glass
+    Image surface;         ///< surface photons and emission
+};
+
 class PassRenderer {
 public:
     /// Throws Error when the settings' image does not fit their memory budget (MemoryPlan).
@@ -60,12 +69,15 @@ public:
     PrimaryPass tracePrimary(uint64_t pass) const;
     /// Builds the beam BVH and surface-photon grid of `photons` (a pass or one batch of it) and
     /// traces the secondary stage. `emission`: add what the paths see of emitters (the first
-    /// batch of a pass only; see CameraTracer::traceSecondary).
+    /// batch of a pass only; see CameraTracer::traceSecondary); `layers` also receives the
+    /// radiance split into media and surface parts.
     Image traceSecondary(const PrimaryPass& primary, const PhotonMap& photons, CameraPassStats* stats = nullptr,
-                         bool emission = true) const;
+                         bool emission = true, SecondaryLayers* layers = nullptr) const;
     CameraPassResult traceCamera(uint64_t pass, const PhotonMap& photons) const;
     Image splatPrimary(const PrimarySegments& primary, const PhotonMap& photons, RasterStats* stats = nullptr) const;
     Image renderPass(uint64_t pass, PassStats* stats = nullptr) const;
+    /// renderPass with the image's components kept apart as well.
+    PassLayers renderPassLayers(uint64_t pass, PassStats* stats = nullptr) const;
 
     /// Re-reads what the photon tracer derives from the lights (their sampling distribution and
     /// the media they sit in). Not thread-safe: call with no pass running.
@@ -79,6 +91,9 @@ public:
     const PhotonTracer& photonTracer() const { return *m_photons; }
 
 private:
+    /// renderPass, batch by batch; with `layers`, its components are summed there too.
+    Image renderBatches(uint64_t pass, PassStats* stats, PassLayers* layers) const;
+
     const Scene& m_scene;
     RenderSettings m_settings;
     RadiusSetup m_radii;

@@ -118,7 +118,9 @@ TEST(Cli, HelpListsEveryOptionWithDefaults) {
         return all;
     };
     const std::map<std::string, std::set<std::string>> expected = {
-        {"render", join({scene, output, ppb, {"--gpu"}})},
+        {"render", join({scene, output, ppb,
+                         {"--gpu", "--checkpoint", "--checkpoint-every", "--resume", "--quiet", "--progress-every", "--aov",
+                          "--reference", "--convergence"}})},
         {"reference", join({scene, output, {"--spp", "--max-depth", "--no-nee"}})},
         {"bench", join({scene, {"--passes", "--photons", "--rays", "--queries", "--free-flights", "--no-hybrid",
                                 "--radius", "--radius-offset", "--simd"}})},
