@@ -128,4 +128,85 @@ PassRate measurePasses(const PassRenderer& renderer, int passes) {
     return r;
 }
 
+void measurePassesAlternating(const PassRenderer& a, const PassRenderer& b, int passes, PassRate* rateA,
+                              PassRate* rateB) {
+    a.renderPass(0);
+    b.renderPass(0);
+    double sa = 0, sb = 0;
+    for (int i = 1; i <= passes; ++i) {
+        auto t0 = Clock::now();
+        a.renderPass(uint64_t(i), &rateA->totals);
+        sa += since(t0);
+        auto t1 = Clock::now();
+        b.renderPass(uint64_t(i), &rateB->totals);
+        sb += since(t1);
+    }
+    rateA->passes = rateB->passes = passes;
+    rateA->passesPerSecond = passes / sa;
+    rateB->passesPerSecond = passes / sb;
+}
+
+SplatRate measureSplatKernels(const PassRenderer& renderer, int passes, int rounds) {
+    struct Input {
+        PhotonMap photons;
+        PrimarySegments primary;
+    };
+    std::vector<Input> inputs;
+    for (int i = 1; i <= passes; ++i) {
+        Input in;
+        in.photons = renderer.tracePhotons(uint64_t(i));
+        in.primary = renderer.tracePrimary(uint64_t(i)).segments;
+        inputs.push_back(std::move(in));
+    }
+    const BeamRasterizer scalar(renderer.scene(), SplatKernel::Scalar), simd(renderer.scene(), SplatKernel::Simd);
+    SplatRate r;
+    auto round = [&](const BeamRasterizer& raster) {
+        uint64_t evals = 0;
+        auto t0 = Clock::now();
+        for (const Input& in : inputs) {
+            RasterStats stats;
+            raster.rasterize(in.primary, in.photons, &stats);
+            evals += stats.pixelTests;
+        }
+        r.evalsPerRound = evals;
+        return double(evals) / since(t0);
+    };
+    for (int k = 0; k < rounds; ++k) {
+        r.scalarEvalsPerSecond = std::max(r.scalarEvalsPerSecond, round(scalar));
+        r.simdEvalsPerSecond = std::max(r.simdEvalsPerSecond, round(simd));
+    }
+    return r;
+}
+
+double measurePrimaryRayReplay(const PassRenderer& renderer, uint64_t pass, int rounds) {
+    const RenderSettings& s = renderer.settings();
+    const Camera& camera = renderer.scene().camera;
+    const int w = s.width, h = s.height;
+    std::vector<Ray> rays(size_t(w) * h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const uint64_t pixel = uint64_t(y) * w + x;
+            Rng jitter = Rng::forKey(s.seed, pass, pixel, StreamPurpose::PixelJitter);
+            float jx = jitter.uniform(), jy = jitter.uniform();
+            Vec2 lens{jitter.uniform(), jitter.uniform()};
+            rays[pixel] = camera.generateRay(float(x) + jx, float(y) + jy, w, h, lens);
+        }
+    double best = 0;
+    for (int k = 0; k < rounds; ++k) {
+        auto t0 = Clock::now();
+        tbb::parallel_for(0, h, [&](int y) {
+            RTCIntersectContext ctx;
+            rtcInitIntersectContext(&ctx);
+            for (int x = 0; x < w; ++x) {
+                const Ray& ray = rays[size_t(y) * w + x];
+                RTCRayHit rh;
+                initRayHit(rh, ray.o, ray.d);
+                rtcIntersect1(renderer.rayTracer().rtcScene(), &ctx, &rh);
+            }
+        });
+        best = std::max(best, double(rays.size()) / since(t0));
+    }
+    return best;
+}
+
 }  // namespace tyndall::app

@@ -42,4 +42,21 @@ struct PassRate {
 };
 PassRate measurePasses(const PassRenderer& renderer, int passes);
 
+/// Passes 1..passes of two renderers of the same scene (e.g. --simd on and off), alternating pass
+/// by pass after one warm-up pass each, so the machine's load falls on both alike.
+void measurePassesAlternating(const PassRenderer& a, const PassRenderer& b, int passes, PassRate* rateA,
+                              PassRate* rateB);
+
+struct SplatRate {
+    double scalarEvalsPerSecond = 0, simdEvalsPerSecond = 0;
+    uint64_t evalsPerRound = 0;
+};
+/// The primary splat with the scalar and the SIMD kernel on the same beams and pixels (passes
+/// 1..passes of `renderer`, traced once), rounds alternating the two; best round of each.
+SplatRate measureSplatKernels(const PassRenderer& renderer, int passes, int rounds);
+
+/// Embree alone on exactly the primary camera rays of pass `pass` (same jitter, rtcIntersect1 in
+/// parallel rows as the camera stage casts them), best of `rounds`: rays per second.
+double measurePrimaryRayReplay(const PassRenderer& renderer, uint64_t pass, int rounds);
+
 }  // namespace tyndall::app

@@ -93,11 +93,24 @@ void addPpbOptions(CLI::App* cmd, CommonOptions& o) {
                     "radius ends the budget near a pixel footprint; see docs/algorithm.md)")
         ->check(nonNegativeInteger());
     cmd->add_option("--planned-paths", o.settings.plannedPaths,
-                    "Photon paths the automatic radii plan for (default: passes x photons; with --time, measured "
-                    "over a short warm-up)")
+                    "Photon paths the automatic radii plan for (default: passes x photons; with --time, the "
+                    "open-ended horizon of 100 paths per pixel)")
         ->check(nonNegativeInteger());
     cmd->add_option("--free-flights", o.settings.freeFlightSamples,
                     "Stored free-flight distances per beam and pixel (heterogeneous media)")
+        ->capture_default_str();
+    cmd->add_option("--memory", o.settings.memoryMiB,
+                    "Working-memory budget in MiB: the image buffers (~400 bytes per pixel) plus the photon "
+                    "batches a pass is traced in, whatever --photons is; peak use is about this plus the "
+                    "scene and ~100 MiB (docs/performance.md)")
+        ->check(nonNegativeInteger())
+        ->capture_default_str();
+    addSimdOption(cmd, o);
+}
+
+void addSimdOption(CLI::App* cmd, CommonOptions& o) {
+    cmd->add_option("--simd", o.settings.simd,
+                    "on|off: the CPU beam splat's SIMD kernel; off runs the scalar estimator (its definition)")
         ->capture_default_str();
 }
 
@@ -125,7 +138,9 @@ nlohmann::json explicitSettings(const CommonOptions& o) {
                                                                       {"--free-flights", "free_flights"},
                                                                       {"--seed", "seed"},
                                                                       {"--threads", "threads"},
-                                                                      {"--gpu", "gpu"}};
+                                                                      {"--gpu", "gpu"},
+                                                                      {"--memory", "memory"},
+                                                                      {"--simd", "simd"}};
     nlohmann::json all = o.settings.toJson(), given = nlohmann::json::object();
     auto isGiven = [&](const char* name) {
         const CLI::Option* opt = o.command ? o.command->get_option_no_throw(name) : nullptr;

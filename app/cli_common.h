@@ -34,6 +34,9 @@ void addSceneAndOutputOptions(CLI::App* cmd, CommonOptions& o, const std::string
 /// Adds the PPB options: --passes --time --photons --alpha --radius --surface-radius.
 void addPpbOptions(CLI::App* cmd, CommonOptions& o);
 
+/// Adds --simd on|off (RenderSettings::simd); part of addPpbOptions.
+void addSimdOption(CLI::App* cmd, CommonOptions& o);
+
 /// Parses --size into the settings and validates them; throws Error naming the bad option.
 void finishOptions(CommonOptions& o);
 /// The scene named on the command line (or the built-in default), finalized and validated, with

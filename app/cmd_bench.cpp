@@ -9,6 +9,7 @@
 #include "app/bench_media.h"
 #include "app/bench_quality.h"
 #include "app/cli_common.h"
+#include "cpu/beam_splat_simd.h"
 #include "loading/default_smoke_scene.h"
 
 namespace tyndall::app {
@@ -56,6 +57,14 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--free-flights", o->freeFlights, "Free-flight distances sampled per majorant kind")
         ->check(positiveInteger())
         ->capture_default_str();
+    cmd->add_option("--radius", o->common.settings.radius,
+                    "Beam radius of the first photon path, scene units (0 = the default schedule's)")
+        ->capture_default_str();
+    cmd->add_option("--radius-offset", o->common.settings.radiusOffset,
+                    "Photon paths the radius schedule treats as already traced")
+        ->check(nonNegativeInteger())
+        ->capture_default_str();
+    addSimdOption(cmd, o->common);
     cmd->add_flag("--no-hybrid", o->noHybrid, "Skip the hybrid (GL splat) figures");
     cmd->add_flag("--quality", o->quality,
                   "Instead of throughput: image error against cached path-traced references, legacy against "
@@ -91,6 +100,9 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
         unsigned hw = s.threads > 0 ? unsigned(s.threads) : std::thread::hardware_concurrency();
         std::printf("tyndall bench: scene '%s', %dx%d, %u photon paths/pass, %u threads\n", scene.name.c_str(), s.width,
                     s.height, s.photonsPerPass, hw);
+        std::printf("  first beam radius %.6g (%.3g%% of the scene diagonal), radius offset %llu\n",
+                    renderer.radii().beamRadius, 100.0 * renderer.radii().beamRadius / length(scene.bounds.diagonal()),
+                    (unsigned long long)s.radiusOffset);
 
         double raw = measureRawRayRate(renderer.rayTracer(), o->rays);
         std::printf("baseline\n");
@@ -141,6 +153,25 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
         printRate("  primary splat stage", pr.totals.splatSeconds / pr.passes * 1e3, "ms/pass",
                   ratio(pr.totals.splatSeconds / pr.passes, perPass, "of a pass"));
         printRate("beams per pass", double(pr.totals.beams) / pr.passes, "beams");
+        printRate("Embree alone on the primary rays", measurePrimaryRayReplay(renderer, 1, 3) / 1e6, "M rays/s",
+                  "(baseline for camera paths/s: pass 1's jittered rays, rtcIntersect1)");
+
+        // The splat kernels and whole passes with --simd on and off, in the same run.
+        std::printf("SIMD beam splat (%s) vs the scalar estimator, same beams and pixels\n", splatSimdTarget());
+        SplatRate sr = measureSplatKernels(renderer, std::min(o->passes, 3), 3);
+        printRate("scalar splat", sr.scalarEvalsPerSecond / 1e6, "M evals/s");
+        printRate("SIMD splat", sr.simdEvalsPerSecond / 1e6, "M evals/s",
+                  ratio(sr.simdEvalsPerSecond, sr.scalarEvalsPerSecond, "scalar") + " (target >= 4x)");
+        RenderSettings scalarSettings = s, simdSettings = s;
+        scalarSettings.simd = "off";
+        simdSettings.simd = "on";
+        PassRenderer scalarRenderer(scene, scalarSettings), simdRenderer(scene, simdSettings);
+        PassRate scalarPasses, simdPasses;
+        measurePassesAlternating(scalarRenderer, simdRenderer, o->passes, &scalarPasses, &simdPasses);
+        printRate("passes, --simd off", scalarPasses.passesPerSecond, "passes/s", "(alternating pass by pass)");
+        printRate("passes, --simd on", simdPasses.passesPerSecond, "passes/s",
+                  ratio(simdPasses.passesPerSecond, scalarPasses.passesPerSecond, "--simd off"));
+        printRate("  splat stage, off / on", scalarPasses.totals.splatSeconds / simdPasses.totals.splatSeconds, "x");
         if (!o->noHybrid) printHybridBench(measureHybrid(renderer, o->passes));
 
         // Heterogeneous media: the built-in smoke scene against this (fog) scene, or a scene's own

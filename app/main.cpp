@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <exception>
+#include <new>
 
 #include "app/cmd_bench.h"
 #include "app/cmd_compare.h"
@@ -33,6 +34,12 @@ int main(int argc, char** argv) {
         return 2;
     } catch (const tyndall::Error& e) {
         std::fprintf(stderr, "tyndall: %s\n", e.what());
+        return 1;
+    } catch (const std::bad_alloc& e) {
+        std::fprintf(stderr,
+                     "tyndall: out of memory (%s) outside the render loop's tracked allocations (scene loading, "
+                     "image output): lower --size or the scene's size, or raise the memory limit\n",
+                     e.what());
         return 1;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "tyndall: unexpected error: %s\n", e.what());

@@ -16,6 +16,7 @@
 #include "core/radius_schedule.h"
 #include "core/rng.h"
 #include "core/sampling.h"
+#include "core/texture.h"
 #include "cpu/free_flight.h"
 
 namespace tyndall {
@@ -142,6 +143,39 @@ void BM_FreeFlightGrid(benchmark::State& state) {
     state.SetItemsProcessed(int64_t(state.iterations()));
 }
 BENCHMARK(BM_FreeFlightGrid);
+
+// Texture lookups through the TextureSystem (core/texture.h): a 1024x1024 RGBA texture, random uv,
+// footprint 0 (finest level, bilinear) and 1/256 (a few texels: trilinear); items/s = lookups/s.
+// Baseline in the same run: Arg 0 reads the same values from a std::vector (no filtering).
+void BM_TextureLookup(benchmark::State& state) {
+    static TextureStore store;
+    static int id = [] {
+        std::vector<float> px(1024 * 1024 * 4);
+        Rng rng = Rng::forKey(1, 0, 0, StreamPurpose::Test);
+        for (float& v : px) v = rng.uniform();
+        return store.addPixels(1024, 1024, 4, px, TextureEncoding::Srgb, TextureWrap::Repeat, TextureWrap::Repeat,
+                               "bench");
+    }();
+    static std::vector<float> plain(1024 * 1024 * 4, 0.5f);
+    Rng rng = Rng::forKey(2, 0, 0, StreamPurpose::Test);
+    float width = state.range(0) == 2 ? 1.0f / 256 : 0.0f;
+    float sum = 0;
+    for (auto _ : state) {
+        Vec2 uv{rng.uniform(), rng.uniform()};
+        if (state.range(0) == 0) {
+            size_t at = (size_t(uv.y * 1023) * 1024 + size_t(uv.x * 1023)) * 4;
+            sum += plain[at];
+        } else {
+            sum += store.lookup(id, uv, width)[0];
+        }
+    }
+    benchmark::DoNotOptimize(sum);
+    state.SetItemsProcessed(state.iterations());
+    TextureStats st = store.stats();
+    state.counters["cacheMB"] = double(st.cacheBytes) / (1024.0 * 1024.0);
+    state.counters["fileMB"] = double(st.fileBytes) / (1024.0 * 1024.0);
+}
+BENCHMARK(BM_TextureLookup)->Arg(0)->Arg(1)->Arg(2);  // 0: plain array baseline, 1: width 0, 2: width 1/256
 
 }  // namespace
 }  // namespace tyndall

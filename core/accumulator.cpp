@@ -1,5 +1,6 @@
 #include "core/accumulator.h"
 
+#include <cmath>
 #include <cstring>
 #include <fstream>
 
@@ -17,9 +18,14 @@ Accumulator::Accumulator(int width, int height)
 void Accumulator::addPass(const Image& pass) {
     TYNDALL_CHECK(pass.width == m_width && pass.height == m_height, "pass image size differs from the accumulator");
     for (size_t i = 0; i < pass.pixels.size(); ++i) {
-        m_sum[3 * i + 0] += pass.pixels[i].r;
-        m_sum[3 * i + 1] += pass.pixels[i].g;
-        m_sum[3 * i + 2] += pass.pixels[i].b;
+        const Rgb& p = pass.pixels[i];
+        if (!std::isfinite(p.r) || !std::isfinite(p.g) || !std::isfinite(p.b)) {
+            ++m_rejected;
+            continue;
+        }
+        m_sum[3 * i + 0] += p.r;
+        m_sum[3 * i + 1] += p.g;
+        m_sum[3 * i + 2] += p.b;
     }
     ++m_passes;
 }
@@ -28,11 +34,26 @@ void Accumulator::merge(const Accumulator& other) {
     TYNDALL_CHECK(other.m_width == m_width && other.m_height == m_height, "cannot merge accumulators of different sizes");
     for (size_t i = 0; i < m_sum.size(); ++i) m_sum[i] += other.m_sum[i];
     m_passes += other.m_passes;
+    m_rejected += other.m_rejected;
+}
+
+Accumulator Accumulator::fromSums(int width, int height, uint64_t passes, uint64_t rejected, std::vector<double> sums) {
+    if (width <= 0 || height <= 0 || sums.size() != size_t(width) * size_t(height) * 3)
+        throw Error("accumulator state of " + std::to_string(sums.size()) + " values does not fit a " +
+                    std::to_string(width) + "x" + std::to_string(height) + " image");
+    Accumulator acc;
+    acc.m_width = width;
+    acc.m_height = height;
+    acc.m_passes = passes;
+    acc.m_rejected = rejected;
+    acc.m_sum = std::move(sums);
+    return acc;
 }
 
 void Accumulator::reset() {
     std::fill(m_sum.begin(), m_sum.end(), 0.0);
     m_passes = 0;
+    m_rejected = 0;
 }
 
 Image Accumulator::mean() const {

@@ -70,6 +70,63 @@ void writeImage(const std::string& path, const Image& image, const ImageMetadata
     if (!ok || !out->close()) throw Error("failed writing '" + path + "': " + out->geterror());
 }
 
+void writeImageLayers(const std::string& path, const Image& beauty, const ImageLayers& layers,
+                      const ImageMetadata& metadata, float exposure) {
+    checkImageExtension(path);
+    if (layers.empty() || extensionOf(path) != ".exr") return writeImage(path, beauty, metadata, exposure);
+    const int nch = 3 * int(1 + layers.size());
+    OIIO::ImageSpec spec(beauty.width, beauty.height, nch, OIIO::TypeDesc::FLOAT);
+    spec.channelnames = {"R", "G", "B"};
+    for (const auto& [name, image] : layers) {
+        TYNDALL_CHECK(image.width == beauty.width && image.height == beauty.height, "layer '" + name + "' size differs");
+        for (const char* c : {".R", ".G", ".B"}) spec.channelnames.push_back(name + c);
+    }
+    for (const auto& [k, v] : metadata) spec.attribute(k, v);
+    spec.attribute("compression", "zip");
+    std::vector<float> data(size_t(beauty.width) * beauty.height * nch);
+    for (size_t i = 0; i < beauty.pixels.size(); ++i) {
+        float* px = &data[i * nch];
+        for (int c = 0; c < 3; ++c) px[c] = beauty.pixels[i][c];
+        for (size_t l = 0; l < layers.size(); ++l)
+            for (int c = 0; c < 3; ++c) px[3 * (l + 1) + c] = layers[l].second.pixels[i][c];
+    }
+    std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(path);
+    if (!out) throw Error("output '" + path + "': " + OIIO::geterror());
+    if (!out->open(path, spec)) throw Error("cannot write '" + path + "': " + out->geterror());
+    if (!out->write_image(OIIO::TypeDesc::FLOAT, data.data()) || !out->close())
+        throw Error("failed writing '" + path + "': " + out->geterror());
+}
+
+std::vector<std::string> readImageChannels(const std::string& path) {
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) throw Error("cannot read image '" + path + "': " + OIIO::geterror());
+    return in->spec().channelnames;
+}
+
+Image readImageLayer(const std::string& path, const std::string& layer) {
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) throw Error("cannot read image '" + path + "': " + OIIO::geterror());
+    const OIIO::ImageSpec& spec = in->spec();
+    const std::string prefix = layer.empty() ? "" : layer + ".";
+    int idx[3];
+    std::string have;
+    for (int c = 0; c < 3; ++c) {
+        idx[c] = spec.channelindex(prefix + "RGB"[c]);
+        if (idx[c] < 0) {
+            for (const auto& n : spec.channelnames) have += (have.empty() ? "" : ", ") + n;
+            throw Error("image '" + path + "' has no channel '" + prefix + "RGB"[c] + "' (channels: " + have + ")");
+        }
+    }
+    std::vector<float> data(size_t(spec.width) * spec.height * spec.nchannels);
+    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, data.data()))
+        throw Error("cannot read image '" + path + "': " + in->geterror());
+    Image img(spec.width, spec.height);
+    for (size_t i = 0; i < img.pixels.size(); ++i)
+        img.pixels[i] = Rgb(data[i * spec.nchannels + idx[0]], data[i * spec.nchannels + idx[1]],
+                            data[i * spec.nchannels + idx[2]]);
+    return img;
+}
+
 Image readImage(const std::string& path) {
     auto in = OIIO::ImageInput::open(path);
     if (!in) throw Error("cannot read image '" + path + "': " + OIIO::geterror());

@@ -14,6 +14,17 @@ using ImageMetadata = std::vector<std::pair<std::string, std::string>>;
 
 /// Throws Error naming the file when it cannot be written (bad directory, unknown extension).
 void writeImage(const std::string& path, const Image& image, const ImageMetadata& metadata = {}, float exposure = 1.0f);
+/// Like writeImage, plus named layers: an EXR becomes multi-layer, the beauty image as R, G, B and
+/// each layer as "<name>.R", "<name>.G", "<name>.B" (all the same size as `beauty`); other formats
+/// hold the beauty image only.
+using ImageLayers = std::vector<std::pair<std::string, Image>>;
+void writeImageLayers(const std::string& path, const Image& beauty, const ImageLayers& layers,
+                      const ImageMetadata& metadata = {}, float exposure = 1.0f);
+/// The channels "<layer>.R/G/B" of an image file ("" = R, G, B) as an image; Error naming the
+/// file and the channels it does have when they are missing.
+Image readImageLayer(const std::string& path, const std::string& layer);
+/// The channel names of an image file, in order.
+std::vector<std::string> readImageChannels(const std::string& path);
 /// Reads an image as linear float RGB (PNG/JPG are sRGB-decoded). Throws Error naming the file.
 Image readImage(const std::string& path);
 /// The header attribute `name` of an image file (e.g. "tyndall:settings" of an EXR written with

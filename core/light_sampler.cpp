@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/error.h"
+#include "core/material_eval.h"
 #include "core/sampling.h"
 
 namespace tyndall {
@@ -98,7 +99,7 @@ DirectLightSample LightSampler::sampleDirect(const Vec3& x, Rng& rng) const {
     s.wi = toLight / s.distance;
     float cosLight = -dot(s.wi, s.normal);
     if (!(cosLight > 0)) return DirectLightSample{};  // x sees the back of the triangle
-    s.incident = e.radiance;
+    s.incident = emittedRadiance(e, b);
     s.pdf = pick * d2 / (cosLight * e.area);
     return s;
 }
@@ -157,10 +158,16 @@ EmittedPhoton LightSampler::sample(Rng& rng) const {
         ph.ray.d = Frame(n).toWorld(sampleCosineHemisphere(rng.uniform(), rng.uniform()));
         ph.emitterMesh = e.mesh;
         // Le cos / (cos/pi * 1/area) = Le * pi * area.
-        power = e.radiance * (kPi * e.area);
+        power = emittedRadiance(e, b) * (kPi * e.area);
     }
     ph.power = power / float(pick);
     return ph;
+}
+
+Rgb LightSampler::emittedRadiance(const EmissiveTriangle& e, Vec2 b) const {
+    const TriangleMesh& mesh = m_scene.meshes[size_t(e.mesh)];
+    if (!m_scene.materials[size_t(mesh.material)].emissiveTexture.present()) return e.radiance;
+    return evalSurface(m_scene, mesh, e.triangle, b.x, b.y, 0.0f).emission;
 }
 
 }  // namespace tyndall

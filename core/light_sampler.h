@@ -72,6 +72,10 @@ public:
     float directPdf(size_t source, const Vec3& x, const Vec3& y) const;
 
 private:
+    /// Le at barycentrics b of an emitter: the material's emission times its emissiveTexture there
+    /// (the source pmf follows the untextured power; the texture weights the sample, unbiased).
+    Rgb emittedRadiance(const EmissiveTriangle& e, Vec2 b) const;
+
     const Scene& m_scene;
     std::vector<Rgb> m_power;
     std::vector<double> m_cdf;  // over luminance of m_power

@@ -1,24 +1,52 @@
 #pragma once
 // Surface materials Tyndall renders. Specular ones (mirror, dielectric) continue camera and photon
-// paths deterministically or by a Fresnel choice; diffuse ones store surface photons and end
+// paths deterministically or by a Fresnel choice when smooth, by sampling a GGX lobe when rough
+// (isGlossy(): docs/algorithm.md, "Glossy vertices"); diffuse ones store surface photons and end
 // camera paths with a photon density estimate; Interface is an invisible boundary that only
 // switches the medium (index-matched, e.g. the hull of a fog volume).
 #include <string>
 
 #include "core/math.h"
+#include "core/texture.h"
 
 namespace tyndall {
 
 enum class MaterialType { Diffuse, Mirror, Dielectric, Interface };
+
+/// glTF alphaMode: Mask cuts out where alpha < alphaCutoff; Blend lets a ray through with
+/// probability 1 - alpha (stochastic transparency). Both act in Embree's intersection filter
+/// (cpu/embree_scene.cpp), so camera rays, photons and shadow rays all see the same cut-outs.
+enum class AlphaMode { Opaque, Mask, Blend };
 
 struct Material {
     std::string name;
     MaterialType type = MaterialType::Diffuse;
     Rgb albedo{0.8f};    ///< diffuse reflectance; mirror reflectance; dielectric transmission tint
     float ior = 1.5f;    ///< dielectric: index inside the mesh relative to outside
+    float alpha = 1.0f;      ///< glTF baseColorFactor alpha (coverage), x baseColorTexture alpha
+    AlphaMode alphaMode = AlphaMode::Opaque;
+    float alphaCutoff = 0.5f;  ///< Mask only
+    float metallic = 0.0f;   ///< glTF metallicFactor, [0, 1] (informational: the type decides)
+    /// Mirror and Dielectric: glTF roughnessFactor (perceptual; GGX alpha = roughness^2), [0, 1].
+    /// Up to kSmoothRoughness the surface is an exact delta lobe; above it a GGX lobe (isGlossy).
+    float roughness = 0.0f;
     Rgb emission{0.0f};  ///< emitted radiance (W m^-2 sr^-1) from the front face; makes an area light
 
+    // Textures (glTF's slots; core/material_eval.h reads them). Each multiplies its factor above.
+    TextureRef baseColorTexture;          ///< sRGB RGB x albedo, alpha x baseColor alpha
+    TextureRef emissiveTexture;           ///< sRGB RGB x emission
+    TextureRef metallicRoughnessTexture;  ///< linear: G x roughness, B x metallic (glTF's packing)
+
+    bool isTextured() const {
+        return baseColorTexture.present() || emissiveTexture.present() || metallicRoughnessTexture.present();
+    }
+
+    static constexpr float kSmoothRoughness = 0.05f;
+
+    /// Mirror or dielectric, smooth (delta) or rough (glossy).
     bool isSpecular() const { return type == MaterialType::Mirror || type == MaterialType::Dielectric; }
+    /// A rough mirror (GGX conductor) or rough dielectric (GGX transmission): sampled, not delta.
+    bool isGlossy() const { return isSpecular() && roughness > kSmoothRoughness; }
     /// Surfaces a path can cross, switching medium.
     bool isTransmissive() const { return type == MaterialType::Dielectric || type == MaterialType::Interface; }
     bool isEmissive() const { return !emission.isBlack(); }

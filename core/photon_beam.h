@@ -36,8 +36,10 @@ struct SurfacePhoton {
 /// Everything photon tracing produced for one pass.
 struct PhotonMap {
     uint64_t pass = 0;
-    uint64_t firstPath = 0;   ///< global index of the pass's first photon path (radius schedule)
-    uint32_t pathCount = 0;   ///< photon paths emitted (the divisor in the beam power)
+    uint64_t firstPath = 0;   ///< global index of the first photon path held (radius schedule)
+    /// Photon paths held: the whole pass (the divisor in the beam power), or one batch of it
+    /// (PhotonTracer::traceBatch: the divisor stays the pass's path count).
+    uint32_t pathCount = 0;
     uint64_t raysTraced = 0;  ///< surface rays cast while tracing (for throughput figures)
     std::vector<PhotonBeam> beams;
     /// Heterogeneous media: `freeFlightsPerBeam` distances per beam (beam i uses

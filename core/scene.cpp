@@ -77,6 +77,12 @@ void Scene::validate() const {
         if (!finiteNonNegative(m.albedo)) fail(at + "albedo must be finite and >= 0");
         if (!finiteNonNegative(m.emission)) fail(at + "emission must be finite and >= 0");
         if (!(m.ior > 0) || !std::isfinite(m.ior)) fail(at + "ior must be a finite number > 0");
+        for (const TextureRef* t : {&m.baseColorTexture, &m.emissiveTexture, &m.metallicRoughnessTexture}) {
+            if (!t->present()) continue;
+            if (!textures || size_t(t->texture) >= textures->size())
+                fail(at + "texture index " + std::to_string(t->texture) + " out of range");
+            if (t->texcoord != 0 && t->texcoord != 1) fail(at + "texCoord must be 0 or 1");
+        }
     }
     for (size_t i = 0; i < media.size(); ++i) {
         const Medium& m = media[i];
@@ -97,6 +103,10 @@ void Scene::validate() const {
         if (m.material < 0 || m.material >= int(materials.size()))
             fail(at + "material index " + std::to_string(m.material) + " out of range");
         if (m.indices.size() % 3 != 0) fail(at + "index count is not a multiple of 3");
+        for (int set = 0; set < 2; ++set)
+            if (!m.texcoords[set].empty() && m.texcoords[set].size() != m.positions.size())
+                fail(at + "has " + std::to_string(m.texcoords[set].size()) + " TEXCOORD_" + std::to_string(set) +
+                     " values for " + std::to_string(m.positions.size()) + " positions");
         if (!m.normals.empty() && m.normals.size() != m.positions.size())
             fail(at + "has " + std::to_string(m.normals.size()) + " normals for " +
                  std::to_string(m.positions.size()) + " positions");

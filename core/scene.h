@@ -11,6 +11,7 @@
 // (checked by validate()). Defaults: exterior = the scene's global medium; interior = vacuum for
 // transmissive materials (a glass ball in fog holds no fog) and = exterior for the others (which
 // never let a path through, so their interior is never entered).
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,7 @@
 #include "core/light.h"
 #include "core/material.h"
 #include "core/medium.h"
+#include "core/texture.h"
 
 namespace tyndall {
 
@@ -28,6 +30,7 @@ struct TriangleMesh {
     std::string name;
     std::vector<Vec3> positions;     ///< world space
     std::vector<Vec3> normals;       ///< optional per-vertex shading normals (world, unit); empty = flat
+    std::vector<Vec2> texcoords[2];  ///< optional per-vertex TEXCOORD_0 / TEXCOORD_1 (glTF uv); empty = none
     std::vector<uint32_t> indices;   ///< 3 per triangle, counter-clockwise seen from the exterior
     int material = 0;                ///< index into Scene::materials
     MediumId interiorMedium = kInheritMedium;
@@ -60,6 +63,9 @@ struct Scene {
     std::vector<Light> lights;
     Camera camera;
     MediumId globalMedium = kVacuum;  ///< fills space not inside any medium-bounding mesh
+    /// Images the materials' TextureRefs index; null when no material is textured. Shared, so a
+    /// copied Scene reads the same TextureSystem.
+    std::shared_ptr<TextureStore> textures;
 
     // Derived by finalize().
     Bounds3 bounds;

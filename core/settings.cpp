@@ -20,7 +20,10 @@ void RenderSettings::validate() const {
     if (threads < 0) fail("--threads must be >= 0 (0 = all cores)");
     if (maxPhotonBounces <= 0 || maxCameraBounces <= 0) fail("bounce limits must be positive");
     if (freeFlightSamples < 1 || freeFlightSamples > 64) fail("--free-flights must be in 1..64");
+    if (memoryMiB < 64 || memoryMiB > (uint64_t(1) << 30))
+        fail("--memory must be in 64..2^30 MiB (got " + std::to_string(memoryMiB) + ")");
     if (gpu != "auto" && gpu != "on" && gpu != "off") fail("--gpu must be auto, on or off (got '" + gpu + "')");
+    if (simd != "on" && simd != "off") fail("--simd must be on or off (got '" + simd + "')");
 }
 
 nlohmann::json RenderSettings::toJson() const {
@@ -39,7 +42,9 @@ nlohmann::json RenderSettings::toJson() const {
             {"max_photon_bounces", maxPhotonBounces},
             {"max_camera_bounces", maxCameraBounces},
             {"free_flights", freeFlightSamples},
-            {"gpu", gpu}};
+            {"gpu", gpu},
+            {"memory", memoryMiB},
+            {"simd", simd}};
 }
 
 namespace {
@@ -72,7 +77,7 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
     if (!j.is_object()) throw Error(where + ": expected an object of render settings");
     static const char* kKeys[] = {"width", "height", "passes", "time", "photons", "alpha", "radius",
                                   "surface_radius", "radius_offset", "planned_paths", "seed", "threads",
-                                  "max_photon_bounces", "max_camera_bounces", "free_flights", "gpu"};
+                                  "max_photon_bounces", "max_camera_bounces", "free_flights", "gpu", "memory", "simd"};
     for (auto it = j.begin(); it != j.end(); ++it) {
         bool known = false;
         for (const char* k : kKeys) known |= it.key() == k;
@@ -99,6 +104,8 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
     read(j, "max_camera_bounces", s.maxCameraBounces, where);
     read(j, "free_flights", s.freeFlightSamples, where);
     read(j, "gpu", s.gpu, where);
+    read(j, "memory", s.memoryMiB, where);
+    read(j, "simd", s.simd, where);
     return s;
 }
 

@@ -35,6 +35,12 @@ struct RenderSettings {
     int maxCameraBounces = 16;       ///< specular camera-path vertices before termination
     int freeFlightSamples = 4;       ///< stored free-flight distances per beam/ray (heterogeneous)
     std::string gpu = "auto";        ///< auto | on | off
+    /// Working-memory budget of the pass loop, MiB: image buffers plus the photon batches a pass
+    /// is traced in (cpu/memory_plan.h). Sets the batch size, never the image.
+    uint64_t memoryMiB = 2048;
+    /// on | off: the CPU beam rasterizer's SIMD kernel (off = the scalar definition; the two agree
+    /// to ~1e-7 relative per pixel, docs/performance.md)
+    std::string simd = "on";
 
     /// Throws Error naming the option when a value is out of range.
     void validate() const;

@@ -1,5 +1,6 @@
 #include "cpu/beam_rasterizer.h"
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <atomic>
@@ -7,6 +8,7 @@
 
 #include "core/beam_estimator.h"
 #include "core/transmittance.h"
+#include "cpu/beam_splat_simd.h"
 
 namespace tyndall {
 
@@ -214,6 +216,52 @@ private:
     bool m_grey = false;
 };
 
+/// The SIMD kernels' constants for beam `b`, hoisted as BeamPixelEvaluator hoists them.
+SplatBeam splatBeam(const Scene& scene, const PhotonMap& photons, uint32_t b) {
+    const PhotonBeam& beam = photons.beams[b];
+    const Medium& medium = scene.media[beam.medium];
+    SplatBeam sb;
+    sb.origin = beam.origin;
+    sb.dir = beam.dir;
+    sb.tMax = beam.tMax;
+    sb.radius = beam.radius;
+    sb.r2 = beam.radius * beam.radius;
+    sb.kernelScale = (15.0f / 16.0f) / beam.radius;
+    sb.g = medium.g;
+    sb.hgA = kInv4Pi * (1.0f - medium.g * medium.g);
+    sb.hgB = 1.0f + medium.g * medium.g;
+    sb.hgC = 2.0f * medium.g;
+    sb.sigmaT = medium.sigmaT();
+    sb.grey = sb.sigmaT.r == sb.sigmaT.g && sb.sigmaT.r == sb.sigmaT.b;
+    sb.scaledPower = beam.power * medium.sigmaS;
+    sb.medium = beam.medium;
+    if (!medium.homogeneous()) {
+        sb.freeFlightsPerBeam = photons.freeFlightsPerBeam;
+        sb.freeFlights = &photons.freeFlights[size_t(b) * photons.freeFlightsPerBeam];
+    }
+    return sb;
+}
+
+struct SimdScratch {
+    SplatBlock block;
+    SplatHits hits;
+};
+
+/// Copies rows [y0, y1) of the primary rays into `block` (structure of arrays, row-major).
+void fillBlock(const PrimarySegments& primary, int y0, int y1, SplatBlock* block) {
+    const size_t first = size_t(y0) * primary.width, count = size_t(y1 - y0) * primary.width;
+    const int nff = primary.freeFlightsPerRay;
+    block->reset(count, nff);
+    for (size_t i = 0; i < count; ++i) {
+        const PrimaryRay& r = primary.rays[first + i];
+        block->ox[i] = r.origin.x, block->oy[i] = r.origin.y, block->oz[i] = r.origin.z;
+        block->dx[i] = r.dir.x, block->dy[i] = r.dir.y, block->dz[i] = r.dir.z;
+        block->tMax[i] = r.tMax;
+        block->medium[i] = r.medium;
+        for (int k = 0; k < nff; ++k) block->freeFlights[k * block->capacity + i] = primary.freeFlights[(first + i) * nff + k];
+    }
+}
+
 }  // namespace
 
 Image BeamRasterizer::rasterize(const PrimarySegments& primary, const PhotonMap& photons, RasterStats* stats) const {
@@ -246,21 +294,58 @@ Image BeamRasterizer::rasterize(const PrimarySegments& primary, const PhotonMap&
     }
 
     std::atomic<uint64_t> tests{0};
+    tbb::enumerable_thread_specific<SimdScratch> scratch;
     tbb::parallel_for(0, bands, [&](int band) {
         const int y0 = band * kBand, y1 = std::min(h, y0 + kBand);
         uint64_t localTests = 0;
+        const bool simd = m_kernel == SplatKernel::Simd && !bandBeams[band].empty();
+        SplatBlock* block = nullptr;
+        SplatHits* hits = nullptr;
+        if (simd) {
+            SimdScratch& s = scratch.local();
+            block = &s.block;
+            hits = &s.hits;
+            fillBlock(primary, y0, y1, block);
+        }
         for (uint32_t b : bandBeams[band]) {
             const BeamPixelEvaluator eval(m_scene, photons, b);
+            const Medium& medium = m_scene.media[beams[b].medium];
+            SplatBeam sb;
+            if (simd) sb = splatBeam(m_scene, photons, b);
             for (int y = y0; y < y1; ++y) {
                 float sx0, sx1;
                 if (!footprintRowSpan(fps[b], float(y) + 0.5f, &sx0, &sx1)) continue;
                 // Pixels whose centre x + 0.5 lies in [sx0, sx1].
                 int x0 = int(std::max(0.0f, std::ceil(std::max(sx0, -1.0f) - 0.5f)));
                 int x1 = int(std::min(float(w - 1), std::floor(std::min(sx1, float(w) + 1.0f) - 0.5f)));
+                if (x1 < x0) continue;
+                localTests += uint64_t(x1 - x0 + 1);
                 size_t row = size_t(y) * w;
-                for (int x = x0; x <= x1; ++x) out.pixels[row + x] += eval(primary, row + x);
-                localTests += uint64_t(std::max(0, x1 - x0 + 1));
+                if (!simd) {
+                    for (int x = x0; x <= x1; ++x) out.pixels[row + x] += eval(primary, row + x);
+                    continue;
+                }
+                const size_t first = size_t(y - y0) * w + x0, count = size_t(x1 - x0 + 1);
+                if (medium.homogeneous()) {
+                    splatSpanHomogeneous(sb, *block, first, count);
+                    continue;
+                }
+                // Grid media: sigma_s(x_w) is a density lookup per pixel, after the kernel; the
+                // factors multiply in beamRadiance's order.
+                splatSpanHeterogeneous(sb, *block, first, count, hits);
+                for (size_t k = 0; k < hits->count; ++k) {
+                    const size_t i = hits->pixel[k];
+                    const PrimaryRay& ray = primary.rays[size_t(y0) * w + i];
+                    const Rgb c = medium.sigmaSAt(ray.origin + ray.dir * hits->s[k]) * beams[b].power *
+                                  Rgb(hits->trCam[k]) * Rgb(hits->trBeam[k]) * hits->weight[k];
+                    block->sumR[i] += c.r, block->sumG[i] += c.g, block->sumB[i] += c.b;
+                }
             }
+        }
+        if (simd) {
+            const size_t first = size_t(y0) * w;
+            for (size_t i = 0; i < size_t(y1 - y0) * w; ++i)
+                out.pixels[first + i] = Rgb(block->sumR[i], block->sumG[i], block->sumB[i]);
         }
         tests += localTests;
     });

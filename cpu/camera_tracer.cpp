@@ -3,6 +3,8 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
+
 #include "core/beam_estimator.h"
 #include "core/transmittance.h"
 #include "cpu/free_flight.h"
@@ -51,6 +53,30 @@ struct ThreadScratch {
 };
 }  // namespace
 
+PrimaryHitBuffer CameraTracer::acquireHits(size_t pixels) const {
+    std::unique_ptr<std::vector<PrimaryHit>> hits;
+    {
+        std::lock_guard<std::mutex> lock(m_hitPool->mutex);
+        auto& free = m_hitPool->free;
+        auto it = std::find_if(free.begin(), free.end(), [&](const auto& v) { return v->size() == pixels; });
+        if (it == free.end() && !free.empty()) it = free.begin();
+        if (it != free.end()) {
+            hits = std::move(*it);
+            free.erase(it);
+        }
+    }
+    if (!hits) hits = std::make_unique<std::vector<PrimaryHit>>();
+    hits->resize(pixels);
+    std::weak_ptr<HitPool> pool = m_hitPool;
+    return PrimaryHitBuffer(hits.release(), [pool](std::vector<PrimaryHit>* v) {
+        std::unique_ptr<std::vector<PrimaryHit>> owned(v);
+        if (auto p = pool.lock()) {
+            std::lock_guard<std::mutex> lock(p->mutex);
+            if (p->free.size() < 2) p->free.push_back(std::move(owned));
+        }
+    });
+}
+
 PrimaryPass CameraTracer::tracePrimary(uint64_t pass) const {
     const int w = m_settings.width, h = m_settings.height;
     const int nff = m_anyHeterogeneous ? m_settings.freeFlightSamples : 0;
@@ -64,7 +90,8 @@ PrimaryPass CameraTracer::tracePrimary(uint64_t pass) const {
     primary.rays.resize(size_t(w) * h);
     primary.freeFlightsPerRay = nff;
     primary.freeFlights.assign(size_t(w) * h * nff, kInfinity);
-    out.hits.resize(size_t(w) * h);
+    out.hits = acquireHits(size_t(w) * h);
+    std::vector<PrimaryHit>& hits = *out.hits;
 
     tbb::parallel_for(0, h, [&](int y) {
         for (int x = 0; x < w; ++x) {
@@ -73,7 +100,7 @@ PrimaryPass CameraTracer::tracePrimary(uint64_t pass) const {
             float jx = jitter.uniform(), jy = jitter.uniform();
             Vec2 lens{jitter.uniform(), jitter.uniform()};
             Ray ray = camera.generateRay(float(x) + jx, float(y) + jy, w, h, lens);
-            PrimaryHit& ph = out.hits[pixel];
+            PrimaryHit& ph = hits[pixel];
             ph.medium = cameraMedium;
             ph.throughput = Rgb(1.0f);
             ph.surface = m_rt.intersect(ray, &ph.hit);
@@ -99,11 +126,14 @@ PrimaryPass CameraTracer::tracePrimary(uint64_t pass) const {
 }
 
 Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& photons, const BeamBvh& beams,
-                                   const SurfacePhotonGrid& surfacePhotons, CameraPassStats* stats) const {
+                                   const SurfacePhotonGrid& surfacePhotons, CameraPassStats* stats,
+                                   SecondaryLayers* layers, bool emission) const {
     const int w = m_settings.width, h = m_settings.height;
     const int nff = m_anyHeterogeneous ? m_settings.freeFlightSamples : 0;
     const uint64_t pass = primary.pass;
+    const float spread = pixelSpread(m_scene.camera.yFov, h);  // texture footprint per unit path length
     Image radiance(w, h);
+    if (layers) *layers = SecondaryLayers{Image(w, h), Image(w, h)};
     tbb::enumerable_thread_specific<ThreadScratch> scratch;
 
     tbb::parallel_for(0, h, [&](int y) {
@@ -111,33 +141,56 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
         tls.freeFlights.resize(std::max(nff, 1));
         for (int x = 0; x < w; ++x) {
             const uint64_t pixel = uint64_t(y) * w + x;
-            const PrimaryHit& ph = primary.hits[pixel];
-            Rgb throughput = ph.throughput, L;
+            const PrimaryHit& ph = (*primary.hits)[pixel];
+            Rgb throughput = ph.throughput, L, Lmedia, Lsurface;
             if (!ph.surface || throughput.isBlack()) continue;
             Rng rng = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::CameraPath);
             MediumId medium = ph.medium;
             SurfaceHit hit = ph.hit;
             Vec3 dir = primary.segments.rays[pixel].dir;
+            float pathLength = hit.t;
 
             for (int depth = 0;;) {
                 const TriangleMesh& mesh = m_scene.meshes[hit.mesh];
                 const Material& mat = m_scene.materials[mesh.material];
                 HitSide side = hitSide(hit, dir);
-                if (mat.isEmissive() && side.entering) L += throughput * mat.emission;
+                const SurfacePoint sp = surfaceAt(m_scene, hit, spread * pathLength);
+                if (emission && mat.isEmissive() && side.entering) {
+                    L += throughput * sp.emission;
+                    Lsurface += throughput * sp.emission;
+                }
                 if (mat.type == MaterialType::Diffuse) {
-                    L += throughput * mat.albedo * kInvPi * surfacePhotons.density(hit.p, side.nf);
+                    Rgb density = throughput * sp.baseColor * kInvPi * surfacePhotons.density(hit.p, side.nf);
+                    L += density;
+                    Lsurface += density;
                     break;
                 }
                 SpecularEvent ev;
-                if (!sampleSpecular(mat, mesh, hit, dir, medium, rng.uniform(), TransportMode::Radiance, &ev)) break;
+                if (mat.isGlossy()) {
+                    // docs/algorithm.md "Glossy vertices": photons stored here (from delta lights through
+                    // delta interactions only) with the BSDF evaluated, then continue by sampling it.
+                    const GlossyBsdf bsdf = glossyBsdf(mat, sp, hit, dir);
+                    const Vec3 wo = -dir;
+                    const Rgb glossy = throughput * surfacePhotons.gather(hit.p, hit.ng, [&](const SurfacePhoton& p) {
+                        return bsdf.eval(wo, p.wi, TransportMode::Radiance);
+                    });
+                    L += glossy;
+                    Lsurface += glossy;
+                    float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+                    if (!sampleGlossy(bsdf, mesh, hit, dir, medium, u0, u1, u2, TransportMode::Radiance, &ev)) break;
+                } else if (!sampleSpecular(mat, sp.baseColor, mesh, hit, dir, medium, rng.uniform(),
+                                           TransportMode::Radiance, &ev)) {
+                    break;
+                }
                 throughput *= ev.weight;
                 medium = ev.medium;
-                Ray ray{m_rt.offsetOrigin(hit.p, hit.ng, ev.d), ev.d};
+                Ray ray{m_rt.offsetOrigin(hit.p, hit.t, hit.ng, ev.d), ev.d};
                 dir = ray.d;
                 if (++depth > m_settings.maxCameraBounces) break;
 
                 bool surface = m_rt.intersect(ray, &hit);
                 tls.stats.rays++;
+                if (surface) pathLength += hit.t;
                 float tHit = surface ? hit.t : kInfinity;
                 Ray seg;
                 if (medium != kVacuum && m_rt.mediumSegment(ray.o, ray.d, tHit, &seg)) {
@@ -147,13 +200,19 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                     beams.query(seg.o, seg.d, seg.tMax, tls.hits);
                     tls.stats.beamQueries++;
                     tls.stats.beamHits += tls.hits.size();
-                    L += throughput * gatherBeams(m_scene, photons, tls.hits, medium, seg.o, seg.d, ff, nff);
+                    Rgb media = throughput * gatherBeams(m_scene, photons, tls.hits, medium, seg.o, seg.d, ff, nff);
+                    L += media;
+                    Lmedia += media;
                     throughput *=
                         med.homogeneous() ? med.transmittance(seg.tMax) : Rgb(storedTransmittance(ff, nff, seg.tMax));
                 }
                 if (!surface || throughput.isBlack()) break;
             }
             radiance.at(x, y) = L;
+            if (layers) {
+                layers->media.at(x, y) = Lmedia;
+                layers->surface.at(x, y) = Lsurface;
+            }
         }
     });
     if (stats) {

@@ -16,6 +16,8 @@
 // from Rng::forKey(seed, i, p, PixelJitter) and the rest of its path from (seed, i, p, CameraPath),
 // so the split changes no bit of the image.
 #include <cstdint>
+#include <memory>
+#include <mutex>
 
 #include "core/image.h"
 #include "core/photon_beam.h"
@@ -41,12 +43,25 @@ struct PrimaryHit {
     bool surface = false;       ///< false: the ray left the scene
 };
 
+/// Per-pixel primary hits, taken from and given back to the CameraTracer's pool: a 1080p pass's
+/// hits are 160 MB, and allocating and zeroing them anew every pass cost about 15% of its time in
+/// page faults and initialisation (perf, docs/performance.md). Given back when the last PrimaryPass
+/// holding them goes; the pool keeps at most two (a pass and the one a scheduler overlaps with it).
+using PrimaryHitBuffer = std::shared_ptr<std::vector<PrimaryHit>>;
+
 /// The primary stage of a pass: the splatters' input and where the secondary stage goes on.
 struct PrimaryPass {
     uint64_t pass = 0;
     PrimarySegments segments;
-    std::vector<PrimaryHit> hits;  ///< per pixel, row-major like segments.rays
-    uint64_t rays = 0;             ///< surface rays traced
+    PrimaryHitBuffer hits;  ///< per pixel, row-major like segments.rays
+    uint64_t rays = 0;      ///< surface rays traced
+};
+
+/// The secondary stage's radiance split by what it comes from (AOV layers); the two add up to
+/// the stage's radiance (up to float rounding).
+struct SecondaryLayers {
+    Image media;    ///< media seen through mirrors and glass (the secondary segments' beams)
+    Image surface;  ///< surface photons and emission
 };
 
 struct CameraPassResult {
@@ -61,14 +76,26 @@ public:
 
     PrimaryPass tracePrimary(uint64_t pass) const;
     /// The pass's radiance except the primary segments' media; `stats.rays` counts this stage's.
+    /// With `photons` one batch of the pass, the photon estimates of that batch; `emission` adds
+    /// what the paths see of emitters, which belongs to one batch only (the pass's first).
+    /// `layers`, when given, also receives that radiance split in two (it does not change it).
     Image traceSecondary(const PrimaryPass& primary, const PhotonMap& photons, const BeamBvh& beams,
-                         const SurfacePhotonGrid& surface, CameraPassStats* stats) const;
+                         const SurfacePhotonGrid& surface, CameraPassStats* stats,
+                         SecondaryLayers* layers = nullptr, bool emission = true) const;
 
 private:
+    struct HitPool {
+        std::mutex mutex;
+        std::vector<std::unique_ptr<std::vector<PrimaryHit>>> free;
+    };
+    /// `pixels` hits from the pool (contents stale: tracePrimary overwrites every pixel).
+    PrimaryHitBuffer acquireHits(size_t pixels) const;
+
     const EmbreeScene& m_rt;
     const Scene& m_scene;
     RenderSettings m_settings;
     bool m_anyHeterogeneous = false;
+    std::shared_ptr<HitPool> m_hitPool = std::make_shared<HitPool>();
 };
 
 /// Medium radiance gathered from `beams` along the segment o + s d, s in [0, sMax], inside

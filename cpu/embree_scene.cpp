@@ -1,9 +1,11 @@
 #include "cpu/embree_scene.h"
 
 #include <cstdio>
+#include <cstring>
 #include <string>
 
 #include "core/error.h"
+#include "core/material_eval.h"
 
 namespace tyndall {
 
@@ -41,6 +43,7 @@ EmbreeScene::EmbreeScene(const Scene& scene, std::shared_ptr<EmbreeDevice> devic
     : m_scene(scene), m_device(device ? std::move(device) : std::make_shared<EmbreeDevice>()) {
     RTCDevice dev = m_device->get();
     m_rtcScene = rtcNewScene(dev);
+    m_alpha.resize(scene.meshes.size());
     rtcSetSceneBuildQuality(m_rtcScene, RTC_BUILD_QUALITY_HIGH);
     for (size_t m = 0; m < scene.meshes.size(); ++m) {
         const TriangleMesh& mesh = scene.meshes[m];
@@ -55,6 +58,13 @@ EmbreeScene::EmbreeScene(const Scene& scene, std::shared_ptr<EmbreeDevice> devic
         auto* idx = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                                                    3 * sizeof(uint32_t), mesh.triangleCount()));
         std::copy(mesh.indices.begin(), mesh.indices.end(), idx);
+        const bool validMaterial = mesh.material >= 0 && size_t(mesh.material) < scene.materials.size();
+        if (validMaterial && scene.materials[size_t(mesh.material)].alphaMode != AlphaMode::Opaque) {
+            m_alpha[m] = AlphaGeometry{&scene, int(m)};
+            rtcSetGeometryUserData(geom, &m_alpha[m]);
+            rtcSetGeometryIntersectFilterFunction(geom, &EmbreeScene::alphaFilter);
+            rtcSetGeometryOccludedFilterFunction(geom, &EmbreeScene::alphaFilter);
+        }
         rtcCommitGeometry(geom);
         rtcAttachGeometryByID(m_rtcScene, geom, unsigned(m));
         rtcReleaseGeometry(geom);
@@ -74,11 +84,43 @@ EmbreeScene::EmbreeScene(const Scene& scene, std::shared_ptr<EmbreeDevice> devic
     rtcCommitScene(m_rtcScene);
     m_device->check("building the scene BVH");
     Bounds3 b = scene.bounds;
-    if (!b.empty()) m_epsilon = 2e-6f * std::max(1.0f, length(b.diagonal()));
+    if (!b.empty() && length(b.diagonal()) > 0) m_sceneDiagonal = length(b.diagonal());
     m_mediumBounds = b;
 }
 
 EmbreeScene::~EmbreeScene() { rtcReleaseScene(m_rtcScene); }
+
+void EmbreeScene::alphaFilter(const RTCFilterFunctionNArguments* args) {
+    const auto* g = static_cast<const AlphaGeometry*>(args->geometryUserPtr);
+    const TriangleMesh& mesh = g->scene->meshes[size_t(g->mesh)];
+    const Material& mat = g->scene->materials[size_t(mesh.material)];
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1) continue;
+        const uint32_t prim = RTCHitN_primID(args->hit, args->N, i);
+        const float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
+        const float alpha = evalSurface(*g->scene, mesh, prim, u, v, 0.0f).alpha;
+        bool through;
+        if (mat.alphaMode == AlphaMode::Mask) {
+            through = alpha < mat.alphaCutoff;
+        } else {
+            // Stochastic transparency: a hash of the ray and the hit point, so a ray is a pure
+            // function of what it carries (passes stay deterministic, independent of threads).
+            float key[6] = {RTCRayN_org_x(args->ray, args->N, i), RTCRayN_org_y(args->ray, args->N, i),
+                            RTCRayN_dir_x(args->ray, args->N, i), RTCRayN_dir_z(args->ray, args->N, i), u, v};
+            uint64_t h = 0x9E3779B97F4A7C15ull ^ prim;
+            for (float f : key) {
+                uint32_t bits;
+                std::memcpy(&bits, &f, 4);
+                h += bits + 0x9E3779B97F4A7C15ull;  // splitmix64 step per word
+                h = (h ^ (h >> 30)) * 0xBF58476D1CE4E5B9ull;
+                h = (h ^ (h >> 27)) * 0x94D049BB133111EBull;
+                h ^= h >> 31;
+            }
+            through = float(h >> 40) * (1.0f / 16777216.0f) >= alpha;
+        }
+        if (through) args->valid[i] = 0;
+    }
+}
 
 bool EmbreeScene::intersect(const Ray& ray, SurfaceHit* hit) const {
     RTCRayHit rh;
@@ -123,7 +165,7 @@ MediumId EmbreeScene::mediumAt(const Vec3& p) const {
         const TriangleMesh& mesh = m_scene.meshes[hit.mesh];
         if (mesh.interiorMedium != mesh.exteriorMedium)
             return dot(ray.d, hit.ng) > 0 ? mesh.interiorMedium : mesh.exteriorMedium;
-        ray.o = offsetOrigin(hit.p, hit.ng, ray.d);
+        ray.o = offsetOrigin(hit.p, hit.t, hit.ng, ray.d);
     }
     return m_scene.globalMedium;
 }

@@ -125,12 +125,37 @@ public:
         return true;
     }
 
-    /// Origin for a ray leaving surface point `p` with normal `ng` in direction `d`, offset to
-    /// the side `d` goes so it does not hit the surface it starts on.
-    Vec3 offsetOrigin(const Vec3& p, const Vec3& ng, const Vec3& d) const {
-        float eps = m_epsilon * (1.0f + std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z))));
-        return p + ng * (dot(d, ng) > 0 ? eps : -eps);
+    /// Origin for a ray leaving surface point `p` (normal `ng`) in direction `d`: `p` pushed to the
+    /// side `d` goes by more than the rounding error of `p`, so the ray cannot hit the surface it
+    /// starts on. pbrt-v4's OffsetRayOrigin: the push is the error bound projected on the normal,
+    /// then each coordinate is rounded one float further away. `p` is a hit o + t dir computed in
+    /// float: its error is bounded by hitPointError(p, t) (Embree's t and the product round on the
+    /// scale of |o| <= |p| + t). Relative to the coordinates only: a scene scaled or moved gets
+    /// the same offsets relative to its size, and no absolute length enters.
+    Vec3 offsetOrigin(const Vec3& p, float tHit, const Vec3& ng, const Vec3& d) const {
+        const float err = hitPointError(p, tHit);
+        Vec3 offset = ng * (err * (std::abs(ng.x) + std::abs(ng.y) + std::abs(ng.z)));
+        if (dot(d, ng) < 0) offset = -offset;
+        Vec3 o = p + offset;
+        o.x = roundAway(o.x, offset.x);
+        o.y = roundAway(o.y, offset.y);
+        o.z = roundAway(o.z, offset.z);
+        return o;
     }
+    /// offsetOrigin for a point reached by a ray of unknown length (the reference tracer's hits,
+    /// points on lights): the longest ray inside the scene, its diagonal, stands for t.
+    Vec3 offsetOrigin(const Vec3& p, const Vec3& ng, const Vec3& d) const {
+        return offsetOrigin(p, m_sceneDiagonal, ng, d);
+    }
+    /// Per-coordinate bound on the float error of a hit point p = o + t dir (unit dir, t >= 0):
+    /// kHitErrorUlps units in the last place of max(|p_i|) + t, the largest magnitude the
+    /// intersection arithmetic saw. The worst error measured over scales 1e-3..1e6, boxes up to
+    /// 1000 sizes from the origin and cameras outside them is 2.3 ulps (tests/cpu/scale_test.cpp);
+    /// 64 leaves room for long thin triangles and matches the old offset at scale 1.
+    static float hitPointError(const Vec3& p, float t) {
+        return kHitErrorUlps * 0x1p-24f * (std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z))) + t);
+    }
+    static constexpr float kHitErrorUlps = 64.0f;
 
     const Scene& scene() const { return m_scene; }
     /// The Embree scene, for raw-throughput baselines in `tyndall bench`.
@@ -139,6 +164,12 @@ public:
 
 private:
     /// One axis of globalMediumInterval: narrows [*lo, *hi] to the slab [slabLo, slabHi] of o + t d.
+    /// `v` moved one float further in the direction of `offset` (pbrt-v4 NextFloatUp/Down).
+    static float roundAway(float v, float offset) {
+        if (offset > 0) return std::nextafter(v, kInfinity);
+        if (offset < 0) return std::nextafter(v, -kInfinity);
+        return v;
+    }
     static bool clipSlab(float o, float d, float slabLo, float slabHi, float* lo, float* hi) {
         float inv = 1.0f / d;
         float tn = (slabLo - o) * inv;
@@ -153,15 +184,22 @@ private:
     struct TriangleNormals {
         Vec3 n[3];
     };
+    /// Geometry user data of a mesh with alphaMode Mask or Blend (the filter's context).
+    struct AlphaGeometry {
+        const Scene* scene;
+        int mesh;
+    };
+    static void alphaFilter(const RTCFilterFunctionNArguments* args);
 
     const Scene& m_scene;
     std::shared_ptr<EmbreeDevice> m_device;
     RTCScene m_rtcScene = nullptr;
-    float m_epsilon = 1e-5f;
+    float m_sceneDiagonal = 1.0f;
     Bounds3 m_mediumBounds;
     /// Per mesh: the vertex normals of each triangle, packed (one cache line, no index fetch), for
     /// specular meshes with normals; empty for every other mesh.
     std::vector<std::vector<TriangleNormals>> m_shadingNormals;
+    std::vector<AlphaGeometry> m_alpha;  ///< one per mesh, addressed by Embree's user pointers
 };
 
 }  // namespace tyndall

@@ -1,6 +1,8 @@
 #include "cpu/pass_renderer.h"
 
+#include <algorithm>
 #include <chrono>
+#include <string>
 
 #include "cpu/radius_defaults.h"
 
@@ -9,6 +11,12 @@ namespace tyndall {
 namespace {
 double secondsSince(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+// Free-flight distances stored per beam and per pixel: only scenes with grid media store any.
+int storedFreeFlights(const Scene& scene, const RenderSettings& settings) {
+    for (const Medium& m : scene.media)
+        if (!m.homogeneous()) return settings.freeFlightSamples;
+    return 0;
 }
 }  // namespace
 
@@ -43,23 +51,45 @@ PassRenderer::PassRenderer(const Scene& scene, const RenderSettings& settings, B
       m_rt(std::make_unique<EmbreeScene>(scene)),
       m_settings(resolveRadiusDefaults(settings, *m_rt)),
       m_radii(RadiusSetup::resolve(m_settings, scene)),
+      m_memory(MemoryPlan::resolve(m_settings, storedFreeFlights(scene, m_settings))),
       m_bvhKind(beamBvh),
       m_photons(std::make_unique<PhotonTracer>(*m_rt, m_settings, m_radii)),
       m_camera(std::make_unique<CameraTracer>(*m_rt, m_settings)),
-      m_rasterizer(scene) {}
+      m_rasterizer(scene, m_settings.simd == "off" ? SplatKernel::Scalar : SplatKernel::Simd) {
+    for (const Material& m : scene.materials) m_anyNonDiffuse |= m.type != MaterialType::Diffuse;
+}
 
 PhotonMap PassRenderer::tracePhotons(uint64_t pass) const {
     return m_photons->trace(pass);
 }
 
-PrimaryPass PassRenderer::tracePrimary(uint64_t pass) const {
-    return m_camera->tracePrimary(pass);
+PhotonMap PassRenderer::tracePhotons(uint64_t pass, uint32_t batch) const {
+    const uint64_t begin = uint64_t(batch) * m_memory.batchPaths;
+    const uint64_t end = std::min<uint64_t>(begin + m_memory.batchPaths, m_settings.photonsPerPass);
+    return allocating("the photon beams and surface photons of a batch of " + std::to_string(end - begin) +
+                          " photon paths",
+                      (end - begin) * m_memory.bytesPerPath,
+                      [&] { return m_photons->traceBatch(pass, uint32_t(begin), uint32_t(end)); });
 }
 
-Image PassRenderer::traceSecondary(const PrimaryPass& primary, const PhotonMap& photons, CameraPassStats* stats) const {
-    BeamBvh bvh(*m_rt->device(), photons.beams, m_bvhKind);
-    SurfacePhotonGrid grid(photons.surfacePhotons);
-    return m_camera->traceSecondary(primary, photons, bvh, grid, stats);
+PrimaryPass PassRenderer::tracePrimary(uint64_t pass) const {
+    return allocating("the primary camera rays of a " + std::to_string(m_settings.width) + "x" +
+                          std::to_string(m_settings.height) + " pass",
+                      m_memory.imageBytes / 2, [&] { return m_camera->tracePrimary(pass); });
+}
+
+Image PassRenderer::traceSecondary(const PrimaryPass& primary, const PhotonMap& photons, CameraPassStats* stats,
+                                   bool emission, SecondaryLayers* layers) const {
+    return allocating("the beam BVH and surface-photon grid of " + std::to_string(photons.beams.size()) +
+                          " beams and " + std::to_string(photons.surfacePhotons.size()) + " surface photons",
+                      photons.pathCount * m_memory.bytesPerPath, [&] {
+                          // Camera paths reach secondary segments only through non-diffuse
+                          // surfaces: without any, no query would ever read the BVH.
+                          static const std::vector<PhotonBeam> kNoBeams;
+                          BeamBvh bvh(*m_rt->device(), m_anyNonDiffuse ? photons.beams : kNoBeams, m_bvhKind);
+                          SurfacePhotonGrid grid(photons.surfacePhotons);
+                          return m_camera->traceSecondary(primary, photons, bvh, grid, stats, layers, emission);
+                      });
 }
 
 CameraPassResult PassRenderer::traceCamera(uint64_t pass, const PhotonMap& photons) const {
@@ -80,22 +110,59 @@ void PassRenderer::sceneChanged() {
 }
 
 Image PassRenderer::renderPass(uint64_t pass, PassStats* stats) const {
-    auto t0 = std::chrono::steady_clock::now();
-    PhotonMap photons = tracePhotons(pass);
-    auto t1 = std::chrono::steady_clock::now();
-    CameraPassResult camera = traceCamera(pass, photons);
-    auto t2 = std::chrono::steady_clock::now();
-    RasterStats raster;
-    Image image = splatPrimary(camera.primary, photons, &raster);
-    image += camera.radiance;
-    if (stats) {
-        stats->add(photons);
-        stats->add(camera.stats);
-        stats->rasterTests += raster.pixelTests;
-        stats->photonSeconds += std::chrono::duration<double>(t1 - t0).count();
-        stats->cameraSeconds += std::chrono::duration<double>(t2 - t1).count();
-        stats->splatSeconds += secondsSince(t2);
+    return renderBatches(pass, stats, nullptr);
+}
+
+PassLayers PassRenderer::renderPassLayers(uint64_t pass, PassStats* stats) const {
+    PassLayers layers;
+    layers.beauty = renderBatches(pass, stats, &layers);
+    return layers;
+}
+
+namespace {
+void addPart(Image& sum, Image&& part, bool first) {
+    if (first)
+        sum = std::move(part);
+    else
+        sum += part;
+}
+}  // namespace
+
+Image PassRenderer::renderBatches(uint64_t pass, PassStats* stats, PassLayers* layers) const {
+    using Clock = std::chrono::steady_clock;
+    PassStats local;
+    auto t0 = Clock::now();
+    const PrimaryPass primary = tracePrimary(pass);
+    local.cameraRays += primary.rays;
+    local.cameraSeconds += secondsSince(t0);
+    Image image;
+    // One batch at a time: its beams and photons are freed before the next is traced.
+    for (uint32_t batch = 0; batch < m_memory.batches; ++batch) {
+        const bool first = batch == 0;
+        auto t1 = Clock::now();
+        const PhotonMap photons = tracePhotons(pass, batch);
+        auto t2 = Clock::now();
+        CameraPassStats camera;
+        SecondaryLayers secondary;
+        Image radiance = traceSecondary(primary, photons, &camera, first, layers ? &secondary : nullptr);
+        auto t3 = Clock::now();
+        RasterStats raster;
+        Image part = splatPrimary(primary.segments, photons, &raster);
+        if (layers) {
+            addPart(layers->mediaPrimary, Image(part), first);
+            addPart(layers->mediaSecondary, std::move(secondary.media), first);
+            addPart(layers->surface, std::move(secondary.surface), first);
+        }
+        part += radiance;
+        addPart(image, std::move(part), first);
+        local.add(photons);
+        local.add(camera);
+        local.rasterTests += raster.pixelTests;
+        local.photonSeconds += std::chrono::duration<double>(t2 - t1).count();
+        local.cameraSeconds += std::chrono::duration<double>(t3 - t2).count();
+        local.splatSeconds += secondsSince(t3);
     }
+    if (stats) *stats += local;
     return image;
 }
 

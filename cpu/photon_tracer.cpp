@@ -1,5 +1,7 @@
 #include "cpu/photon_tracer.h"
 
+#include <algorithm>
+
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
 
@@ -31,19 +33,27 @@ PhotonTracer::PhotonTracer(const EmbreeScene& rt, const RenderSettings& settings
 
 PhotonMap PhotonTracer::trace(uint64_t pass) const {
     uint32_t m = m_settings.photonsPerPass;
-    return trace(pass, pass * uint64_t(m), m);
+    return trace(pass, pass * uint64_t(m), 0, m, m, nullptr);
 }
 
 PhotonMap PhotonTracer::trace(uint64_t pass, uint64_t firstPath, uint32_t count) const {
-    return trace(pass, firstPath, count, nullptr);
+    return trace(pass, firstPath, 0, count, count, nullptr);
+}
+
+PhotonMap PhotonTracer::traceBatch(uint64_t pass, uint32_t begin, uint32_t end) const {
+    const uint32_t m = m_settings.photonsPerPass;
+    end = std::min(end, m);
+    begin = std::min(begin, end);
+    return trace(pass, pass * uint64_t(m) + begin, begin, end - begin, m, nullptr);
 }
 
 PhotonMap PhotonTracer::traceRecordingRays(uint64_t pass, std::vector<Ray>* rays) const {
     uint32_t m = m_settings.photonsPerPass;
-    return trace(pass, pass * uint64_t(m), m, rays);
+    return trace(pass, pass * uint64_t(m), 0, m, m, rays);
 }
 
-PhotonMap PhotonTracer::trace(uint64_t pass, uint64_t firstPath, uint32_t count, std::vector<Ray>* rays) const {
+PhotonMap PhotonTracer::trace(uint64_t pass, uint64_t firstPath, uint32_t begin, uint32_t count, uint32_t divisor,
+                              std::vector<Ray>* rays) const {
     // Blocks of 32 paths, one task each: the pass ends within ~one block's time of its last
     // thread, where the auto partitioner's chunks of several blocks left a thread idle longer.
     constexpr uint32_t kBlock = 32;
@@ -59,7 +69,8 @@ PhotonMap PhotonTracer::trace(uint64_t pass, uint64_t firstPath, uint32_t count,
             part.freeFlightsPerBeam = m_anyHeterogeneous ? m_settings.freeFlightSamples : 0;
             std::vector<Ray>* blockRays = rays ? &partRays[b] : nullptr;
             uint32_t end = std::min(count, (b + 1) * kBlock);
-            for (uint32_t k = b * kBlock; k < end; ++k) tracePath(pass, k, firstPath + k, count, part, blockRays);
+            for (uint32_t k = b * kBlock; k < end; ++k)
+                tracePath(pass, begin + k, firstPath + k, divisor, part, blockRays);
         },
         tbb::simple_partitioner());
     for (const std::vector<Ray>& r : partRays) rays->insert(rays->end(), r.begin(), r.end());
@@ -99,7 +110,10 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
     // The ray is o + t d, t in (0, infinity), as every emitted and scattered ray is.
     Vec3 o = e.ray.o, d = e.ray.d;
     // Area-light photons start on their triangle: nudge them off it along the emitted direction.
-    if (e.emitterMesh >= 0) o = m_rt.offsetOrigin(o, d, d);
+    if (e.emitterMesh >= 0) o = m_rt.offsetOrigin(o, 0.0f, d, d);
+    // From a point, spot or directional light through delta interactions only: what glossy surfaces
+    // store (docs/algorithm.md, "Glossy vertices").
+    bool deltaDirect = e.light >= 0;
 
     for (int bounce = 0; bounce < m_settings.maxPhotonBounces; ++bounce) {
         RTCRayHit rh;
@@ -138,6 +152,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
                 Vec3 x = seg.at(ff.t);
                 d = sampleHg(d, med.g, rng.uniform(), rng.uniform());
                 o = x;
+                deltaDirect = false;
                 continue;
             }
         }
@@ -157,23 +172,57 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
             sp.wi = -d;
             sp.normal = nf;
             sp.power = power;
-            power *= mat.albedo;
+            // alphaMode BLEND stops a photon with probability alpha (the filter): the stored photons
+            // stand for the irradiance on the covered part, so they carry 1/alpha (the camera path
+            // stops with probability alpha too, and must not apply the coverage twice).
+            if (mat.alphaMode == AlphaMode::Blend) {
+                float a = evalSurface(m_scene, mesh, rh.hit.primID, rh.hit.u, rh.hit.v, 0.0f).alpha;
+                if (a > 0) sp.power *= 1.0f / a;
+            }
+            power *= mat.isTextured()
+                         ? evalSurface(m_scene, mesh, rh.hit.primID, rh.hit.u, rh.hit.v, surfaceRadius).baseColor
+                         : mat.albedo;
             float q = std::min(1.0f, power.maxComponent() / startMax);
             if (!(rng.uniform() < q)) return;
             power *= 1.0f / q;
             d = Frame(nf).toWorld(sampleCosineHemisphere(rng.uniform(), rng.uniform()));
-            o = m_rt.offsetOrigin(p, nf, d);
+            o = m_rt.offsetOrigin(p, tHit, nf, d);
+            deltaDirect = false;
             continue;
         }
         SurfaceHit hit;
         hit.ng = ng;
         hit.ns = m_rt.shadingNormal(int(rh.hit.geomID), rh.hit.primID, rh.hit.u, rh.hit.v, ng);
         SpecularEvent ev;
-        if (!sampleSpecular(mat, mesh, hit, d, medium, rng.uniform(), TransportMode::Importance, &ev)) return;
+        if (mat.isGlossy()) {
+            if (deltaDirect) {
+                SurfacePhoton& sp = out.surfacePhotons.emplace_back();
+                sp.position = p;
+                sp.radius = surfaceRadius;
+                sp.wi = -d;
+                sp.normal = dot(d, ng) < 0 ? ng : -ng;
+                sp.power = power;
+            }
+            const SurfacePoint at = evalSurface(m_scene, mesh, rh.hit.primID, rh.hit.u, rh.hit.v, surfaceRadius);
+            const GlossyBsdf bsdf = glossyBsdf(mat, at, hit, d);
+            float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+            if (!sampleGlossy(bsdf, mesh, hit, d, medium, u0, u1, u2, TransportMode::Importance, &ev)) return;
+            deltaDirect = false;
+            float q = std::min(1.0f, (power * ev.weight).maxComponent() / startMax);
+            if (!(rng.uniform() < q)) return;
+            ev.weight *= 1.0f / q;
+        } else {
+            const Rgb tint =
+                mat.isTextured()
+                    ? evalSurface(m_scene, mesh, rh.hit.primID, rh.hit.u, rh.hit.v, surfaceRadius).baseColor
+                    : mat.albedo;
+            if (!sampleSpecular(mat, tint, mesh, hit, d, medium, rng.uniform(), TransportMode::Importance, &ev))
+                return;
+        }
         power *= ev.weight;
         if (power.isBlack()) return;
         medium = ev.medium;
-        o = m_rt.offsetOrigin(p, ng, ev.d);
+        o = m_rt.offsetOrigin(p, tHit, ng, ev.d);
         d = ev.d;
     }
 }

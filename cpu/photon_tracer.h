@@ -46,12 +46,20 @@ public:
     /// (seed, pass, k); the power divisor is `count`.
     PhotonMap trace(uint64_t pass, uint64_t firstPath, uint32_t count) const;
 
+    /// Paths [begin, end) of pass `pass`: exactly those paths of trace(pass), same streams, radii
+    /// and power (divided by the pass's photonsPerPass), in path order. The union of a pass's
+    /// batches is the pass: every estimate is a sum over beams and photons, so summing the
+    /// batches' estimates gives the pass's (bounded-memory passes, PassRenderer).
+    PhotonMap traceBatch(uint64_t pass, uint32_t begin, uint32_t end) const;
+
     /// trace(pass), also appending every ray it casts (origin, direction, t range), in path order:
     /// what `tyndall bench` replays through Embree alone as the photon tracer's raw ray rate.
     PhotonMap traceRecordingRays(uint64_t pass, std::vector<Ray>* rays) const;
 
 private:
-    PhotonMap trace(uint64_t pass, uint64_t firstPath, uint32_t count, std::vector<Ray>* rays) const;
+    /// Paths pathInPass = begin + k, k < count, global index firstPath + k, power / divisor.
+    PhotonMap trace(uint64_t pass, uint64_t firstPath, uint32_t begin, uint32_t count, uint32_t divisor,
+                    std::vector<Ray>* rays) const;
     void tracePath(uint64_t pass, uint64_t pathInPass, uint64_t globalPath, uint32_t count, PhotonMap& out,
                    std::vector<Ray>* rays) const;
 

@@ -107,6 +107,8 @@ Rgb ReferenceTracer::radiance(Ray ray, MediumId medium, Rng& rng) const {
     float lastPdf = 0;          // solid-angle pdf of the direction sampled at the last diffuse/medium vertex
     Vec3 lastVertex;
     int crossings = 0;
+    float pathLength = 0;  // texture footprint = pixel spread x distance travelled
+    const float spread = pixelSpread(m_scene.camera.yFov, m_settings.height);
     ray.tMin = 0.0f;
     ray.tMax = kInfinity;
 
@@ -123,6 +125,7 @@ Rgb ReferenceTracer::radiance(Ray ray, MediumId medium, Rng& rng) const {
         SurfaceHit hit;
         bool surface = m_rt.intersect(ray, &hit);
         float tHit = surface ? hit.t : kInfinity;
+        if (surface) pathLength += hit.t;
 
         if (medium != kVacuum) {
             const Medium& med = m_scene.media[medium];
@@ -162,13 +165,14 @@ Rgb ReferenceTracer::radiance(Ray ray, MediumId medium, Rng& rng) const {
         const TriangleMesh& mesh = m_scene.meshes[hit.mesh];
         const Material& mat = m_scene.materials[mesh.material];
         HitSide side = hitSide(hit, ray.d);
+        const SurfacePoint sp = surfaceAt(m_scene, hit, spread * pathLength);
         if (mat.isEmissive() && side.entering) {
             float mis = 1.0f;
             if (nee && !afterSpecular) {
                 int source = m_lights.emitterSource(hit.mesh, hit.triangle);
                 if (source >= 0) mis = powerHeuristic(lastPdf, m_lights.directPdf(size_t(source), lastVertex, hit.p));
             }
-            L += beta * mat.emission * mis;
+            L += beta * sp.emission * mis;
         }
 
         if (mat.type == MaterialType::Interface) {
@@ -188,11 +192,11 @@ Rgb ReferenceTracer::radiance(Ray ray, MediumId medium, Rng& rng) const {
                     Rgb tr = shadowTransmittance(m_rt.offsetOrigin(hit.p, side.nf, ls.wi), ls, medium, rng);
                     float bsdfPdf = cosine * kInvPi;
                     float mis = ls.delta ? 1.0f : powerHeuristic(ls.pdf, bsdfPdf);
-                    L += beta * mat.albedo * ls.incident * tr * (kInvPi * cosine * mis / ls.pdf);
+                    L += beta * sp.baseColor * ls.incident * tr * (kInvPi * cosine * mis / ls.pdf);
                 }
             }
             Vec3 d = Frame(side.nf).toWorld(sampleCosineHemisphere(rng.uniform(), rng.uniform()));
-            beta *= mat.albedo;  // (rho/pi) cos / (cos/pi)
+            beta *= sp.baseColor;  // (rho/pi) cos / (cos/pi)
             lastPdf = std::max(dot(d, side.nf), 0.0f) * kInvPi;
             lastVertex = hit.p;
             afterSpecular = false;
@@ -201,8 +205,42 @@ Rgb ReferenceTracer::radiance(Ray ray, MediumId medium, Rng& rng) const {
             continue;
         }
 
+        if (mat.isGlossy()) {
+            const GlossyBsdf bsdf = glossyBsdf(mat, sp, hit, ray.d);
+            const Vec3 wo = -ray.d;
+            if (nee) {
+                DirectLightSample ls = m_lights.sampleDirect(hit.p, rng);
+                Rgb f = ls.pdf > 0 && !ls.incident.isBlack() ? bsdf.eval(wo, ls.wi, TransportMode::Radiance) : Rgb();
+                if (!f.isBlack()) {
+                    bool crosses = dot(ls.wi, hit.ng) * dot(wo, hit.ng) < 0;
+                    MediumId shadowMedium =
+                        crosses ? (side.entering ? mesh.interiorMedium : mesh.exteriorMedium) : medium;
+                    Rgb tr = shadowTransmittance(m_rt.offsetOrigin(hit.p, hit.ng, ls.wi), ls, shadowMedium, rng);
+                    float mis = ls.delta ? 1.0f : powerHeuristic(ls.pdf, bsdf.pdf(wo, ls.wi));
+                    float cosine = std::abs(dot(ls.wi, bsdf.frame.n));
+                    L += beta * f * ls.incident * tr * (cosine * mis / ls.pdf);
+                }
+            }
+            SpecularEvent ev;
+            float pdf = 0;
+            float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+            if (!sampleGlossy(bsdf, mesh, hit, ray.d, medium, u0, u1, u2, TransportMode::Radiance, &ev, &pdf)) break;
+            beta *= ev.weight;
+            if (ev.transmitted) {
+                float etaRatio = side.entering ? 1.0f / mat.ior : mat.ior;  // eta_i / eta_t
+                etaScale /= etaRatio * etaRatio;
+            }
+            lastPdf = pdf;
+            lastVertex = hit.p;
+            afterSpecular = false;
+            medium = ev.medium;
+            if (beta.isBlack() || !survives()) break;
+            ray = Ray{m_rt.offsetOrigin(hit.p, hit.ng, ev.d), ev.d};
+            continue;
+        }
+
         SpecularEvent ev;
-        if (!sampleSpecular(mat, mesh, hit, ray.d, medium, rng.uniform(), TransportMode::Radiance, &ev)) break;
+        if (!sampleSpecular(mat, sp.baseColor, mesh, hit, ray.d, medium, rng.uniform(), TransportMode::Radiance, &ev)) break;
         beta *= ev.weight;
         if (ev.transmitted && mat.type == MaterialType::Dielectric) {
             float etaRatio = side.entering ? 1.0f / mat.ior : mat.ior;  // eta_i / eta_t

@@ -16,7 +16,12 @@ SurfacePhotonGrid::SurfacePhotonGrid(const std::vector<SurfacePhoton>& photons) 
         m_maxRadius = std::max(m_maxRadius, p.radius);
     }
     m_origin = b.lo;
-    m_cellSize = std::max(2.0f * m_maxRadius, 1e-6f);
+    // Cells as wide as the largest photon diameter, but never so small that a cell index along the
+    // photons' extent passes 2^20 (relative, so a scene in millimetres or kilometres hashes alike).
+    const Vec3 extent = b.hi - b.lo;
+    const float span = std::max(extent.x, std::max(extent.y, extent.z));
+    m_cellSize = std::max(2.0f * m_maxRadius, span * 0x1p-20f);
+    if (!(m_cellSize > 0)) m_cellSize = 1.0f;  // one photon, radius 0: any cell size will do
     m_buckets = 1;
     while (m_buckets < 2 * photons.size()) m_buckets <<= 1;
     std::vector<uint32_t> counts(m_buckets + 1, 0);
@@ -28,8 +33,11 @@ SurfacePhotonGrid::SurfacePhotonGrid(const std::vector<SurfacePhoton>& photons) 
     }
     for (uint32_t i = 0; i < m_buckets; ++i) counts[i + 1] += counts[i];
     m_cellStart = counts;
-    m_order.resize(photons.size());
-    for (size_t i = 0; i < photons.size(); ++i) m_order[counts[bucketOf[i]]++] = uint32_t(i);
+    m_sorted.resize(photons.size());
+    for (size_t i = 0; i < photons.size(); ++i) m_sorted[counts[bucketOf[i]]++] = photons[i];
+    m_candidates.resize(photons.size());
+    for (size_t i = 0; i < m_sorted.size(); ++i)
+        m_candidates[i] = {m_sorted[i].position, m_sorted[i].radius * m_sorted[i].radius};
 }
 
 uint32_t SurfacePhotonGrid::cellHash(int x, int y, int z) const {
@@ -52,10 +60,11 @@ Rgb SurfacePhotonGrid::density(const Vec3& x, const Vec3& n) const {
                 if (std::find(visited, visited + nVisited, h) != visited + nVisited) continue;
                 visited[nVisited++] = h;
                 for (uint32_t k = m_cellStart[h]; k < m_cellStart[h + 1]; ++k) {
-                    const SurfacePhoton& p = m_photons[m_order[k]];
-                    Vec3 diff = p.position - x;
+                    const Candidate& c = m_candidates[k];
+                    Vec3 diff = c.position - x;
                     float d2 = dot(diff, diff);
-                    if (d2 >= p.radius * p.radius) continue;
+                    if (d2 >= c.radius2) continue;
+                    const SurfacePhoton& p = m_sorted[k];
                     // Same side of the surface, and close to its plane (no leaks round corners).
                     if (dot(p.normal, n) < 0.7f) continue;
                     if (std::abs(dot(diff, n)) > 0.25f * p.radius) continue;

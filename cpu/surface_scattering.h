@@ -3,6 +3,8 @@
 // path tracer: which way it leaves, the throughput factor, and the medium it ends up in.
 #include "core/fresnel.h"
 #include "core/material.h"
+#include "core/material_eval.h"
+#include "core/microfacet.h"
 #include "core/scene.h"
 #include "cpu/embree_scene.h"
 
@@ -34,8 +36,15 @@ struct SpecularEvent {
     bool transmitted = false;
 };
 
-inline bool sampleSpecular(const Material& mat, const TriangleMesh& mesh, const SurfaceHit& hit, const Vec3& dIn,
-                           MediumId currentMedium, float u, TransportMode mode, SpecularEvent* ev) {
+/// The material at a hit, textures filtered over `footprint` world units (core/material_eval.h).
+inline SurfacePoint surfaceAt(const Scene& scene, const SurfaceHit& hit, float footprint) {
+    return evalSurface(scene, scene.meshes[size_t(hit.mesh)], hit.triangle, hit.b1, hit.b2, footprint);
+}
+
+/// `tint`: the mirror reflectance / dielectric transmission tint at the hit (Material::albedo, times
+/// baseColorTexture where the material has one).
+inline bool sampleSpecular(const Material& mat, const Rgb& tint, const TriangleMesh& mesh, const SurfaceHit& hit,
+                           const Vec3& dIn, MediumId currentMedium, float u, TransportMode mode, SpecularEvent* ev) {
     HitSide side = hitSide(hit, dIn);
     Vec3 wo = -dIn;
     ev->medium = currentMedium;
@@ -43,7 +52,7 @@ inline bool sampleSpecular(const Material& mat, const TriangleMesh& mesh, const 
     switch (mat.type) {
         case MaterialType::Mirror:
             ev->d = reflect(wo, side.nsf);
-            ev->weight = mat.albedo;
+            ev->weight = tint;
             return dot(ev->d, side.nf) > 0;
         case MaterialType::Interface:
             ev->d = dIn;
@@ -65,7 +74,7 @@ inline bool sampleSpecular(const Material& mat, const TriangleMesh& mesh, const 
                 return dot(ev->d, side.nf) > 0;
             }
             ev->d = wt;
-            ev->weight = mat.albedo;
+            ev->weight = tint;
             if (mode == TransportMode::Radiance) {
                 float etaRatio = side.entering ? 1.0f / mat.ior : mat.ior;  // eta_i / eta_t
                 ev->weight *= etaRatio * etaRatio;
@@ -78,6 +87,69 @@ inline bool sampleSpecular(const Material& mat, const TriangleMesh& mesh, const 
             break;
     }
     return false;
+}
+
+/// sampleSpecular with the material's untextured tint.
+inline bool sampleSpecular(const Material& mat, const TriangleMesh& mesh, const SurfaceHit& hit, const Vec3& dIn,
+                           MediumId currentMedium, float u, TransportMode mode, SpecularEvent* ev) {
+    return sampleSpecular(mat, mat.albedo, mesh, hit, dIn, currentMedium, u, mode, ev);
+}
+
+/// The GGX lobe of a glossy material (Material::isGlossy) at a hit, in the shading frame.
+/// Conductors (Mirror) reflect on the side the path arrives from; dielectrics use the exterior
+/// side (+z = hit.ns, toward the mesh exterior) so eta = interior / exterior holds from both sides.
+struct GlossyBsdf {
+    Frame frame;
+    bool conductor = true;
+    RoughConductor metal;
+    RoughDielectric glass;
+
+    Rgb eval(const Vec3& woWorld, const Vec3& wiWorld, TransportMode mode) const {
+        Vec3 wo = frame.toLocal(woWorld), wi = frame.toLocal(wiWorld);
+        if (conductor) return metal.eval(wo, wi);
+        return glass.eval(wo, wi, mode == TransportMode::Radiance ? MicrofacetMode::Radiance : MicrofacetMode::Importance);
+    }
+    float pdf(const Vec3& woWorld, const Vec3& wiWorld) const {
+        Vec3 wo = frame.toLocal(woWorld), wi = frame.toLocal(wiWorld);
+        return conductor ? metal.pdf(wo, wi) : glass.pdf(wo, wi);
+    }
+};
+
+/// `sp`: the material at the hit (roughness and tint from textures); `dIn`: the arriving direction.
+inline GlossyBsdf glossyBsdf(const Material& mat, const SurfacePoint& sp, const SurfaceHit& hit, const Vec3& dIn) {
+    GlossyBsdf b;
+    Ggx ggx = Ggx::fromRoughness(std::max(sp.roughness, Material::kSmoothRoughness));
+    b.conductor = mat.type == MaterialType::Mirror;
+    if (b.conductor) {
+        b.frame = Frame(hitSide(hit, dIn).nsf);
+        b.metal = RoughConductor{ggx, sp.baseColor};
+    } else {
+        b.frame = Frame(hit.ns);
+        b.glass = RoughDielectric{ggx, mat.ior, sp.baseColor};
+    }
+    return b;
+}
+
+/// Samples the glossy lobe: like sampleSpecular, with `ev->weight` = f |cos| / pdf and `*pdf` the
+/// solid-angle pdf (for MIS). False when the path must end (sampled below the geometric surface,
+/// or a back-facing microfacet).
+inline bool sampleGlossy(const GlossyBsdf& bsdf, const TriangleMesh& mesh, const SurfaceHit& hit, const Vec3& dIn,
+                         MediumId currentMedium, float u0, float u1, float u2, TransportMode mode, SpecularEvent* ev,
+                         float* pdf = nullptr) {
+    HitSide side = hitSide(hit, dIn);
+    Vec3 wo = bsdf.frame.toLocal(-dIn);
+    MicrofacetSample s = bsdf.conductor
+                             ? bsdf.metal.sample(wo, u1, u2)
+                             : bsdf.glass.sample(wo, u0, u1, u2,
+                                                 mode == TransportMode::Radiance ? MicrofacetMode::Radiance
+                                                                                 : MicrofacetMode::Importance);
+    if (!s.valid) return false;
+    ev->d = normalize(bsdf.frame.toWorld(s.wi));
+    ev->weight = s.weight;
+    ev->transmitted = s.transmitted;
+    ev->medium = s.transmitted ? (side.entering ? mesh.interiorMedium : mesh.exteriorMedium) : currentMedium;
+    if (pdf) *pdf = s.pdf;
+    return s.transmitted ? dot(ev->d, side.nf) < 0 : dot(ev->d, side.nf) > 0;
 }
 
 }  // namespace tyndall

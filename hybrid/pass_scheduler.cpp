@@ -28,9 +28,37 @@ GpuMode parseGpuMode(const std::string& text) {
 struct PassScheduler::Flight {
     uint64_t pass = 0;
     PassStats stats;
-    std::future<std::pair<Image, double>> splat;  // GL: the primary-segment image and its seconds
-    Image image;  // the secondary stage's radiance (GL), or the finished pass image (CPU only)
+    /// GL: the primary-segment images of the batches still being splatted, in batch order, and
+    /// their seconds.
+    std::deque<std::future<std::pair<Image, double>>> splats;
+    Image splatSum;  // GL: the sum of the batches' splats collected so far, in batch order
+    Image image;     // the secondary stage's radiance (GL), or the finished pass image (CPU only)
+
+    /// Waits for the oldest pending splat and adds it to splatSum.
+    void collectSplat() {
+        auto [image, seconds] = splats.front().get();
+        splats.pop_front();
+        stats.splatSeconds += seconds;
+        if (splatSum.pixels.empty())
+            splatSum = std::move(image);
+        else
+            splatSum += image;
+    }
+    void waitSplats() {
+        for (auto& s : splats)
+            if (s.valid()) s.wait();
+    }
 };
+
+namespace {
+/// Adds `part` to `sum` (moves it in for the first batch: one pass of one batch is unchanged).
+void addBatch(Image& sum, Image&& part) {
+    if (sum.pixels.empty())
+        sum = std::move(part);
+    else
+        sum += part;
+}
+}  // namespace
 
 PassScheduler::PassScheduler(GpuMode mode, SchedulerOptions options) : m_mode(mode), m_options(options) {
     m_options.queueDepth = std::max(m_options.queueDepth, 1);
@@ -101,11 +129,10 @@ RenderProgress PassScheduler::run(PassRenderer& renderer, Accumulator& acc, uint
     auto finishOldest = [&] {
         Flight f = std::move(flights.front());
         flights.pop_front();
-        if (f.splat.valid()) {
-            auto [image, splatSeconds] = f.splat.get();
-            image += f.image;
-            f.image = std::move(image);
-            f.stats.splatSeconds += splatSeconds;
+        if (m_glUsable) {
+            while (!f.splats.empty()) f.collectSplat();
+            f.splatSum += f.image;
+            f.image = std::move(f.splatSum);
         }
         acc.addPass(f.image);
         progress.totals += f.stats;
@@ -116,18 +143,20 @@ RenderProgress PassScheduler::run(PassRenderer& renderer, Accumulator& acc, uint
     };
     // Passes in flight are thrown away; their splats still finish (they read their inputs).
     auto discardFlights = [&] {
-        for (Flight& f : flights)
-            if (f.splat.valid()) f.splat.wait();
+        for (Flight& f : flights) f.waitSplats();
         flights.clear();
     };
-    // The CPU stages of one pass, with the splat submitted between the primary and the secondary
+    // The CPU stages of one pass, with each photon batch's splat submitted before its secondary
     // stage; returns Continue with the pass queued, or what a display or request said meanwhile
-    // (the pass is then dropped at the next stage boundary).
+    // (the pass is then dropped at the next stage or batch boundary). Batches: the GL side splats
+    // batch b while the CPU gathers it and traces batch b + 1, so at most two batches are held
+    // (MemoryPlan::kBatchesHeld); each is freed once both sides are done with it.
     auto startPass = [&] {
         Flight f;
         f.pass = next++;
+        const uint32_t batches = renderer.memoryPlan().batches;
         auto t0 = Clock::now();
-        auto photons = std::make_shared<const PhotonMap>(renderer.tracePhotons(f.pass));
+        auto photons = std::make_shared<const PhotonMap>(renderer.tracePhotons(f.pass, 0));
         f.stats.add(*photons);
         f.stats.photonSeconds = secondsSince(t0);
         if (interrupted()) return DisplayCommand::Continue;
@@ -135,31 +164,42 @@ RenderProgress PassScheduler::run(PassRenderer& renderer, Accumulator& acc, uint
         auto primary = std::make_shared<const PrimaryPass>(renderer.tracePrimary(f.pass));
         CameraPassStats camera;
         camera.rays = primary->rays;
-        double cameraSeconds = secondsSince(t1);
+        f.stats.cameraSeconds = secondsSince(t1);
         if (interrupted()) return DisplayCommand::Continue;
         m_peakPassesHeld = std::max(m_peakPassesHeld, int(flights.size()) + 1);
         while (int(flights.size()) >= m_options.queueDepth) {
             DisplayCommand command = finishOldest();
             if (command != DisplayCommand::Continue) return command;
         }
-        auto t2 = Clock::now();
-        if (m_glUsable) {
-            f.splat = m_gl->submit([this, primary, photons](GlContext&) {
-                auto t = Clock::now();
-                Image image = m_splatter->splat(primary->segments, *photons);
-                return std::make_pair(std::move(image), secondsSince(t));
-            });
-            f.image = renderer.traceSecondary(*primary, *photons, &camera);
-            f.stats.cameraSeconds = cameraSeconds + secondsSince(t2);
-        } else {
-            Image radiance = renderer.traceSecondary(*primary, *photons, &camera);
-            f.stats.cameraSeconds = cameraSeconds + secondsSince(t2);
-            auto t3 = Clock::now();
-            if (!interrupted()) {
-                f.image = renderer.splatPrimary(primary->segments, *photons);
-                f.image += radiance;
+        for (uint32_t batch = 0;;) {
+            auto t2 = Clock::now();
+            if (m_glUsable) {
+                while (!f.splats.empty()) f.collectSplat();  // the batch before last is freed
+                f.splats.push_back(m_gl->submit([this, primary, photons](GlContext&) mutable {
+                    auto t = Clock::now();
+                    Image image = m_splatter->splat(primary->segments, *photons);
+                    photons.reset();  // free the batch now, not when the future is read
+                    return std::make_pair(std::move(image), secondsSince(t));
+                }));
+                addBatch(f.image, renderer.traceSecondary(*primary, *photons, &camera, batch == 0));
+                f.stats.cameraSeconds += secondsSince(t2);
+            } else {
+                Image radiance = renderer.traceSecondary(*primary, *photons, &camera, batch == 0);
+                f.stats.cameraSeconds += secondsSince(t2);
+                auto t3 = Clock::now();
+                if (!interrupted()) {
+                    Image part = renderer.splatPrimary(primary->segments, *photons);
+                    part += radiance;
+                    addBatch(f.image, std::move(part));
+                }
+                f.stats.splatSeconds += secondsSince(t3);
             }
-            f.stats.splatSeconds = secondsSince(t3);
+            photons.reset();
+            if (++batch == batches || interrupted()) break;
+            auto t4 = Clock::now();
+            photons = std::make_shared<const PhotonMap>(renderer.tracePhotons(f.pass, batch));
+            f.stats.add(*photons);
+            f.stats.photonSeconds += secondsSince(t4);
         }
         f.stats.add(camera);
         flights.push_back(std::move(f));

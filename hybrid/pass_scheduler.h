@@ -6,8 +6,10 @@
 // hands them to the GL thread, which splats them while the CPU gathers pass i's secondary
 // segments (through the beam BVH) and then traces pass i+1's photons and primary segments. Pass i
 // is added to the accumulator when both halves are in, in pass order; at most `queueDepth` passes
-// wait for the GL side, so memory stays flat however many passes run. The steady-state rate is
-// that of the slower side.
+// wait for the GL side, so memory stays flat however many passes run. Within a pass the photons
+// come in batches (PassRenderer::memoryPlan()): batch b is splatted on GL while the CPU gathers it
+// and traces batch b+1, and the batch splats are summed in batch order, so memory stays flat
+// however many photons a pass has. The steady-state rate is that of the slower side.
 //
 // Without GL (`--gpu off`, or `auto` without a usable context) the same stages run one after the
 // other with the CPU twin of the splat (PassRenderer::splatPrimary): same seed, same image up to

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <map>
 #include <set>
+#include <tuple>
 #include <sstream>
 
 #include "core/error.h"
@@ -83,11 +84,13 @@ bool writeFile(std::string* err, const std::string&, const std::vector<unsigned 
     return false;
 }
 
-/// Image "decoder": textures are not sampled (docs/scene-format.md), so only record which images
-/// tinygltf found; an image it could not find is an error for us (it is only a warning to it).
-bool noteImage(tinygltf::Image*, const int index, std::string*, std::string*, int, int, const unsigned char*, int,
-               void* user) {
-    static_cast<std::set<int>*>(user)->insert(index);
+/// Image "decoder": keeps each image's encoded bytes (file, .glb buffer view or data URI alike);
+/// TextureStore decodes them with OpenImageIO when a material uses the image. An image tinygltf
+/// could not find is an error for us (it is only a warning to it).
+using ImageBytes = std::map<int, std::vector<unsigned char>>;
+bool keepImage(tinygltf::Image*, const int index, std::string*, std::string*, int, int, const unsigned char* bytes,
+               int size, void* user) {
+    (*static_cast<ImageBytes*>(user))[index].assign(bytes, bytes + std::max(size, 0));
     return true;
 }
 
@@ -172,15 +175,17 @@ std::string bufferNamed(const nlohmann::json& root, const std::string& uri) {
 // Extensions Tyndall reads (others are reported once as ignored).
 const std::set<std::string> kHandledExtensions = {
     "KHR_lights_punctual",  "KHR_materials_transmission",      "KHR_materials_ior",
-    "KHR_materials_volume", "KHR_materials_emissive_strength", "KHR_mesh_quantization"};
+    "KHR_materials_volume", "KHR_materials_emissive_strength", "KHR_mesh_quantization",
+    "KHR_texture_transform"};
 // Required extensions without which the geometry cannot be read.
 const std::set<std::string> kUnreadableExtensions = {"KHR_draco_mesh_compression", "EXT_meshopt_compression",
                                                      "KHR_meshopt_compression"};
 
 class GltfImporter {
 public:
-    GltfImporter(const tinygltf::Model& model, std::string file, const SceneLoadOptions& options, WarnOnce& warn)
-        : m_model(model), m_file(std::move(file)), m_options(options), m_warn(warn) {}
+    GltfImporter(const tinygltf::Model& model, const ImageBytes& images, std::string file,
+                 const SceneLoadOptions& options, WarnOnce& warn)
+        : m_model(model), m_images(images), m_file(std::move(file)), m_options(options), m_warn(warn) {}
 
     SceneDraft run();
 
@@ -205,10 +210,15 @@ private:
     void addPrimitive(size_t node, const tinygltf::Primitive& prim, const std::string& name, const std::string& where,
                       const Affine& world);
     int material(int gltfIndex, const std::string& where);
+    /// A material's texture slot (textureInfo index, texCoord, KHR_texture_transform) as a
+    /// TextureRef; the image goes into the scene's TextureStore once per (image, encoding, sampler).
+    TextureRef textureRef(int texture, int texCoord, const tinygltf::ExtensionMap& ext, TextureEncoding enc,
+                          const std::string& where);
     void addLight(size_t node, const Affine& world);
     void addCamera(size_t node, const Affine& world);
 
     const tinygltf::Model& m_model;
+    const ImageBytes& m_images;
     std::string m_file;
     const SceneLoadOptions& m_options;
     WarnOnce& m_warn;
@@ -216,6 +226,7 @@ private:
     std::vector<char> m_visited;
     std::map<int, int> m_materials;     // glTF material (-1 = default) -> Scene material
     std::map<int, MediumId> m_volumes;  // glTF material -> its KHR_materials_volume medium
+    std::map<std::tuple<int, int, int, int>, int> m_textures;  // (image, encoding, wrapS, wrapT) -> TextureStore id
     size_t m_triangles = 0;
 };
 
@@ -386,6 +397,21 @@ void GltfImporter::addPrimitive(size_t node, const tinygltf::Primitive& prim, co
             m.normals.clear();
         }
     }
+    for (int set = 0; set < 2; ++set) {
+        auto uv = prim.attributes.find("TEXCOORD_" + std::to_string(set));
+        if (uv == prim.attributes.end()) continue;
+        std::string what = where + ": TEXCOORD_" + std::to_string(set);
+        std::vector<float> t = readGltfFloats(m_model, uv->second, 2, what, budget);
+        if (t.size() / 2 != nv)
+            throw Error(what + " has " + std::to_string(t.size() / 2) + " elements for " + std::to_string(nv) +
+                        " positions");
+        m.texcoords[set].resize(nv);
+        for (size_t k = 0; k < nv; ++k) {
+            if (!std::isfinite(t[2 * k]) || !std::isfinite(t[2 * k + 1]))
+                throw Error(what + ": element " + std::to_string(k) + " is not finite");
+            m.texcoords[set][k] = {t[2 * k], t[2 * k + 1]};
+        }
+    }
     if (world.determinant() < 0)  // mirrored instance: keep the exterior on the normals' side
         for (size_t k = 0; k + 2 < m.indices.size(); k += 3) std::swap(m.indices[k + 1], m.indices[k + 2]);
 
@@ -428,11 +454,10 @@ int GltfImporter::material(int index, const std::string& primWhere) {
     in.roughness = float(pbr.roughnessFactor);
     in.emissive = rgbOf(gm.emissiveFactor, Rgb(0.0f), 3, in.where, "emissiveFactor");
     in.alphaMode = gm.alphaMode;
-    if (pbr.baseColorTexture.index >= 0) in.textures.push_back("baseColorTexture");
-    if (pbr.metallicRoughnessTexture.index >= 0) in.textures.push_back("metallicRoughnessTexture");
+    in.alphaCutoff = float(gm.alphaCutoff);
+    // occlusionTexture is ignored on purpose: it is a baked estimate of the ambient shadowing that
+    // Tyndall's light transport computes (applying it would darken crevices twice).
     if (gm.normalTexture.index >= 0) in.textures.push_back("normalTexture");
-    if (gm.occlusionTexture.index >= 0) in.textures.push_back("occlusionTexture");
-    if (gm.emissiveTexture.index >= 0) in.textures.push_back("emissiveTexture");
     if (const auto* e = extension(gm.extensions, "KHR_materials_emissive_strength"))
         in.emissiveStrength =
             float(extNumber(*e, "emissiveStrength", 1.0, in.where + ": KHR_materials_emissive_strength"));
@@ -454,6 +479,20 @@ int GltfImporter::material(int index, const std::string& primWhere) {
 
     GltfMaterialMapping mapped = mapGltfMaterial(in);
     for (const GltfNote& n : mapped.notes) m_warn(n.kind, n.message);
+    Material& mat = mapped.material;
+    if (pbr.baseColorTexture.index >= 0)
+        mat.baseColorTexture = textureRef(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
+                                          pbr.baseColorTexture.extensions, TextureEncoding::Srgb,
+                                          in.where + ": baseColorTexture");
+    if (gm.emissiveTexture.index >= 0 && mat.isEmissive())
+        mat.emissiveTexture = textureRef(gm.emissiveTexture.index, gm.emissiveTexture.texCoord,
+                                         gm.emissiveTexture.extensions, TextureEncoding::Srgb,
+                                         in.where + ": emissiveTexture");
+    if (pbr.metallicRoughnessTexture.index >= 0)
+        mat.metallicRoughnessTexture = textureRef(pbr.metallicRoughnessTexture.index,
+                                                  pbr.metallicRoughnessTexture.texCoord,
+                                                  pbr.metallicRoughnessTexture.extensions, TextureEncoding::Linear,
+                                                  in.where + ": metallicRoughnessTexture");
     scene.materials.push_back(mapped.material);
     int id = int(scene.materials.size() - 1);
     if (mapped.interior) {
@@ -461,6 +500,74 @@ int GltfImporter::material(int index, const std::string& primWhere) {
         m_volumes[index] = MediumId(scene.media.size() - 1);
     }
     return m_materials[index] = id;
+}
+
+TextureRef GltfImporter::textureRef(int texture, int texCoord, const tinygltf::ExtensionMap& ext, TextureEncoding enc,
+                                    const std::string& where) {
+    if (texture < 0 || size_t(texture) >= m_model.textures.size())
+        throw Error(where + ": texture index " + std::to_string(texture) + " out of range (the file has " +
+                    std::to_string(m_model.textures.size()) + " textures)");
+    const tinygltf::Texture& tex = m_model.textures[size_t(texture)];
+    const int image = tex.source;
+    if (image < 0 || size_t(image) >= m_model.images.size())
+        throw Error(where + ": texture " + std::to_string(texture) +
+                    " has no PNG/JPEG image source (KHR_texture_basisu and EXT_texture_webp are not read)");
+    TextureWrap wrap[2] = {TextureWrap::Repeat, TextureWrap::Repeat};
+    if (tex.sampler >= 0) {
+        if (size_t(tex.sampler) >= m_model.samplers.size())
+            throw Error(where + ": sampler index " + std::to_string(tex.sampler) + " out of range");
+        const tinygltf::Sampler& s = m_model.samplers[size_t(tex.sampler)];
+        int modes[2] = {s.wrapS, s.wrapT};
+        for (int k = 0; k < 2; ++k) {
+            switch (modes[k]) {
+                case TINYGLTF_TEXTURE_WRAP_REPEAT: wrap[k] = TextureWrap::Repeat; break;
+                case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: wrap[k] = TextureWrap::ClampToEdge; break;
+                case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: wrap[k] = TextureWrap::MirroredRepeat; break;
+                default:
+                    throw Error(where + ": sampler " + std::to_string(tex.sampler) + " wrap mode " +
+                                std::to_string(modes[k]) + " is not 10497, 33071 or 33648");
+            }
+        }
+    }
+    auto key = std::make_tuple(image, int(enc), int(wrap[0]), int(wrap[1]));
+    auto known = m_textures.find(key);
+    TextureRef ref;
+    if (known != m_textures.end()) {
+        ref.texture = known->second;
+    } else {
+        const tinygltf::Image& im = m_model.images[size_t(image)];
+        auto bytes = m_images.find(image);
+        if (bytes == m_images.end() || bytes->second.empty())
+            throw Error(where + ": image " + std::to_string(image) + " has no data");
+        std::string mime = im.mimeType;
+        if (mime.empty() && im.uri.rfind("data:", 0) == 0) mime = im.uri.substr(5, im.uri.find_first_of(";,") - 5);
+        std::string imageWhere = where + ": image " + (im.name.empty() ? "" : "'" + im.name + "' ") + "(index " +
+                                 std::to_string(image) + ")";
+        if (!m_draft.scene.textures) m_draft.scene.textures = std::make_shared<TextureStore>();
+        ref.texture = m_draft.scene.textures->addEncoded(bytes->second, mime, im.uri, enc, wrap[0], wrap[1],
+                                                         imageWhere);
+        m_textures[key] = ref.texture;
+    }
+    ref.texcoord = texCoord;
+    if (const tinygltf::Value* t = extension(ext, "KHR_texture_transform")) {
+        std::string tw = where + ": KHR_texture_transform";
+        auto pair = [&](const char* key, Vec2 fallback) {
+            if (!t->IsObject() || !t->Has(key)) return fallback;
+            const tinygltf::Value& v = t->Get(key);
+            if (!v.IsArray() || v.ArrayLen() != 2 || !v.Get(0).IsNumber() || !v.Get(1).IsNumber())
+                throw Error(tw + ": " + key + " must be an array of 2 numbers");
+            return Vec2{float(v.Get(0).GetNumberAsDouble()), float(v.Get(1).GetNumberAsDouble())};
+        };
+        Vec2 offset = pair("offset", {0, 0}), scale = pair("scale", {1, 1});
+        float rotation = float(extNumber(*t, "rotation", 0.0, tw));
+        ref.transform = TextureTransform::fromOffsetRotationScale(offset, rotation, scale);
+        ref.texcoord = int(extNumber(*t, "texCoord", double(texCoord), tw));
+    }
+    if (ref.texcoord != 0 && ref.texcoord != 1) {
+        m_warn("texcoord", where + ": TEXCOORD_" + std::to_string(ref.texcoord) + " not supported: TEXCOORD_0 used");
+        ref.texcoord = 0;
+    }
+    return ref;
 }
 
 void GltfImporter::addLight(size_t node, const Affine& world) {
@@ -549,11 +656,11 @@ SceneDraft importGltf(const std::string& bytes, bool binary, const std::string& 
     access.canonicalBase = fs::weakly_canonical(access.baseDir, ec);
     if (ec) access.canonicalBase.clear();  // nothing resolves inside it
     access.allowed = options.allowExternalFiles;
-    std::set<int> imagesFound;
+    ImageBytes images;
 
     tinygltf::TinyGLTF loader;
     loader.SetFsCallbacks({&fileExists, &expandPath, &readFile, &writeFile, &access});
-    loader.SetImageLoader(&noteImage, &imagesFound);
+    loader.SetImageLoader(&keepImage, &images);
     tinygltf::Model model;
     std::string err, warnings;
     bool ok = false;
@@ -586,7 +693,7 @@ SceneDraft importGltf(const std::string& bytes, bool binary, const std::string& 
                     jsonErrorText(oneLine(err.empty() ? warnings : err), binary ? std::string() : bytes));
 
     for (size_t i = 0; i < model.images.size(); ++i) {
-        if (imagesFound.count(int(i))) continue;
+        if (images.count(int(i))) continue;
         const tinygltf::Image& im = model.images[i];
         throw Error(file + ": image " + (im.name.empty() ? "" : "'" + im.name + "' ") + "(index " + std::to_string(i) +
                     "): " + (im.uri.empty() ? "no data" : "file '" + im.uri + "' not found or unreadable"));
@@ -595,7 +702,7 @@ SceneDraft importGltf(const std::string& bytes, bool binary, const std::string& 
         if (model.buffers[i].data.empty())
             throw Error(file + ": buffer " + std::to_string(i) +
                         (model.buffers[i].uri.empty() ? "" : " ('" + model.buffers[i].uri + "')") + ": no data");
-    return GltfImporter(model, file, options, warn).run();
+    return GltfImporter(model, images, file, options, warn).run();
 }
 
 }  // namespace tyndall

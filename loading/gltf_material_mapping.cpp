@@ -56,17 +56,17 @@ GltfMaterialMapping mapGltfMaterial(const GltfMaterialInput& in) {
         m.ior = in.ior;
         if (in.transmission < 1.0f)
             note("partial transmission", "transmissionFactor >= 0.5 rendered as fully transmissive");
-        if (in.roughness > 0.05f) note("rough transmission", "rough transmission rendered as smooth glass");
-    } else if (in.metallic >= 0.5f && in.roughness <= 0.5f) {
-        m.type = MaterialType::Mirror;
+    } else if (in.metallic >= 0.5f) {
+        m.type = MaterialType::Mirror;  // a GGX conductor when roughness > Material::kSmoothRoughness
         m.albedo = in.baseColor;
-        if (in.roughness > 0.05f) note("rough metal", "rough metal rendered as a perfect mirror");
     } else {
         m.type = MaterialType::Diffuse;
         m.albedo = in.baseColor;
-        if (in.metallic >= 0.5f) note("rough metal", "rough metal (roughness > 0.5) rendered as diffuse");
     }
     m.emission = in.emissive * in.emissiveStrength;
+    m.alpha = in.alpha;
+    m.metallic = in.metallic;
+    m.roughness = m.type == MaterialType::Diffuse ? 0.0f : in.roughness;
 
     if (in.hasVolume) {
         if (m.type != MaterialType::Dielectric) {
@@ -81,8 +81,10 @@ GltfMaterialMapping mapGltfMaterial(const GltfMaterialInput& in) {
             out.interior = med;
         }
     }
-    if (in.alpha < 1.0f || in.alphaMode != "OPAQUE")
-        note("alpha", "alpha (alphaMode " + in.alphaMode + ") ignored: rendered opaque");
+    m.alphaMode = in.alphaMode == "MASK" ? AlphaMode::Mask : in.alphaMode == "BLEND" ? AlphaMode::Blend : AlphaMode::Opaque;
+    m.alphaCutoff = in.alphaCutoff;
+    if (in.alphaMode != "OPAQUE" && in.alphaMode != "MASK" && in.alphaMode != "BLEND")
+        throw Error(at + ": alphaMode must be OPAQUE, MASK or BLEND, got '" + in.alphaMode + "'");
     for (const std::string& t : in.textures) note("texture " + t, t + " ignored: the factor alone is used");
     return out;
 }

@@ -2,9 +2,12 @@
 // glTF 2.0 material -> Tyndall Material (+ interior medium): the nearest material Tyndall has.
 // Kept free of tinygltf so the mapping is unit-testable; gltf_loader.cpp fills the input.
 //   transmission >= 0.5 (KHR_materials_transmission)  -> Dielectric, ior (KHR_materials_ior),
-//                                                       tint = baseColorFactor
-//   else metallic >= 0.5 and roughness <= 0.5          -> Mirror, reflectance = baseColorFactor
-//   else                                              -> Diffuse, albedo = baseColorFactor
+//                                                       tint = baseColorFactor, roughness (GGX
+//                                                       transmission above Material::kSmoothRoughness)
+//   else metallic >= 0.5                              -> Mirror (GGX conductor when rough),
+//                                                       F0 = baseColorFactor
+//   else                                              -> Diffuse, albedo = baseColorFactor (the
+//                                                       dielectric specular layer is not modelled)
 //   emissiveFactor * emissiveStrength                 -> emission (radiance, W m^-2 sr^-1)
 //   KHR_materials_volume on a Dielectric              -> absorbing medium inside the mesh:
 //        sigma_a = -ln(attenuationColor) / attenuationDistance, sigma_s = 0
@@ -37,6 +40,7 @@ struct GltfMaterialInput {
     Rgb attenuationColor{1.0f};
     float thickness = 0.0f;
     std::string alphaMode = "OPAQUE";
+    float alphaCutoff = 0.5f;
     std::vector<std::string> textures;  ///< names of the texture slots in use ("baseColorTexture", ...)
 };
 

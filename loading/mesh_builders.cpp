@@ -12,6 +12,7 @@ TriangleMesh makeQuad(const std::string& name, const Vec3& corner, const Vec3& a
     m.name = name;
     m.material = material;
     m.positions = {corner, corner + a, corner + a + b, corner + b};
+    m.texcoords[0] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};  // u along a, v along b
     m.indices = {0, 1, 2, 0, 2, 3};
     return m;
 }

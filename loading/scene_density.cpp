@@ -99,7 +99,7 @@ std::shared_ptr<const DensityGrid> readDensity(JsonObject& obj, const std::strin
     }
     obj.finish();
     try {
-        return VdbDensityGrid::load(source);
+        return VdbDensityGrid::load(source, options.warn);
     } catch (const Error& e) {
         file->fail(e.what());
     }

@@ -47,7 +47,26 @@ std::string readFileText(const std::string& path, const std::string& where) {
 
 }  // namespace
 
-Material readMaterial(JsonObject& obj) {
+/// A material's image texture: `key` names a file relative to the scene file.
+TextureRef readTexture(JsonObject& obj, const char* key, TextureEncoding enc, float scale, const std::string& baseDir,
+                       const SceneLoadOptions& options, Scene& scene) {
+    TextureRef ref;
+    auto v = obj.get(key);
+    if (!v) return ref;
+    std::string rel = v->string();
+    if (!options.allowExternalFiles) v->fail("references to other files are disabled");
+    std::filesystem::path path = std::filesystem::path(baseDir.empty() ? "." : baseDir) / rel;
+    if (!scene.textures) scene.textures = std::make_shared<TextureStore>();
+    try {
+        ref.texture = scene.textures->addFile(path.string(), enc, TextureWrap::Repeat, TextureWrap::Repeat, v->where());
+    } catch (const Error& e) {
+        v->fail(std::string("cannot read the texture: ") + e.what());
+    }
+    ref.transform = TextureTransform::fromOffsetRotationScale({0, 0}, 0.0f, {scale, scale});
+    return ref;
+}
+
+Material readMaterial(JsonObject& obj, const std::string& baseDir, const SceneLoadOptions& options, Scene& scene) {
     Material m;
     m.name = obj.require("name").string();
     std::string type = obj.string("type", "diffuse");
@@ -72,6 +91,19 @@ Material readMaterial(JsonObject& obj) {
         m.ior = float(ior->number(1e-3, 100.0));
     }
     m.emission = obj.rgb("emission", Rgb(0.0f));
+    if (auto r = obj.get("roughness")) {
+        if (m.type != MaterialType::Mirror && m.type != MaterialType::Dielectric)
+            r->fail("roughness applies to mirror and dielectric materials only (diffuse is Lambertian)");
+        m.roughness = float(r->number(0.0, 1.0));
+        m.metallic = m.type == MaterialType::Mirror ? 1.0f : 0.0f;
+    }
+    float scale = float(obj.number("texture_scale", 1.0, 1e-6, 1e6));
+    m.baseColorTexture = readTexture(obj, "albedo_texture", TextureEncoding::Srgb, scale, baseDir, options, scene);
+    m.emissiveTexture = readTexture(obj, "emission_texture", TextureEncoding::Srgb, scale, baseDir, options, scene);
+    m.metallicRoughnessTexture =
+        readTexture(obj, "roughness_texture", TextureEncoding::Linear, scale, baseDir, options, scene);
+    if (m.metallicRoughnessTexture.present() && !m.isSpecular())
+        obj.get("roughness_texture")->fail("roughness_texture applies to mirror and dielectric materials only");
     obj.finish();
     return m;
 }
@@ -190,7 +222,7 @@ SceneDraft readSceneJson(const std::string& text, const std::string& file, const
         std::map<std::string, std::string> seen;  // name -> where first defined in this file
         for (const JsonValue& v : list->elements()) {
             JsonObject obj = v.object();
-            Material m = readMaterial(obj);
+            Material m = readMaterial(obj, baseDir, options, scene);
             if (seen.count(m.name)) v.fail("material '" + m.name + "' is already defined at " + seen[m.name]);
             seen[m.name] = v.pointer();
             // A material named like a glTF material replaces it (its meshes take the new one).

@@ -5,11 +5,14 @@
 #include <openvdb/tools/ChangeBackground.h>
 #include <openvdb/tools/Interpolation.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <mutex>
 #include <optional>
+#include <regex>
 #include <sstream>
 
 #include "core/error.h"
@@ -209,7 +212,8 @@ VdbDensityGrid::VdbDensityGrid(std::unique_ptr<Impl> impl) : m_impl(std::move(im
 }
 VdbDensityGrid::~VdbDensityGrid() = default;
 
-std::shared_ptr<const VdbDensityGrid> VdbDensityGrid::load(const VdbGridSource& source) {
+std::shared_ptr<const VdbDensityGrid> VdbDensityGrid::load(const VdbGridSource& source,
+                                                           const std::function<void(const std::string&)>& notice) {
     initializeOpenVdb();
     const std::string where = "vdb file '" + source.file + "'";
     std::error_code ec;
@@ -220,32 +224,62 @@ std::shared_ptr<const VdbDensityGrid> VdbDensityGrid::load(const VdbGridSource& 
         openvdb::io::File file(source.file);
         file.open(false);
         openvdb::GridPtrVecPtr grids = file.readAllGridMetadata();
-        std::ostringstream list;
-        for (size_t i = 0; i < grids->size(); ++i)
-            list << (i ? ", " : "") << "'" << (*grids)[i]->getName() << "' (" << (*grids)[i]->valueType() << ")";
-        std::string available = grids->empty() ? "the file holds no grids" : "grids in the file: " + list.str();
-        auto find = [&](const std::string& name) -> openvdb::GridBase::Ptr {
-            for (const auto& g : *grids)
-                if (g->getName() == name) return g;
-            return nullptr;
+        // Grids sharing a name are told apart as name[k], k counted in file order.
+        auto sameName = [&](const std::string& name) {
+            std::vector<size_t> at;
+            for (size_t i = 0; i < grids->size(); ++i)
+                if ((*grids)[i]->getName() == name) at.push_back(i);
+            return at;
         };
-        openvdb::GridBase::Ptr meta;
-        if (!source.grid.empty()) {
-            meta = find(source.grid);
-            if (!meta) throw Error(where + ": no grid named '" + source.grid + "' (" + available + ")");
-        } else {
-            meta = find("density");
-            if (!meta || !meta->isType<openvdb::FloatGrid>()) {
-                meta = nullptr;
+        std::ostringstream list;
+        for (size_t i = 0; i < grids->size(); ++i) {
+            const std::string& name = (*grids)[i]->getName();
+            std::vector<size_t> same = sameName(name);
+            std::string label = name;
+            if (same.size() > 1)
+                label += "[" + std::to_string(std::find(same.begin(), same.end(), i) - same.begin()) + "]";
+            list << (i ? ", " : "") << "'" << label << "' (" << (*grids)[i]->valueType() << ")";
+        }
+        std::string available = grids->empty() ? "the file holds no grids" : "grids in the file: " + list.str();
+
+        std::string name = source.grid;
+        long index = -1;  // -1: no [k] given
+        std::smatch m;
+        static const std::regex kIndexed(R"(^(.*)\[(\d{1,6})\]$)");
+        if (std::regex_match(source.grid, m, kIndexed) && sameName(source.grid).empty()) {
+            name = m[1];
+            index = std::stol(m[2]);
+        }
+        if (name.empty()) {
+            name = "density";
+            std::vector<size_t> d = sameName(name);
+            if (d.empty() || !(*grids)[d[0]]->isType<openvdb::FloatGrid>()) {
+                name.clear();
                 for (const auto& g : *grids)
                     if (g->isType<openvdb::FloatGrid>()) {
-                        meta = g;
+                        name = g->getName();
                         break;
                     }
+                if (name.empty()) throw Error(where + ": no float grid to use as density (" + available + ")");
             }
-            if (!meta) throw Error(where + ": no float grid to use as density (" + available + ")");
         }
-        chosen = meta->getName();
+        std::vector<size_t> candidates = sameName(name);
+        if (candidates.empty()) throw Error(where + ": no grid named '" + name + "' (" + available + ")");
+        if (index >= long(candidates.size()))
+            throw Error(where + ": '" + source.grid + "' asks for grid " + std::to_string(index + 1) + " named '" + name +
+                        "', the file holds " + std::to_string(candidates.size()) + " (" + available + ")");
+        if (index < 0 && candidates.size() > 1) {
+            std::string line = where + ": " + std::to_string(candidates.size()) + " grids are named '" + name +
+                               "'; using the first ('" + name + "[0]'); choose another with \"grid\": \"" + name +
+                               "[1]\" (up to [" + std::to_string(candidates.size() - 1) + "]) in the medium's density";
+            if (notice)
+                notice(line);
+            else
+                std::fprintf(stderr, "tyndall: %s\n", line.c_str());
+        }
+        const size_t pick = candidates[size_t(std::max(index, 0L))];
+        openvdb::GridBase::Ptr meta = (*grids)[pick];
+        chosen = candidates.size() > 1 ? name + "[" + std::to_string(std::max(index, 0L)) + "]" : name;
         const std::string at = where + ": grid '" + chosen + "'";
         if (!meta->isType<openvdb::FloatGrid>())
             throw Error(at + " holds " + meta->valueType() + " values; a density grid must hold float");
@@ -253,7 +287,14 @@ std::shared_ptr<const VdbDensityGrid> VdbDensityGrid::load(const VdbGridSource& 
             throw Error(at +
                         " is a level set (signed distance), not a density; convert it to a fog volume "
                         "(e.g. openvdb::tools::sdfToFogVolume or Houdini's VDB Convert)");
-        base = file.readGrid(chosen);
+        if (candidates.size() == 1) {
+            base = file.readGrid(name);
+        } else {
+            // readGrid(name) would log OpenVDB's own "more than one grid named" warning; reading
+            // them all and taking the one in file order does not.
+            openvdb::GridPtrVecPtr all = file.getGrids();
+            base = (*all)[pick];
+        }
         file.close();
     } catch (const Error&) {
         throw;

@@ -27,6 +27,7 @@
 // reused, so a destroyed grid's cached accessor is never touched again).
 #include <cstdint>
 #include <memory>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -39,7 +40,10 @@ namespace tyndall {
 /// "transform"}).
 struct VdbGridSource {
     std::string file;    ///< path to a .vdb file
-    std::string grid;    ///< grid name; empty = "density" if present, else the first float grid
+    /// Grid name; empty = "density" if present, else the first float grid. Files may hold several
+    /// grids of one name: "name[k]" picks the k-th of them (from 0, in file order, as vdb_print
+    /// lists them); a plain "name" takes the first and says so.
+    std::string grid;
     float scale = 1.0f;  ///< density multiplier, >= 0
     Affine3 transform;   ///< scene transform applied after the file's index-to-world map
 };
@@ -55,8 +59,12 @@ public:
 
     /// Loads a grid; throws Error "vdb file '<file>': ..." for a missing or unreadable file, a
     /// missing grid name (listing the grids present), a level set, a non-float grid, a frustum or
-    /// singular transform, a positive background, or a bad scale.
-    static std::shared_ptr<const VdbDensityGrid> load(const VdbGridSource& source);
+    /// singular transform, a positive background, or a bad scale. `notice` receives one line when
+    /// the choice was ambiguous (several grids of the chosen name): which one was taken and how
+    /// to pick another; empty = "tyndall: <line>" on stderr. OpenVDB's own console warnings are
+    /// never triggered.
+    static std::shared_ptr<const VdbDensityGrid> load(const VdbGridSource& source,
+                                                      const std::function<void(const std::string&)>& notice = {});
 
     /// Builds an OpenVDB grid from dense values (tests, procedural media): voxel (i, j, k) of a
     /// dims[0] x dims[1] x dims[2] block (x fastest) sits at index (i, j, k); values <= 0 stay

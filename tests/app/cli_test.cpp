@@ -111,17 +111,20 @@ TEST(Cli, HelpListsEveryOptionWithDefaults) {
     const std::vector<std::string> output = {"--output", "--exposure"};
     const std::vector<std::string> ppb = {"--passes", "--time",           "--photons",       "--alpha",
                                           "--radius", "--surface-radius", "--radius-offset", "--planned-paths",
-                                          "--free-flights"};
+                                          "--free-flights", "--memory", "--simd"};
     auto join = [](std::initializer_list<std::vector<std::string>> parts) {
         std::set<std::string> all = {"--help", "--help-all"};
         for (const auto& p : parts) all.insert(p.begin(), p.end());
         return all;
     };
     const std::map<std::string, std::set<std::string>> expected = {
-        {"render", join({scene, output, ppb, {"--gpu"}})},
+        {"render", join({scene, output, ppb,
+                         {"--gpu", "--checkpoint", "--checkpoint-every", "--resume", "--quiet", "--progress-every", "--aov",
+                          "--reference", "--convergence"}})},
         {"reference", join({scene, output, {"--spp", "--max-depth", "--no-nee"}})},
         {"bench", join({scene, {"--passes", "--photons", "--rays", "--queries", "--free-flights", "--no-hybrid", "--quality",
-                            "--quality-scene", "--reference-dir", "--reference-spp", "--plot"}})},
+                            "--quality-scene", "--reference-dir", "--reference-spp", "--plot", "--radius",
+                            "--radius-offset", "--simd"}})},
         {"compare", join({scene, output, ppb, {"--gpu", "--density"}})}};
     for (const auto& [command, names] : expected) {
         CliRun r = runTyndall(command + " --help");
@@ -395,9 +398,9 @@ TEST(Cli, AutomaticRadiiAreRecordedAsPlainSettingsThatReproduceTheImage) {
 }
 
 TEST(Cli, TimeBudgetRecordsItsPlanAndReplaysFromIt) {
-    // --time measures the pass rate over a short warm-up and plans the radii for the paths the
-    // rest of the budget will trace; the planned count goes into the header, so the same settings
-    // with the recorded pass count reproduce the image bit for bit whatever the machine's speed.
+    // --time plans the automatic radii for the open-ended horizon; the planned count goes into the
+    // header, so the same settings with the recorded pass count reproduce the image bit for bit
+    // whatever the machine's speed.
     const std::string dir = tyndall::test::outputDir();
     CliRun t = runTyndall("render --photons 200 --size 32x20 --seed 4 --gpu off --time 1 -o " + dir + "/cli_time.exr");
     ASSERT_EQ(t.exitCode, 0) << t.output;

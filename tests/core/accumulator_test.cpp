@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "core/error.h"
 #include "tests/test_util.h"
@@ -72,4 +74,26 @@ TEST(Accumulator, SaveLoadRoundTripIsExact) {
     std::fclose(f);
     EXPECT_THROW(Accumulator::load(path), Error);
     EXPECT_THROW(Accumulator::load(test::outputDir() + "/no_such_file.tacc"), Error);
+}
+
+TEST(Accumulator, NaNAndInfinityNeverReachTheSums) {
+    // A planted NaN and an infinity: those pixels count as black in that pass, are counted, and
+    // the running mean stays finite (one bad sample would otherwise poison the pixel for good).
+    Accumulator acc(2, 2);
+    Image bad = constantImage(2, 2, Rgb(1, 1, 1));
+    bad.at(0, 0).g = std::numeric_limits<float>::quiet_NaN();
+    bad.at(1, 1).b = std::numeric_limits<float>::infinity();
+    acc.addPass(bad);
+    acc.addPass(constantImage(2, 2, Rgb(3, 3, 3)));
+    EXPECT_EQ(acc.rejectedSamples(), 2u);
+    for (const Rgb& p : acc.mean().pixels)
+        for (int c = 0; c < 3; ++c) EXPECT_TRUE(std::isfinite(p[c]));
+    EXPECT_DOUBLE_EQ(acc.meanAt(0, 0, 0), 1.5);  // (0 + 3) / 2: the whole pixel dropped in the bad pass
+    EXPECT_DOUBLE_EQ(acc.meanAt(1, 0, 1), 2.0);
+    Accumulator other(2, 2);
+    other.addPass(bad);
+    acc.merge(other);
+    EXPECT_EQ(acc.rejectedSamples(), 4u);
+    acc.reset();
+    EXPECT_EQ(acc.rejectedSamples(), 0u);
 }

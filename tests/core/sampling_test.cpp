@@ -1,11 +1,45 @@
-// Warps: each sampled density matches its stated pdf (moment checks with fixed seeds).
+// Warps: each sampled density matches its stated pdf (moment checks and chi-square tests over
+// (z, phi) bins against the integrated pdf, with fixed seeds).
 #include "core/sampling.h"
 
 #include <gtest/gtest.h>
 
+#include <functional>
+#include <vector>
+
 #include "core/rng.h"
 
 using namespace tyndall;
+
+namespace {
+
+/// Chi-square of `n` directions from `sample(u1, u2)` over nZ x nPhi bins of (z, phi), z in
+/// [zMin, 1], against `zMass(a, b)`: the probability that z falls in [a, b] (uniform in phi for
+/// both warps tested here). Bins are equal in z.
+double chiSquareZPhi(const std::function<Vec3(float, float)>& sample, const std::function<double(double, double)>& zMass,
+                     double zMin, int nZ, int nPhi, int n, uint64_t seed) {
+    std::vector<double> counts(size_t(nZ) * nPhi, 0.0);
+    Rng rng(seed, 7);
+    for (int i = 0; i < n; ++i) {
+        Vec3 d = sample(rng.uniform(), rng.uniform());
+        int bz = std::clamp(int((d.z - zMin) / (1.0 - zMin) * nZ), 0, nZ - 1);
+        double phi = std::atan2(double(d.y), double(d.x)) + kPi;
+        int bp = std::clamp(int(phi / (2 * kPi) * nPhi), 0, nPhi - 1);
+        counts[size_t(bz) * nPhi + bp] += 1;
+    }
+    double chi2 = 0;
+    for (int bz = 0; bz < nZ; ++bz) {
+        double a = zMin + (1.0 - zMin) * bz / nZ, b = zMin + (1.0 - zMin) * (bz + 1) / nZ;
+        double expected = n * zMass(a, b) / nPhi;
+        for (int bp = 0; bp < nPhi; ++bp) {
+            double o = counts[size_t(bz) * nPhi + bp];
+            chi2 += (o - expected) * (o - expected) / expected;
+        }
+    }
+    return chi2;
+}
+
+}  // namespace
 
 TEST(Sampling, UniformSphereMoments) {
     Rng rng(1, 1);
@@ -32,6 +66,25 @@ TEST(Sampling, CosineHemisphereMoments) {
     }
     EXPECT_NEAR(m1 / n, 2.0 / 3.0, 0.003);
     EXPECT_NEAR(m2 / n, 0.5, 0.003);
+}
+
+// 20 x 16 bins, 319 degrees of freedom: the statistic has mean 319 and sd ~25; 420 is p ~ 1e-4
+// (as in phase_test.cpp). A warp that bunches phi (e.g. phi = pi u2) or skews z (z = 1 - 2 u1^2)
+// scores in the thousands; the moments above cannot see a phi error at all.
+TEST(Sampling, UniformSphereChiSquareOverZAndPhi) {
+    // pdf 1/(4 pi): z uniform on [-1, 1], phi uniform.
+    double chi2 = chiSquareZPhi(sampleUniformSphere, [](double a, double b) { return (b - a) / 2.0; }, -1.0, 20, 16,
+                                400000, 11);
+    EXPECT_LT(chi2, 420.0);
+    EXPECT_GT(chi2, 230.0) << "suspiciously perfect fit";
+}
+
+TEST(Sampling, CosineHemisphereChiSquareOverZAndPhi) {
+    // pdf cos/pi: P(z in [a, b]) = b^2 - a^2, phi uniform (the concentric map must not bunch it).
+    double chi2 = chiSquareZPhi(sampleCosineHemisphere, [](double a, double b) { return b * b - a * a; }, 0.0, 20, 16,
+                                400000, 12);
+    EXPECT_LT(chi2, 420.0);
+    EXPECT_GT(chi2, 230.0) << "suspiciously perfect fit";
 }
 
 TEST(Sampling, UniformConeStaysInsideAndIsUniform) {

@@ -14,7 +14,8 @@ using namespace tyndall;
 
 namespace {
 
-// Exact equality: both sum a pixel's beams in beam-index order with the same arithmetic.
+// Exact equality: both sum a pixel's beams in beam-index order with the same arithmetic (the
+// scalar kernel; tests/cpu/beam_splat_simd_test.cpp holds the SIMD one to it).
 void expectSameImage(const Image& a, const Image& b, const char* what) {
     ASSERT_EQ(a.pixels.size(), b.pixels.size());
     size_t differing = 0, nonZero = 0;
@@ -66,7 +67,7 @@ TEST(BeamRasterizer, MatchesBruteForceOnDefaultScenePasses) {
     settings.height = 60;
     settings.photonsPerPass = 300;
     PassRenderer renderer(scene, settings);
-    BeamRasterizer raster(scene);
+    BeamRasterizer raster(scene, SplatKernel::Scalar);
     for (uint64_t pass : {0ull, 40ull}) {
         PhotonMap photons = renderer.tracePhotons(pass);
         CameraPassResult camera = renderer.traceCamera(pass, photons);
@@ -106,7 +107,7 @@ TEST(BeamRasterizer, MatchesBruteForceOnAdversarialBeams) {
             Vec3 o{rng.uniform() * 8 - 4, rng.uniform() * 8 - 4, rng.uniform() * 8 - 6};
             add(o, sampleUniformSphere(rng.uniform(), rng.uniform()), rng.uniform() * 6, 0.01f + rng.uniform() * 0.3f);
         }
-        BeamRasterizer raster(scene);
+        BeamRasterizer raster(scene, SplatKernel::Scalar);
         expectSameImage(raster.rasterize(primary, photons), raster.bruteForce(primary, photons),
                         lensRadius > 0 ? "thin lens" : "pinhole");
     }

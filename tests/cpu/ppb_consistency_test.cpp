@@ -31,16 +31,24 @@
 namespace tyndall {
 namespace {
 
-// Measured here: relMSE 0.12, 0.048, 0.023 after 4, 16, 64 passes (reference variance 0.002).
-constexpr double kFinalBound = 0.04;
-// Means over the image and over each 16 x 16 quadrant after 64 passes (measured within 1% and 3%).
-constexpr double kImageMeanTolerance = 0.03;
-constexpr double kQuadrantMeanTolerance = 0.06;
+// Measured here: relMSE 0.119, 0.048, 0.023 after 4, 16, 64 passes (reference variance 0.002);
+// the bound sits 30% above the final value.
+constexpr double kFinalBound = 0.03;
+// Means over the image and over each 16 x 16 quadrant after 64 passes (measured 1.0095 and
+// 0.998 .. 1.023).
+constexpr double kImageMeanTolerance = 0.02;
+constexpr double kQuadrantMeanTolerance = 0.04;
+// Regions (the pixels seeing the mirror, the glass sphere, the floor), on top of 4 standard
+// errors: measured 0.996 +- 0.011, 1.032 +- 0.028, 0.997 +- 0.010. A 15% error on the mirror's
+// secondary paths moves its region by 7% (the fog in front of the mirror is splatted on primary
+// segments and unaffected): 1.070 +- 0.012, outside 4 standard errors plus 1%; the glass, seen by
+// fewer pixels through a caustic, is noisier.
+constexpr double kRegionBias = 0.01;
 
 
 TEST(PpbConsistency, RelMseAgainstReferenceFallsWithPasses) {
     test::expectPpbConvergesToReference(test::makeConsistencyScene(),
-                                        {kFinalBound, kImageMeanTolerance, kQuadrantMeanTolerance}, 101, 202,
+                                        {kFinalBound, kImageMeanTolerance, kQuadrantMeanTolerance, kRegionBias}, 101, 202,
                                         "consistency");
 }
 
@@ -82,7 +90,9 @@ TEST(PpbConsistency, MultipleScatteringInDensityGridMatchesReference) {
     ps.freeFlightSamples = 8;
     ps.seed = 404;
     PassRenderer renderer(scene, ps);
-    const int batches = 6, passesPerBatch = 6;
+    // 12 batches of 3 passes (the same 36 passes as 6 x 6): a standard error from 6 batches is
+    // itself uncertain by ~30%, from 12 by ~20%.
+    const int batches = 12, passesPerBatch = 3;
     std::vector<double> ratios;
     Accumulator acc(size, size);
     for (int b = 0; b < batches; ++b) {

@@ -181,14 +181,83 @@ struct ConsistencyBounds {
     double finalRelMse;                 ///< relMSE after 64 passes
     double imageMean = 0.03;            ///< |PPB/reference - 1| of the image mean
     double quadrantMean = 0.06;         ///< same for each 16 x 16 quadrant
+    double regionBias = 0.03;           ///< PPB's kernel bias allowed per region, on top of 4 standard errors
+    bool glassRegion = true;            ///< also check the pixels that see the glass sphere
+    /// The reference's own variance may be at most this share of the corrected relMSE it judges.
+    double referenceVarianceShare = 0.3;
 };
+
+/// For each pixel of a size x size image of `scene`, the mesh its primary rays hit (through the
+/// pixel's centre and its four corners, pinhole), or -1 where they disagree or miss: the pixels
+/// that see one object only.
+inline std::vector<int> pixelMeshes(const Scene& scene, int size) {
+    EmbreeScene rt(scene);
+    std::vector<int> out(size_t(size) * size, -1);
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            int mesh = -2;
+            const float corners[5][2] = {{0.5f, 0.5f}, {0.0f, 0.0f}, {1.0f, 0.0f}, {0.0f, 1.0f}, {1.0f, 1.0f}};
+            for (const auto& c : corners) {
+                SurfaceHit hit;
+                Ray ray = scene.camera.generateRay(x + c[0], y + c[1], size, size, {0.5f, 0.5f});
+                int m = rt.intersect(ray, &hit) ? hit.mesh : -1;
+                mesh = (mesh == -2 || mesh == m) ? m : -1;
+            }
+            out[size_t(y) * size + x] = mesh;
+        }
+    return out;
+}
+
+/// PPB against the reference over the pixels that see one mesh (named `meshName`): the ratio of
+/// the region's means must be within 4 combined standard errors plus `bias` of 1. PPB's standard
+/// error comes from the spread of `batches` (independent batches of passes whose mean is the
+/// PPB image), the reference's from its per-pixel variance of the mean (pixels independent,
+/// channels bounded by Cauchy-Schwarz). A normalisation error confined to what is seen through
+/// one object (a mirror's or a glass's secondary paths, a lit floor's surface photons) is diluted
+/// below the relMSE's and the quadrants' tolerances; here it stands alone.
+inline void expectRegionAgrees(const Scene& scene, const std::vector<int>& meshOfPixel, const char* meshName,
+                               const std::vector<Image>& batches, const ReferenceImage& ref, double bias) {
+    int mesh = -1;
+    for (size_t m = 0; m < scene.meshes.size(); ++m)
+        if (scene.meshes[m].name == meshName) mesh = int(m);
+    ASSERT_GE(mesh, 0) << "no mesh named " << meshName;
+    double refSum = 0, refVar = 0;
+    std::vector<double> batchSums(batches.size(), 0.0);
+    int pixels = 0;
+    for (size_t i = 0; i < meshOfPixel.size(); ++i) {
+        if (meshOfPixel[i] != mesh) continue;
+        ++pixels;
+        double sd = 0;
+        for (int c = 0; c < 3; ++c) {
+            refSum += ref.mean.pixels[i][c];
+            sd += std::sqrt(double(ref.varianceOfMean.pixels[i][c]));
+            for (size_t b = 0; b < batches.size(); ++b) batchSums[b] += batches[b].pixels[i][c];
+        }
+        refVar += sd * sd;
+    }
+    ASSERT_GE(pixels, 12) << meshName << ": too few pixels see it to test";
+    ASSERT_GT(refSum, 0.0) << meshName << ": dark in the reference";
+    std::vector<double> ratios;
+    for (double b : batchSums) ratios.push_back(b / refSum);
+    double mean = 0, var = 0;
+    for (double r : ratios) mean += r / double(ratios.size());
+    for (double r : ratios) var += (r - mean) * (r - mean) / double(ratios.size() - 1);
+    double sePpb = std::sqrt(var / double(ratios.size())), seRef = mean * std::sqrt(refVar) / refSum;
+    double se = std::hypot(sePpb, seRef);
+    std::printf("region '%s' (%d pixels): PPB / reference %.4f +- %.4f (PPB %.4f, reference %.4f)\n", meshName, pixels,
+                mean, se, sePpb, seRef);
+    EXPECT_LT(se, 0.03) << meshName << ": too noisy to test";
+    EXPECT_NEAR(mean, 1.0, 4.0 * se + bias) << "region seeing '" << meshName << "'";
+}
 
 /// The consistency check shared by the homogeneous and the VDB tests: at 32 x 32, a 4096-spp
 /// reference against PPB with 2000 photon paths per pass. relMSE must fall by at least a quarter
 /// from 4 to 16 and from 16 to 64 passes (for alpha = 0.5 the variance alone halves per 4x
 /// passes) and end below `bounds.finalRelMse`; the reference's variance must be well below what
 /// it judges; image and quadrant means must agree (they expose normalisation errors the relMSE's
-/// noise hides). On failure the PPB, reference and error images go to the test output folder as
+/// noise hides); and so must the pixels that see the mirror, the glass sphere and the floor, each
+/// on its own (expectRegionAgrees, with PPB's standard errors from 8 batches of 8 passes). On
+/// failure the PPB, reference and error images go to the test output folder as
 /// `<evidence>_ppb.exr` etc.
 inline void expectPpbConvergesToReference(const Scene& scene, const ConsistencyBounds& bounds, uint64_t referenceSeed,
                                           uint64_t ppbSeed, const std::string& evidence) {
@@ -208,9 +277,18 @@ inline void expectPpbConvergesToReference(const Scene& scene, const ConsistencyB
     PassRenderer renderer(scene, ps);
     Accumulator acc(size, size);
     const uint64_t checkpoints[] = {4, 16, 64};
+    const uint64_t passesPerBatch = 8;
     std::vector<RelMse> errors;
+    std::vector<Image> batches;
+    Accumulator batch(size, size);
     for (uint64_t pass = 0; pass < 64; ++pass) {
-        acc.addPass(renderer.renderPass(pass));
+        Image passImage = renderer.renderPass(pass);
+        acc.addPass(passImage);
+        batch.addPass(passImage);
+        if ((pass + 1) % passesPerBatch == 0) {
+            batches.push_back(batch.mean());
+            batch = Accumulator(size, size);
+        }
         if (pass + 1 == checkpoints[errors.size()]) {
             errors.push_back(relMse(acc.mean(), ref));
             std::printf("%3llu passes: relMSE %.5f (raw %.5f, reference variance %.5f)\n",
@@ -218,7 +296,8 @@ inline void expectPpbConvergesToReference(const Scene& scene, const ConsistencyB
                         errors.back().referenceVar);
         }
     }
-    EXPECT_LT(errors.back().referenceVar, 0.3 * errors.back().corrected()) << "reference too noisy to judge PPB";
+    EXPECT_LT(errors.back().referenceVar, bounds.referenceVarianceShare * errors.back().corrected())
+        << "reference too noisy to judge PPB";
     EXPECT_LT(errors[1].corrected(), 0.75 * errors[0].corrected()) << "relMSE did not fall from 4 to 16 passes";
     EXPECT_LT(errors[2].corrected(), 0.75 * errors[1].corrected()) << "relMSE did not fall from 16 to 64 passes";
     EXPECT_LT(errors[2].corrected(), bounds.finalRelMse) << "relMSE after 64 passes";
@@ -236,6 +315,10 @@ inline void expectPpbConvergesToReference(const Scene& scene, const ConsistencyB
             std::printf("quadrant (%d, %d) mean PPB / reference: %.4f\n", qx, qy, q);
             EXPECT_NEAR(q, 1.0, bounds.quadrantMean) << "quadrant (" << qx << ", " << qy << ") means";
         }
+    const std::vector<int> meshOfPixel = pixelMeshes(scene, size);
+    for (const char* region : {"mirror", "glass sphere", "floor"})
+        if (bounds.glassRegion || std::string(region) != "glass sphere")
+            expectRegionAgrees(scene, meshOfPixel, region, batches, ref, bounds.regionBias);
     if (::testing::Test::HasFailure()) {
         writeEvidence(evidence + "_ppb", ppb);
         writeEvidence(evidence + "_reference", ref.mean);

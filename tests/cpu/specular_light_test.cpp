@@ -18,6 +18,16 @@
 //    E(p) = rho_m I cos(theta) / d^2 with d, theta from the image, where the reflected ray is not
 //    blocked by the shade. Pixels whose footprint reaches within 0.15 of the shade's shadow are
 //    left out (the kernel blurs the shadow edge).
+//    Case 1 cannot see the Fresnel formula (at normal incidence any R + T = 1 conserves energy), so
+//    its glass / bare ratio is asserted to be 1 and case 3 looks at Fresnel where it matters.
+// 3. Oblique glass slab: a directional light (irradiance E0 across its direction) at 70 degrees
+//    from the vertical crosses a lossless glass slab (ior 1.5) onto a diffuse floor. Photon paths
+//    are cut at three vertices (slab top, slab bottom, floor), so the floor sees only light
+//    transmitted twice: E = E0 cos(theta) (1 - F(theta))^2 (the inner interface has F(theta_t)
+//    = F(theta) by reciprocity), uniform over the floor because a slab only shifts a parallel
+//    beam. F is computed here from Fresnel's sine and tangent laws, not from core/fresnel.h.
+//    At 70 degrees F = 0.175 (4% at normal incidence): a stray factor in Fresnel or an index
+//    ratio taken the wrong way round at the inner face moves the floor by 5-15%.
 // Comparison as in analytic_sphere_test: ratio sum(estimate) / sum(exact) over the pixels, within
 // 4 standard errors (from 8 independent batches of passes; they must stay below 1.5%) plus a 1%
 // allowance (tessellation of the ball, kernel blur of the mirror case's smooth gradient). A lost
@@ -63,9 +73,15 @@ RenderSettings surfaceSettings() {
     return s;
 }
 
+struct Ratio {
+    double mean = 0, stdErr = 0;
+    std::vector<double> batches;  ///< each batch's ratio
+};
+
 /// Mean of 8 batches of 2 passes each; prints and checks sum(estimate)/sum(exact) over the pixels
-/// where `exact` is >= 0 (negative: left out). Returns the mean ratio.
-double checkRatio(const char* what, const Scene& scene, const RenderSettings& settings, const Image& exact) {
+/// where `exact` is >= 0 (negative: left out). Returns the mean ratio and its standard error.
+Ratio checkRatio(const char* what, const Scene& scene, const RenderSettings& settings, const Image& exact,
+                 double allowance = 0.01) {
     PassRenderer renderer(scene, settings);
     std::vector<double> ratios;
     for (int b = 0; b < 8; ++b) {
@@ -82,8 +98,17 @@ double checkRatio(const char* what, const Scene& scene, const RenderSettings& se
     double stdErr = std::sqrt(r.var / double(r.n));
     std::printf("%s: PPB / exact %.4f +- %.4f\n", what, r.mean, stdErr);
     EXPECT_LT(stdErr, 0.015) << what << ": too noisy to test";
-    EXPECT_NEAR(r.mean, 1.0, 4.0 * stdErr + 0.01) << what;
-    return r.mean;
+    EXPECT_NEAR(r.mean, 1.0, 4.0 * stdErr + allowance) << what;
+    return {r.mean, stdErr, ratios};
+}
+
+/// Unpolarised Fresnel reflectance from air onto glass of index `n` at angle `theta` (radians),
+/// from the sine and tangent laws (independent of core/fresnel.h).
+double fresnelFromAngles(double theta, double n) {
+    double thetaT = std::asin(std::sin(theta) / n);
+    double rs = std::pow(std::sin(theta - thetaT) / std::sin(theta + thetaT), 2);
+    double rp = std::pow(std::tan(theta - thetaT) / std::tan(theta + thetaT), 2);
+    return 0.5 * (rs + rp);
 }
 
 double meshArea(const TriangleMesh& mesh) {
@@ -130,9 +155,89 @@ TEST(SpecularLights, PointLightInsideAGlassBallLightsTheRoomAsWithoutIt) {
                     ASSERT_EQ(hit.mesh, 0) << "pixel " << x << ", " << y << " sees the ball";
                 }
     }
-    double glassRatio = checkRatio("glass", withGlass, surfaceSettings(), exact);
-    double bareRatio = checkRatio("bare", bare, surfaceSettings(), exact);
-    std::printf("with glass / without: %.4f\n", glassRatio / bareRatio);
+    Ratio glassRatio = checkRatio("glass", withGlass, surfaceSettings(), exact);
+    Ratio bareRatio = checkRatio("bare", bare, surfaceSettings(), exact);
+    // The same photon streams light both rooms (same seed), but the ball reorders them: treat the
+    // two as independent. 0.5% for the tessellated ball (facets are not exactly normal to the rays).
+    double ratio = glassRatio.mean / bareRatio.mean;
+    double se = ratio * std::hypot(glassRatio.stdErr / glassRatio.mean, bareRatio.stdErr / bareRatio.mean);
+    std::printf("with glass / without: %.4f +- %.4f\n", ratio, se);
+    EXPECT_NEAR(ratio, 1.0, 4.0 * se + 0.005) << "the ball gains or loses energy";
+}
+
+/// The oblique-slab scene of case 3 with a slab of index `ior` (1 + 1e-4: index-matched).
+Scene obliqueSlabScene(double theta, double ior, Rgb irradiance, Rgb rho, float floorHalf) {
+    const float slabLo = 0.2f, slabHi = 0.22f;
+    Scene s;
+    s.name = "oblique-slab";
+    s.source = "<test scene>";
+    Material glass = material("glass", MaterialType::Dielectric, Rgb(1.0f));
+    glass.ior = float(ior);
+    s.materials = {material("floor", MaterialType::Diffuse, rho), glass};
+    s.meshes.push_back(makeQuad("floor", {-floorHalf, 0, floorHalf}, {2 * floorHalf, 0, 0}, {0, 0, -2 * floorHalf}, 0));
+    // The light travels towards +x: the floor is lit through the slab's top and bottom faces only
+    // (traced back, a floor point meets them 0.55 and 0.57 further along -x), never through its
+    // sides. A low slab keeps the scene, and so the light's photon disk, small.
+    s.meshes.push_back(makeBox("slab", {-1.45f, slabLo, -0.8f}, {0.8f, slabHi, 0.8f}, 1));
+    Light sun;
+    sun.name = "sun";
+    sun.type = LightType::Directional;
+    sun.direction = Vec3(float(std::sin(theta)), -float(std::cos(theta)), 0.0f);
+    sun.intensity = irradiance;
+    s.lights.push_back(sun);
+    // Under the slab, looking down at the floor (the upper pixels see the slab and are left out).
+    s.camera = Camera::lookAt({0.0f, 0.18f, 0.45f}, {0.0f, 0.0f, -0.2f}, {0, 1, 0}, 90.0f * kPi / 180.0f);
+    s.finalize();
+    s.validate();
+    return s;
+}
+
+TEST(SpecularLights, DirectionalLightThroughAnObliqueGlassSlab) {
+    const double theta = 70.0 * M_PI / 180.0;
+    const Rgb irradiance(2.0f, 1.6f, 1.2f), rho(0.6f, 0.5f, 0.4f);
+    const float floorHalf = 0.7f;
+    const Scene glass = obliqueSlabScene(theta, 1.5, irradiance, rho, floorHalf);
+    const Scene matched = obliqueSlabScene(theta, 1.0001, irradiance, rho, floorHalf);
+    const double f = fresnelFromAngles(theta, 1.5);
+    std::printf("slab: F(70 deg) = %.4f, transmitted (1 - F)^2 = %.4f\n", f, (1 - f) * (1 - f));
+    EmbreeScene rt(glass);
+    const float margin = 0.08f;  // kernel radius 0.05 plus a pixel: away from the floor's edge
+    Image exactGlass(kSize, kSize), exactMatched(kSize, kSize);
+    int used = 0;
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) {
+            bool keep = true;
+            for (float cy : {0.0f, 1.0f})
+                for (float cx : {0.0f, 1.0f}) {
+                    Ray ray = glass.camera.generateRay(x + cx, y + cy, kSize, kSize, {0.5f, 0.5f});
+                    SurfaceHit hit;
+                    keep = keep && rt.intersect(ray, &hit) && hit.mesh == 0 &&
+                           std::abs(hit.p.x) < floorHalf - margin && std::abs(hit.p.z) < floorHalf - margin;
+                }
+            const Rgb l = rho * kInvPi * irradiance * float(std::cos(theta));
+            exactMatched.at(x, y) = keep ? l : Rgb(-1.0f);
+            exactGlass.at(x, y) = keep ? l * float((1.0 - f) * (1.0 - f)) : Rgb(-1.0f);
+            used += keep;
+        }
+    std::printf("slab: %d of %d pixels compared\n", used, kSize * kSize);
+    ASSERT_GT(used, kSize * kSize / 3);
+    RenderSettings settings = surfaceSettings();
+    settings.maxPhotonBounces = 3;  // slab top, slab bottom, floor: no internal reflections, no bounce light
+    settings.photonsPerPass = 60000;
+    // Each against E0 cos(theta) (1 - F)^2 on its own, with 3% for the directional light onto the
+    // floor, which reads 1-3% high with or without Fresnel (measured 1.018 +- 0.006 and
+    // 1.012 +- 0.010 through the index-matched slab; see the closing note of issue 14); and the two
+    // against each other, batch by batch, where that cancels: the same seed sends the same photon
+    // paths at both slabs, so the paired ratio glass / index-matched = (1 - F)^2 is much less noisy
+    // than either; to 4 of its standard errors plus 0.5%.
+    Ratio rGlass = checkRatio("glass slab", glass, settings, exactGlass, 0.03);
+    Ratio rMatched = checkRatio("index-matched slab", matched, settings, exactMatched, 0.03);
+    std::vector<double> paired;
+    for (size_t b = 0; b < rGlass.batches.size(); ++b) paired.push_back(rGlass.batches[b] / rMatched.batches[b]);
+    test::MeanVar pm = test::meanVar(paired);
+    double ratio = pm.mean, se = std::sqrt(pm.var / double(pm.n));
+    std::printf("slab: (glass / matched) / (1 - F)^2 = %.4f +- %.4f (paired batches)\n", ratio, se);
+    EXPECT_NEAR(ratio, 1.0, 4.0 * se + 0.005) << "transmission through the oblique slab is not (1 - F(70 deg))^2";
 }
 
 TEST(SpecularLights, PointLightSeenOnlyThroughAMirror) {

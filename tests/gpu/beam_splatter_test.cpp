@@ -16,6 +16,7 @@
 
 using namespace tyndall;
 using tyndall::test::coverageMismatches;
+using tyndall::test::kGlCpuParity;
 using tyndall::test::relativeRms;
 
 namespace {
@@ -220,11 +221,13 @@ TEST(GlBeamSplatter, RealPassOfTheDefaultSceneMatchesTheCpuRasterizer) {
         Image cpu = renderer.splatPrimary(camera.primary, photons);
         Image gl = splatter.splat(camera.primary, photons);
         double rms = relativeRms(gl, cpu);
-        EXPECT_LT(rms, 1e-3) << "pass " << pass;
+        // Measured 9e-8 (float rounding in a different summation order); 1e-5 leaves two orders of
+        // magnitude for other GL drivers and still sees one pixel row left uncovered (~1e-2).
+        EXPECT_LT(rms, kGlCpuParity) << "pass " << pass;
         EXPECT_EQ(coverageMismatches(gl, cpu, 1e-6f), 0) << "pass " << pass;
         std::printf("pass %llu: %zu beams, relative RMS GL vs CPU %.3g\n", (unsigned long long)pass,
                     photons.beams.size(), rms);
-        if (rms >= 1e-3) tyndall::test::writeEvidence("default_scene_pass", gl, cpu);
+        if (rms >= kGlCpuParity) tyndall::test::writeEvidence("default_scene_pass", gl, cpu);
     }
 }
 

@@ -17,6 +17,8 @@
 #include "tests/test_scenes.h"
 
 using namespace tyndall;
+using tyndall::test::kGlCpuParity;
+using tyndall::test::mismatchedPixels;
 using tyndall::test::relativeRms;
 
 namespace {
@@ -77,11 +79,15 @@ TEST(PassScheduler, HybridAndCpuOnlyGiveTheSameImage) {
     Rendered cpu = render(GpuMode::Off, defaultScene(), s);
     Rendered hybrid = render(GpuMode::On, defaultScene(), s);
     double rms = relativeRms(hybrid.image, cpu.image);
-    std::printf("64 passes, %dx%d: relative RMS hybrid vs CPU-only %.3g\n", s.width, s.height, rms);
-    EXPECT_LT(rms, 1e-3);
+    int mismatched = mismatchedPixels(hybrid.image, cpu.image, 1e-4);
+    std::printf("64 passes, %dx%d: relative RMS hybrid vs CPU-only %.3g, %d pixels differ\n", s.width, s.height, rms,
+                mismatched);
+    // Measured 3e-8 (the GL splat against the scalar CPU rasterizer; see kGlCpuParity).
+    EXPECT_LT(rms, kGlCpuParity);
+    EXPECT_EQ(mismatched, 0) << "pixels the GL side left uncovered or splatted twice";
     ASSERT_EQ(hybrid.passOrder.size(), 64u);
     for (uint64_t i = 0; i < 64; ++i) EXPECT_EQ(hybrid.passOrder[i], i);
-    if (rms >= 1e-3) tyndall::test::writeEvidence("hybrid_vs_cpu", hybrid.image, cpu.image);
+    if (rms >= kGlCpuParity || mismatched) tyndall::test::writeEvidence("hybrid_vs_cpu", hybrid.image, cpu.image);
 
     // The comparison means something: the primary-segment splat is a large part of the image.
     PassRenderer renderer(defaultScene(), s);
@@ -103,8 +109,11 @@ TEST(PassScheduler, HybridAndCpuOnlyAgreeInAGridMedium) {
     Rendered cpu = render(GpuMode::Off, scene, s);
     Rendered hybrid = render(GpuMode::On, scene, s);
     double rms = relativeRms(hybrid.image, cpu.image);
-    std::printf("grid medium, 16 passes: relative RMS hybrid vs CPU-only %.3g\n", rms);
-    EXPECT_LT(rms, 1e-3);
+    int mismatched = mismatchedPixels(hybrid.image, cpu.image, 1e-4);
+    std::printf("grid medium, 16 passes: relative RMS hybrid vs CPU-only %.3g, %d pixels differ\n", rms, mismatched);
+    EXPECT_LT(rms, kGlCpuParity);
+    EXPECT_EQ(mismatched, 0) << "pixels the GL side left uncovered or splatted twice";
+    if (rms >= kGlCpuParity || mismatched) tyndall::test::writeEvidence("hybrid_vs_cpu_grid", hybrid.image, cpu.image);
     EXPECT_GT(relativeRms(cpu.image, render(GpuMode::Off, defaultScene(), s).image), 0.02)
         << "the grid should change the image";
     PassRenderer renderer(scene, s);
@@ -153,7 +162,8 @@ TEST(PassScheduler, ResetFromTheDisplayRestartsCleanly) {
         EXPECT_EQ(r.restarts, 1);
         ASSERT_EQ(r.passOrder.size(), 5u + 12u);
         EXPECT_EQ(r.passOrder[5], 0u) << "the render restarts at pass 0";
-        EXPECT_LT(relativeRms(r.image, fresh.image), 1e-3) << "passes in flight at the reset leaked into the image";
+        EXPECT_LT(relativeRms(r.image, fresh.image), kGlCpuParity) << "passes in flight at the reset leaked into the image";
+        EXPECT_EQ(mismatchedPixels(r.image, fresh.image, 1e-4), 0) << "passes in flight at the reset leaked";
     }
 }
 
@@ -248,10 +258,12 @@ TEST(PassScheduler, CameraAndLightMovedAtAResetAreRendered) {
         ASSERT_TRUE(reset);
         ASSERT_EQ(acc.passCount(), s.passes);
         double rms = relativeRms(acc.mean(), fresh.mean());
-        if (mode == GpuMode::Off)
+        if (mode == GpuMode::Off) {
             EXPECT_EQ(rms, 0.0) << "CPU-only: the same passes bit for bit";
-        else
-            EXPECT_LT(rms, 1e-3) << "hybrid: the same passes up to float rounding";
+        } else {
+            EXPECT_LT(rms, kGlCpuParity) << "hybrid: the same passes up to float rounding";
+            EXPECT_EQ(mismatchedPixels(acc.mean(), fresh.mean(), 1e-4), 0) << "hybrid: pixels differ";
+        }
     }
 }
 
@@ -323,4 +335,23 @@ TEST(PassScheduler, GridWithoutDenseFormFailsOnAndFallsBackOnAuto) {
     EXPECT_NE(automatic.notice().find("'smoke'"), std::string::npos) << automatic.notice();
     automatic.bind(defaultScene());
     EXPECT_TRUE(automatic.hybrid()) << "a scene it can splat brings the GL side back";
+}
+
+TEST(PassScheduler, BatchedPassesAgreeOnGlAndCpuAndWithTheWholePass) {
+    // Bounded-memory passes (issue 15): with --memory 64 each pass of 3000 photon paths is traced in
+    // several batches; the GL splats of the batches are summed in batch order, the CPU twin sums
+    // its per-batch images: both equal the one-batch render up to float rounding.
+    RenderSettings whole = smallSettings(6);
+    whole.photonsPerPass = 3000;
+    RenderSettings batched = whole;
+    batched.memoryMiB = 64;
+    ASSERT_GT(PassRenderer(defaultScene(), batched).memoryPlan().batches, 2u);
+    Rendered reference = render(GpuMode::Off, defaultScene(), whole);
+    Rendered cpu = render(GpuMode::Off, defaultScene(), batched);
+    Rendered hybrid = render(GpuMode::On, defaultScene(), batched);
+    double rmsCpu = relativeRms(cpu.image, reference.image), rmsGl = relativeRms(hybrid.image, reference.image);
+    std::printf("batched vs one batch: CPU relative RMS %.3g, hybrid %.3g\n", rmsCpu, rmsGl);
+    EXPECT_LT(rmsCpu, 1e-5);
+    EXPECT_LT(rmsGl, 1e-5);
+    if (rmsGl >= 1e-5) tyndall::test::writeEvidence("batched_hybrid_vs_cpu", hybrid.image, reference.image);
 }

@@ -8,6 +8,7 @@
 
 #include "loading/gltf_material_mapping.h"
 #include "core/photometry.h"
+#include "tests/scene/png_bytes.h"
 #include "tests/scene/scene_test_util.h"
 
 namespace tyndall {
@@ -268,9 +269,11 @@ void expectTexturedCube(const SceneFile& f, const std::vector<std::string>& warn
     EXPECT_NEAR(mat.albedo.r, 0.8f, 1e-6f);
     EXPECT_NEAR(mat.albedo.g, 0.1f, 1e-6f);
     ASSERT_EQ(s.lights.size(), 1u);
-    bool textureNoted = false;
-    for (const std::string& w : warnings) textureNoted |= w.find("baseColorTexture ignored") != std::string::npos;
-    EXPECT_TRUE(textureNoted) << "the image was found, the texture reported as unused";
+    for (const std::string& w : warnings) EXPECT_EQ(w.find("ignored"), std::string::npos) << w;
+    ASSERT_TRUE(mat.baseColorTexture.present()) << "the image was found and decoded";
+    ASSERT_TRUE(s.textures);
+    // The cube has no TEXCOORD_0: uv (0, 0) reads the 1x1 label's sRGB 128 grey.
+    EXPECT_NEAR(s.textures->lookup(mat.baseColorTexture.texture, {0, 0}, 0)[0], srgbToLinear(128 / 255.0f), 2e-3f);
 }
 
 SceneFile loadFile(const std::string& path, std::vector<std::string>* warnings) {
@@ -285,7 +288,7 @@ TEST(GltfFiles, GltfWithExternalBufferAndImageLoads) {
     fs::create_directories(dir / "data");
     GltfBuilder b = texturedCube();
     std::ofstream(dir / "data" / "cube mesh.bin", std::ios::binary) << b.bin;
-    std::ofstream(dir / "label.png", std::ios::binary) << "images are not decoded, only found";
+    std::ofstream(dir / "label.png", std::ios::binary) << test::pngBytes(1, 1, 3, {128, 128, 128});
     const fs::path file = dir / "cube.gltf";
     std::ofstream(file, std::ios::binary) << b.jsonWithExternalBuffer("data/cube%20mesh.bin").dump();
     std::vector<std::string> warnings;
@@ -294,7 +297,7 @@ TEST(GltfFiles, GltfWithExternalBufferAndImageLoads) {
 
 TEST(GltfFiles, GlbLoads) {
     const std::string path = test::writeTestFile("cube.glb", texturedCube().glb());
-    { std::ofstream(test::outputDir() + "/label.png", std::ios::binary) << "not decoded"; }
+    { std::ofstream(test::outputDir() + "/label.png", std::ios::binary) << test::pngBytes(1, 1, 3, {128, 128, 128}); }
     std::vector<std::string> warnings;
     expectTexturedCube(loadFile(path, &warnings), warnings);
 }
@@ -333,7 +336,7 @@ TEST(GltfMaterialMapping, TransmissionBecomesDielectricWithIorAndTint) {
     EXPECT_FALSE(m.interior);
 }
 
-TEST(GltfMaterialMapping, MetalsBecomeMirrorsUnlessRough) {
+TEST(GltfMaterialMapping, MetalsBecomeSmoothOrGgxConductors) {
     GltfMaterialInput in = input("chrome");
     in.metallic = 1.0f;
     in.roughness = 0.0f;
@@ -342,13 +345,25 @@ TEST(GltfMaterialMapping, MetalsBecomeMirrorsUnlessRough) {
     EXPECT_EQ(smooth.material.type, MaterialType::Mirror);
     EXPECT_FLOAT_EQ(smooth.material.albedo.r, 0.95f);
     EXPECT_TRUE(smooth.notes.empty());
-    in.roughness = 0.3f;
-    GltfMaterialMapping brushed = mapGltfMaterial(in);
-    EXPECT_EQ(brushed.material.type, MaterialType::Mirror);
-    ASSERT_EQ(brushed.notes.size(), 1u);
-    EXPECT_EQ(brushed.notes[0].kind, "rough metal");
-    in.roughness = 0.8f;
-    EXPECT_EQ(mapGltfMaterial(in).material.type, MaterialType::Diffuse);
+    EXPECT_FALSE(smooth.material.isGlossy());
+    for (float r : {0.3f, 0.8f}) {
+        in.roughness = r;
+        GltfMaterialMapping brushed = mapGltfMaterial(in);
+        EXPECT_EQ(brushed.material.type, MaterialType::Mirror);
+        EXPECT_TRUE(brushed.material.isGlossy());
+        EXPECT_FLOAT_EQ(brushed.material.roughness, r);
+        EXPECT_TRUE(brushed.notes.empty()) << brushed.notes[0].message;
+    }
+}
+
+TEST(GltfMaterialMapping, RoughTransmissionIsGgxGlass) {
+    GltfMaterialInput in = input("frosted");
+    in.transmission = 1.0f;
+    in.roughness = 0.4f;
+    GltfMaterialMapping m = mapGltfMaterial(in);
+    EXPECT_EQ(m.material.type, MaterialType::Dielectric);
+    EXPECT_TRUE(m.material.isGlossy());
+    EXPECT_TRUE(m.notes.empty());
 }
 
 TEST(GltfMaterialMapping, DielectricPbrIsDiffuseWithBaseColourAndEmission) {
@@ -376,7 +391,7 @@ TEST(GltfMaterialMapping, ApproximationsAreNotedByKind) {
         kinds.push_back(n.kind);
         EXPECT_EQ(n.message.rfind("m.gltf: material 'leaf' (index 0): ", 0), 0u) << n.message;
     }
-    EXPECT_EQ(kinds, (std::vector<std::string>{"partial transmission", "volume without transmission", "alpha",
+    EXPECT_EQ(kinds, (std::vector<std::string>{"partial transmission", "volume without transmission",
                                                "texture baseColorTexture", "texture normalTexture"}));
 }
 

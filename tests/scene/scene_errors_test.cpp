@@ -63,7 +63,7 @@ TEST(SceneErrors, UnknownKeys) {
     j = validScene();
     j["materials"][0]["albdo"] = 0.5;
     expectError("unknown-material-key.json", j.dump(), "/materials/0/albdo",
-                "expected one of: albedo, emission, ior, name, type");
+                "expected one of: albedo, albedo_texture, emission, emission_texture, ior, name, roughness, roughness_texture, texture_scale, type");
     j = validScene();
     j["shapes"][1]["radios"] = 1;
     expectError("unknown-shape-key.json", j.dump(), "/shapes/1/radios", "unknown key");

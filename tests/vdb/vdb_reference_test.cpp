@@ -23,10 +23,13 @@ namespace tyndall {
 namespace {
 
 // Measured here: relMSE 0.219, 0.073, 0.032 after 4, 16, 64 passes (reference variance 0.0016);
-// image mean ratio 1.002, quadrants 0.980 .. 1.016.
-constexpr double kFinalBound = 0.05;
-constexpr double kImageMeanTolerance = 0.03;
-constexpr double kQuadrantMeanTolerance = 0.06;
+// image mean ratio 1.002, quadrants 0.980 .. 1.016; regions: mirror 1.004 +- 0.011, floor
+// 1.017 +- 0.016. The glass sphere's pixels are left out here: through the smoke they are too
+// noisy over 8 batches (standard error 8%) to say anything; the homogeneous test checks them.
+constexpr double kFinalBound = 0.04;
+constexpr double kImageMeanTolerance = 0.02;
+constexpr double kQuadrantMeanTolerance = 0.04;
+constexpr double kRegionBias = 0.01;
 
 /// Blobs of smoke over a thin haze, voxelised at 0.1 over [-1.2, 1.2] x [-0.2, 2.2] x [-1.2, 1.2]
 /// (beyond the room, so the room never sees the grid's edge).
@@ -63,7 +66,8 @@ TEST(VdbReference, PpbInAVdbSmokeRoomConvergesToTheReference) {
     smoke.density = smokeBlobs();
     scene.validate();
 
-    test::expectPpbConvergesToReference(scene, {kFinalBound, kImageMeanTolerance, kQuadrantMeanTolerance}, 505, 606,
+    test::expectPpbConvergesToReference(scene, {kFinalBound, kImageMeanTolerance, kQuadrantMeanTolerance, kRegionBias, /*glassRegion=*/false},
+                                        505, 606,
                                         "vdb_reference");
 }
 

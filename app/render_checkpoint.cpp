@@ -1,0 +1,99 @@
+#include "app/render_checkpoint.h"
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "core/error.h"
+
+namespace tyndall::app {
+
+namespace {
+constexpr const char* kFormat = "tyndall render checkpoint";
+constexpr int kVersion = 1;
+
+template <class T>
+uint64_t hashVector(const std::vector<T>& v, uint64_t h) {
+    return fnv1a(v.data(), v.size() * sizeof(T), h);
+}
+uint64_t hashRgb(const Rgb& c, uint64_t h) {
+    float f[3] = {c.r, c.g, c.b};
+    return fnv1a(f, sizeof f, h);
+}
+}  // namespace
+
+uint64_t sceneHash(const std::string& scenePath, const Scene& scene) {
+    uint64_t h = fnv1a("tyndall-scene", 13);
+    if (!scenePath.empty()) {
+        std::ifstream in(scenePath, std::ios::binary);
+        std::ostringstream bytes;
+        bytes << in.rdbuf();
+        const std::string s = bytes.str();
+        h = fnv1a(s.data(), s.size(), h);
+    }
+    for (const TriangleMesh& m : scene.meshes) {
+        h = hashVector(m.positions, h);
+        h = hashVector(m.indices, h);
+        int32_t ids[3] = {m.material, m.interiorMedium, m.exteriorMedium};
+        h = fnv1a(ids, sizeof ids, h);
+    }
+    for (const Material& m : scene.materials) h = hashRgb(m.emission, hashRgb(m.albedo, h));
+    for (const Medium& m : scene.media) {
+        h = hashRgb(m.sigmaA, hashRgb(m.sigmaS, h));
+        bool grid = m.density != nullptr;
+        h = fnv1a(&grid, 1, h);
+    }
+    uint64_t lights = scene.lights.size();
+    return fnv1a(&lights, sizeof lights, h);
+}
+
+std::string hashText(uint64_t hash) {
+    char buf[17];
+    std::snprintf(buf, sizeof buf, "%016llx", (unsigned long long)hash);
+    return buf;
+}
+
+Checkpoint makeCheckpoint(const RenderRecord& r, const LayerAccumulator& acc) {
+    Checkpoint c;
+    c.header = {{"format", kFormat},
+                {"version", kVersion},
+                {"scene", r.scenePath},
+                {"camera", r.camera},
+                {"scene_hash", hashText(r.sceneHash)},
+                {"settings", r.settings.toJson()},
+                {"output", r.output},
+                {"exposure", r.exposure},
+                {"aov", r.aov},
+                {"elapsed", r.elapsed},
+                {"passes_done", acc.passCount()}};
+    c.layers = acc.named();
+    return c;
+}
+
+RenderRecord readRecord(const Checkpoint& c, const std::string& where) {
+    const nlohmann::json& j = c.header;
+    if (!j.is_object() || j.value("format", "") != kFormat)
+        throw Error(where + ": not a checkpoint of `tyndall render` (format '" +
+                    (j.is_object() ? j.value("format", "") : std::string()) + "')");
+    if (j.value("version", 0) != kVersion)
+        throw Error(where + ": checkpoint version " + std::to_string(j.value("version", 0)) + ", this tyndall reads " +
+                    std::to_string(kVersion));
+    RenderRecord r;
+    try {
+        r.scenePath = j.at("scene").get<std::string>();
+        r.camera = j.at("camera").get<std::string>();
+        r.sceneHash = std::stoull(j.at("scene_hash").get<std::string>(), nullptr, 16);
+        r.settings = RenderSettings::fromJson(j.at("settings"), where + ": settings");
+        r.output = j.at("output").get<std::string>();
+        r.exposure = j.at("exposure").get<float>();
+        r.aov = j.at("aov").get<bool>();
+        r.elapsed = j.at("elapsed").get<double>();
+    } catch (const Error&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw Error(where + ": malformed checkpoint header: " + e.what());
+    }
+    return r;
+}
+
+}  // namespace tyndall::app

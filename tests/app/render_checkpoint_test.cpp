@@ -1,0 +1,236 @@
+// Checkpoint and resume as a farm meets them: a render killed with SIGKILL at several moments
+// (right after its first checkpoint, in the middle of writing a later one, late in the render) and
+// resumed ends bit for bit equal to the same render left alone; SIGTERM writes a checkpoint and
+// exits 130; a resume against a changed scene file, a truncated or a foreign checkpoint fails
+// with one line and exit 1 and leaves the checkpoint's bytes as they were. Plus the file format
+// itself: an exact round trip, and every truncation length refused.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "core/checkpoint.h"
+#include "core/error.h"
+#include "core/image_io.h"
+#include "tests/test_util.h"
+#include "tests/tyndall_cli.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using tyndall::test::runTyndall;
+
+// Small and single-threaded so a render lasts long enough to be killed (about 2-3 s here) yet the
+// whole test stays in the quick label.
+const std::string kRender = "render --size 64x48 --photons 600 --passes 48 --threads 1 --gpu off";
+
+std::string dirFor(const std::string& name) {
+    std::string d = tyndall::test::outputDir() + "/checkpoint_" + name;
+    fs::remove_all(d);
+    fs::create_directories(d);
+    return d;
+}
+
+std::string readBytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+/// Starts `tyndall <args>` (split on spaces) with `env` added; output to `log`.
+pid_t spawnTyndall(const std::string& args, const std::string& log, const std::string& env = "") {
+    std::vector<std::string> words{TYNDALL_BINARY};
+    std::istringstream in(args);
+    for (std::string w; in >> w;) words.push_back(w);
+    pid_t pid = fork();
+    if (pid == 0) {
+        if (!env.empty()) putenv(const_cast<char*>(env.c_str()));
+        FILE* f = std::freopen(log.c_str(), "w", stdout);
+        if (f) dup2(fileno(stdout), 2);
+        std::vector<char*> argv;
+        for (auto& w : words) argv.push_back(w.data());
+        argv.push_back(nullptr);
+        execv(argv[0], argv.data());
+        _exit(127);
+    }
+    return pid;
+}
+
+/// Waits (up to 60 s) until `cond` holds; false on time-out.
+template <class F>
+bool waitFor(F cond) {
+    for (int i = 0; i < 6000; ++i) {
+        if (cond()) return true;
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return false;
+}
+
+uintmax_t sizeOf(const std::string& path) {
+    std::error_code ec;
+    uintmax_t n = fs::file_size(path, ec);
+    return ec ? 0 : n;
+}
+
+uint64_t checkpointPasses(const std::string& path) {
+    return tyndall::loadCheckpoint(path).header.at("passes_done").get<uint64_t>();
+}
+
+class KillAndResume : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        s_dir = dirFor("reference");
+        s_full = s_dir + "/full.exr";
+        auto r = runTyndall(kRender + " -q -o " + s_full);
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+    }
+    /// Resumes `ck` to `out` and expects the uninterrupted image, bit for bit.
+    void expectResumedEqualsFull(const std::string& ck, const std::string& out) {
+        auto r = runTyndall("render --resume " + ck + " -o " + out + " -q");
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        EXPECT_TRUE(tyndall::test::identicalImages(tyndall::readImage(out), tyndall::readImage(s_full)))
+            << "resumed render differs from the uninterrupted one";
+        EXPECT_EQ(tyndall::readImageAttribute(out, "tyndall:passes"), "48");
+    }
+    static std::string s_dir, s_full;
+};
+std::string KillAndResume::s_dir, KillAndResume::s_full;
+
+TEST_F(KillAndResume, AfterTheFirstCheckpoint) {
+    std::string d = dirFor("first"), ck = d + "/r.ckpt";
+    pid_t pid = spawnTyndall(kRender + " -o " + d + "/x.exr --checkpoint " + ck + " --checkpoint-every 0.05 -q", d + "/log");
+    ASSERT_TRUE(waitFor([&] { return fs::exists(ck); }));
+    kill(pid, SIGKILL);
+    waitpid(pid, nullptr, 0);
+    uint64_t done = checkpointPasses(ck);
+    EXPECT_LT(done, 48u) << "the render finished before it was killed: the test proves nothing";
+    expectResumedEqualsFull(ck, d + "/resumed.exr");
+}
+
+TEST_F(KillAndResume, InTheMiddleOfACheckpointWrite) {
+    std::string d = dirFor("midwrite"), ck = d + "/r.ckpt";
+    // Every checkpoint write stalls 400 ms halfway through its temporary file.
+    pid_t pid = spawnTyndall(kRender + " -o " + d + "/x.exr --checkpoint " + ck + " --checkpoint-every 0.05 -q", d + "/log",
+                             "TYNDALL_TEST_CHECKPOINT_STALL_MS=400");
+    ASSERT_TRUE(waitFor([&] { return fs::exists(ck); }));
+    const std::string before = readBytes(ck);
+    // The second write is under way (a half-written temporary file exists, or, were the write not
+    // atomic, the checkpoint itself has changed): kill it there.
+    ASSERT_TRUE(waitFor([&] { return sizeOf(ck + ".tmp") > 0 || sizeOf(ck) != before.size(); }));
+    kill(pid, SIGKILL);
+    waitpid(pid, nullptr, 0);
+    EXPECT_LT(sizeOf(ck + ".tmp"), before.size()) << "the temporary file should be half written";
+    EXPECT_TRUE(readBytes(ck) == before) << "a kill during a write must leave the previous checkpoint intact";
+    expectResumedEqualsFull(ck, d + "/resumed.exr");
+}
+
+TEST_F(KillAndResume, LateInTheRenderAndTwice) {
+    std::string d = dirFor("late"), ck = d + "/r.ckpt";
+    const std::string args = kRender + " -o " + d + "/x.exr --checkpoint " + ck + " --checkpoint-every 0.05 -q";
+    pid_t pid = spawnTyndall(args, d + "/log");
+    ASSERT_TRUE(waitFor([&] { return fs::exists(ck) && checkpointPasses(ck) >= 30; }));
+    kill(pid, SIGKILL);
+    waitpid(pid, nullptr, 0);
+    uint64_t first = checkpointPasses(ck);
+    ASSERT_LT(first, 48u);
+    // Resume, and kill the resumed render too, after it checkpointed once more.
+    pid = spawnTyndall("render --resume " + ck + " --checkpoint-every 0.05 -q", d + "/log2");
+    ASSERT_TRUE(waitFor([&] { return checkpointPasses(ck) > first; }));
+    kill(pid, SIGKILL);
+    waitpid(pid, nullptr, 0);
+    expectResumedEqualsFull(ck, d + "/resumed.exr");
+}
+
+TEST_F(KillAndResume, SigtermWritesACheckpointAndExits130) {
+    std::string d = dirFor("sigterm"), ck = d + "/r.ckpt";
+    // No periodic checkpoint within the run: the one found afterwards is SIGTERM's.
+    pid_t pid = spawnTyndall(kRender + " -o " + d + "/x.exr --checkpoint " + ck + " --checkpoint-every 3600 --progress-every 0",
+                             d + "/log");
+    ASSERT_TRUE(waitFor([&] { return readBytes(d + "/log").find("pass 3/") != std::string::npos; }));
+    kill(pid, SIGTERM);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 130);
+    ASSERT_TRUE(fs::exists(ck));
+    EXPECT_TRUE(fs::exists(d + "/x.exr")) << "what was rendered is written on SIGTERM";
+    uint64_t done = checkpointPasses(ck);
+    EXPECT_GE(done, 3u);
+    EXPECT_LT(done, 48u);
+    EXPECT_EQ(tyndall::readImageAttribute(d + "/x.exr", "tyndall:passes"), std::to_string(done));
+    expectResumedEqualsFull(ck, d + "/resumed.exr");
+}
+
+TEST(ResumeErrors, ChangedSceneTruncatedAndForeignFilesAreRefusedUntouched) {
+    std::string d = dirFor("errors");
+    const std::string scene = d + "/box.json";
+    fs::copy_file(std::string(TYNDALL_SOURCE_DIR) + "/scenes/caustic-box.json", scene);
+    const std::string ck = d + "/r.ckpt";
+    auto r = runTyndall("render " + scene + " --size 32x24 --photons 200 --passes 3 --gpu off -q -o " + d +
+                        "/a.exr --checkpoint " + ck);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const std::string good = readBytes(ck);
+
+    // Changed scene: fog twice as thick.
+    std::string text = readBytes(scene);
+    size_t at = text.find("\"sigma_s\": 0.06");
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, 15, "\"sigma_s\": 0.12");
+    std::ofstream(scene, std::ios::binary) << text;
+    r = runTyndall("render --resume " + ck + " --passes 6 -q");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("different scene"), std::string::npos) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    EXPECT_TRUE(readBytes(ck) == good) << "a refused resume must not touch the checkpoint";
+
+    // Truncated at several lengths, and a foreign file (an EXR).
+    for (size_t keep : {size_t(0), size_t(40), good.size() / 2, good.size() - 1}) {
+        const std::string cut = d + "/cut.ckpt";
+        std::ofstream(cut, std::ios::binary) << good.substr(0, keep);
+        const std::string cutBytes = readBytes(cut);
+        r = runTyndall("render --resume " + cut + " -q");
+        EXPECT_EQ(r.exitCode, 1) << "kept " << keep << " bytes";
+        EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+        EXPECT_NE(r.output.find("cut.ckpt"), std::string::npos) << r.output;
+        EXPECT_TRUE(readBytes(cut) == cutBytes);
+    }
+    r = runTyndall("render --resume " + d + "/a.exr -q");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("not a Tyndall checkpoint"), std::string::npos) << r.output;
+    // Options that would change the passes are refused with --resume.
+    r = runTyndall("render --resume " + ck + " --photons 5 -q");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("--photons"), std::string::npos) << r.output;
+}
+
+TEST(CheckpointFile, RoundTripIsExactAndEveryTruncationIsRefused) {
+    tyndall::Accumulator acc(5, 3);
+    tyndall::Image pass(5, 3);
+    for (size_t i = 0; i < pass.pixels.size(); ++i) pass.pixels[i] = tyndall::Rgb(0.1f * i, 1.0f / (i + 1), 3.0f);
+    acc.addPass(pass);
+    pass.pixels[2].g = NAN;
+    acc.addPass(pass);
+    tyndall::Checkpoint c;
+    c.header = {{"format", "test"}, {"n", 7}};
+    c.layers.emplace_back("beauty", acc);
+    std::string bytes = tyndall::serializeCheckpoint(c);
+    tyndall::Checkpoint back = tyndall::parseCheckpoint(bytes, "mem");
+    EXPECT_EQ(back.header, c.header);
+    ASSERT_EQ(back.layers.size(), 1u);
+    EXPECT_EQ(back.layers[0].second.sums(), acc.sums());
+    EXPECT_EQ(back.layers[0].second.passCount(), 2u);
+    EXPECT_EQ(back.layers[0].second.rejectedSamples(), 1u);
+    for (size_t keep = 0; keep < bytes.size(); ++keep)
+        EXPECT_THROW(tyndall::parseCheckpoint(bytes.substr(0, keep), "mem"), tyndall::Error) << keep;
+    bytes[bytes.size() / 2] ^= 1;
+    EXPECT_THROW(tyndall::parseCheckpoint(bytes, "mem"), tyndall::Error);
+}
+
+}  // namespace

@@ -1,0 +1,244 @@
+// `tyndall render` for final frames: the progress report on a pseudo-terminal (a bar redrawn in
+// place with percentage, passes/s and ETA) and in a pipe (plain lines, no control characters),
+// --quiet; AOV layers (names, the three components add up to the beauty image, the beauty image
+// unchanged by --aov, a variance layer that is the variance of the running mean); the convergence
+// CSV; and Open MPI: 2 ranks give the single-process image bit for bit (--passes), agree on one
+// pass count (--time) and record tyndall:ranks.
+#include <gtest/gtest.h>
+#include <pty.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "core/image_io.h"
+#include "core/layer_accumulator.h"
+#include "tests/test_util.h"
+#include "tests/tyndall_cli.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using tyndall::test::runTyndall;
+
+const std::string kSmall = "--size 48x36 --photons 400 --gpu off";
+
+std::string out(const std::string& name) {
+    return tyndall::test::outputDir() + "/production_" + name;
+}
+
+/// Runs `tyndall <args>` with stderr and stdout on a pseudo-terminal of `cols` columns; returns
+/// everything it wrote.
+std::string runOnPty(const std::vector<std::string>& args, int cols = 100) {
+    winsize ws{};
+    ws.ws_col = cols;
+    ws.ws_row = 24;
+    int master = -1;
+    pid_t pid = forkpty(&master, nullptr, nullptr, &ws);
+    if (pid == 0) {
+        std::vector<char*> argv{const_cast<char*>(TYNDALL_BINARY)};
+        for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+        argv.push_back(nullptr);
+        execv(argv[0], argv.data());
+        _exit(127);
+    }
+    std::string text;
+    char buf[4096];
+    for (;;) {
+        ssize_t n = read(master, buf, sizeof buf);
+        if (n <= 0) break;  // EIO once the child has exited and closed its side
+        text.append(buf, size_t(n));
+    }
+    waitpid(pid, nullptr, 0);
+    close(master);
+    return text;
+}
+
+TEST(Progress, TerminalGetsABarRedrawnInPlaceWithEta) {
+    std::string text = runOnPty({"render", "--size", "48x36", "--photons", "400", "--gpu", "off", "--passes", "6",
+                                 "-o", out("pty.png")});
+    // One redraw per pass: carriage return, the bar, erase to the end of the line.
+    size_t redraws = 0;
+    for (size_t at = 0; (at = text.find("\r[", at)) != std::string::npos; ++at) ++redraws;
+    EXPECT_EQ(redraws, 6u) << text;
+    EXPECT_NE(text.find("\x1b[K"), std::string::npos);
+    EXPECT_NE(text.find("100%"), std::string::npos) << text;
+    EXPECT_NE(text.find("pass 6/6"), std::string::npos) << text;
+    EXPECT_NE(text.find("passes/s"), std::string::npos);
+    EXPECT_NE(text.find("ETA"), std::string::npos);
+    EXPECT_NE(text.find("[########"), std::string::npos) << "a filled bar at the end";
+    EXPECT_NE(text.find("rendered caustic-box"), std::string::npos) << "the summary on its own line";
+    // A time budget fills the bar by the clock.
+    text = runOnPty({"render", "--size", "48x36", "--photons", "400", "--gpu", "off", "--time", "1", "-o", out("pty.png")});
+    EXPECT_NE(text.find("ETA"), std::string::npos) << text;
+    EXPECT_EQ(text.find("pass 1/"), std::string::npos) << "no pass target with --time";
+}
+
+TEST(Progress, PipeGetsPlainLinesAndQuietGetsNone) {
+    auto r = runTyndall("render " + kSmall + " --passes 5 --progress-every 0 -o " + out("pipe.png"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(r.output.find('\r'), std::string::npos);
+    EXPECT_EQ(r.output.find('\x1b'), std::string::npos);
+    int lines = 0;
+    for (size_t at = 0; (at = r.output.find(" passes/s  ETA ", at)) != std::string::npos; ++at) ++lines;
+    EXPECT_EQ(lines, 5) << "one line per pass with --progress-every 0:\n" << r.output;
+    EXPECT_NE(r.output.find("pass 5/5"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("ETA"), std::string::npos);
+    // The default: a line every 5 s, so a one-second render prints none.
+    r = runTyndall("render " + kSmall + " --passes 3 -o " + out("pipe.png"));
+    EXPECT_EQ(r.output.find("ETA"), std::string::npos) << r.output;
+    r = runTyndall("render " + kSmall + " --passes 3 --progress-every 0 --quiet -o " + out("pipe.png"));
+    EXPECT_EQ(r.output.find("ETA"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("rendered"), std::string::npos);
+}
+
+TEST(Aov, LayersAreNamedAddUpToBeautyAndLeaveItUnchanged) {
+    const std::string plain = out("beauty.exr"), aov = out("aov.exr");
+    ASSERT_EQ(runTyndall("render " + kSmall + " --passes 6 -q -o " + plain).exitCode, 0);
+    auto r = runTyndall("render " + kSmall + " --passes 6 -q --aov -o " + aov);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    std::vector<std::string> expected{"R", "G", "B"};
+    for (const char* layer : {"media_primary", "media_secondary", "surface", "variance"})
+        for (const char* c : {".R", ".G", ".B"}) expected.push_back(std::string(layer) + c);
+    EXPECT_EQ(tyndall::readImageChannels(aov), expected);
+
+    tyndall::Image beauty = tyndall::readImageLayer(aov, "");
+    EXPECT_TRUE(tyndall::test::identicalImages(beauty, tyndall::readImage(plain))) << "--aov changed the beauty image";
+    tyndall::Image mp = tyndall::readImageLayer(aov, "media_primary"), ms = tyndall::readImageLayer(aov, "media_secondary"),
+                   su = tyndall::readImageLayer(aov, "surface");
+    double worst = 0, sums[3] = {0, 0, 0};
+    for (size_t i = 0; i < beauty.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            double sum = double(mp.pixels[i][c]) + ms.pixels[i][c] + su.pixels[i][c], b = beauty.pixels[i][c];
+            worst = std::max(worst, std::abs(sum - b) / std::max(std::abs(b), 1e-3));
+            sums[0] += mp.pixels[i][c], sums[1] += ms.pixels[i][c], sums[2] += su.pixels[i][c];
+        }
+    EXPECT_LT(worst, 1e-5) << "media_primary + media_secondary + surface != beauty";
+    // The default scene has all three: fog seen directly, fog seen in its mirror, lit walls.
+    for (double s : sums) EXPECT_GT(s, 0.0);
+    EXPECT_GT(sums[1], 1e-3 * sums[0]);
+    // PNG output is the beauty image only.
+    r = runTyndall("render " + kSmall + " --passes 2 -q --aov -o " + out("aov.png"));
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(tyndall::readImageChannels(out("aov.png")).size(), 3u);
+}
+
+TEST(Aov, VarianceLayerIsTheVarianceOfTheRunningMean) {
+    // Passes 1, 3, 8 at one pixel: mean 4, unbiased sample variance 13, of the mean 13 / 3.
+    tyndall::LayerAccumulator acc(2, 1, true);
+    for (float v : {1.0f, 3.0f, 8.0f}) {
+        tyndall::Image img(2, 1), zero(2, 1);
+        img.pixels[0] = tyndall::Rgb(v, 2 * v, 0);
+        img.pixels[1] = tyndall::Rgb(5);
+        acc.addPass(img, img, zero, zero);
+    }
+    tyndall::ImageLayers layers = acc.imageLayers();
+    ASSERT_EQ(layers.back().first, "variance");
+    const tyndall::Image& var = layers.back().second;
+    EXPECT_NEAR(var.pixels[0].r, 13.0 / 3.0, 1e-6);
+    EXPECT_NEAR(var.pixels[0].g, 4 * 13.0 / 3.0, 1e-5);
+    EXPECT_EQ(var.pixels[0].b, 0.0f);
+    EXPECT_NEAR(var.pixels[1].r, 0.0, 1e-6) << "a constant pixel has no variance";
+}
+
+TEST(Convergence, CsvHasOneRowPerPassAndReachesZeroAgainstItself) {
+    // The reference is the same render: the last row's error must be (float-rounding) zero and
+    // the first row's must not, and the beam radius must shrink.
+    const std::string ref = out("conv_ref.exr"), csv = out("conv.csv");
+    ASSERT_EQ(runTyndall("render " + kSmall + " --passes 10 -q -o " + ref).exitCode, 0);
+    auto r = runTyndall("render " + kSmall + " --passes 10 -q -o " + out("conv.exr") + " --reference " + ref +
+                        " --convergence " + csv);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    std::ifstream in(csv);
+    std::string line;
+    std::getline(in, line);
+    EXPECT_EQ(line, "pass,elapsed_s,photon_paths,beam_radius,rel_rmse,bias");
+    std::vector<std::vector<double>> rows;
+    while (std::getline(in, line)) {
+        std::vector<double> row;
+        std::istringstream s(line);
+        for (std::string cell; std::getline(s, cell, ',');) row.push_back(std::stod(cell));
+        ASSERT_EQ(row.size(), 6u) << line;
+        rows.push_back(row);
+    }
+    ASSERT_EQ(rows.size(), 10u);
+    for (size_t i = 0; i < rows.size(); ++i) {
+        EXPECT_EQ(rows[i][0], double(i + 1));
+        EXPECT_EQ(rows[i][2], 400.0 * (i + 1));
+        if (i > 0) {
+            EXPECT_LT(rows[i][3], rows[i - 1][3]) << "beam radius must shrink";
+            EXPECT_GE(rows[i][1], rows[i - 1][1]);
+        }
+    }
+    EXPECT_GT(rows[0][4], 0.05);
+    EXPECT_LT(rows[9][4], 1e-6);
+    EXPECT_LT(std::abs(rows[9][5]), 1e-6);
+    // A reference of another size is one clear error.
+    r = runTyndall("render --size 40x30 --photons 400 --gpu off --passes 1 -q -o " + out("x.png") + " --reference " +
+                   ref + " --convergence " + csv);
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("48x36"), std::string::npos) << r.output;
+}
+
+// --- Open MPI --------------------------------------------------------------------------------
+
+bool haveMpirun() {
+    return std::system("command -v mpirun > /dev/null 2>&1") == 0;
+}
+tyndall::test::CliRun runMpi(int ranks, const std::string& args) {
+    std::string cmd = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1 "
+                      "mpirun -np " + std::to_string(ranks) + " --oversubscribe " + TYNDALL_BINARY + " " + args + " 2>&1";
+    tyndall::test::CliRun r;
+    FILE* pipe = popen(cmd.c_str(), "r");
+    char buf[4096];
+    size_t n;
+    while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) r.output.append(buf, n);
+    int status = pclose(pipe);
+    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+TEST(Mpi, TwoRanksEqualOneProcessBitForBit) {
+    if (!haveMpirun()) GTEST_SKIP() << "mpirun not installed (openmpi-bin)";
+    const std::string single = out("mpi_single.exr"), two = out("mpi_two.exr");
+    ASSERT_EQ(runTyndall("render " + kSmall + " --passes 7 --aov -q -o " + single).exitCode, 0);
+    auto r = runMpi(2, "render " + kSmall + " --passes 7 --aov --threads 1 -q -o " + two);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << "only rank 0 prints:\n" << r.output;
+    EXPECT_NE(r.output.find("2 ranks"), std::string::npos) << r.output;
+    EXPECT_EQ(tyndall::readImageAttribute(two, "tyndall:ranks"), "2");
+    EXPECT_EQ(tyndall::readImageAttribute(single, "tyndall:ranks"), "1");
+    EXPECT_EQ(tyndall::readImageAttribute(two, "tyndall:passes"), "7");
+    for (const char* layer : {"", "media_primary", "media_secondary", "surface", "variance"})
+        EXPECT_TRUE(tyndall::test::identicalImages(tyndall::readImageLayer(two, layer), tyndall::readImageLayer(single, layer)))
+            << "layer '" << layer << "'";
+}
+
+TEST(Mpi, TimeBudgetRanksAgreeOnOnePassCount) {
+    if (!haveMpirun()) GTEST_SKIP() << "mpirun not installed (openmpi-bin)";
+    const std::string two = out("mpi_time.exr"), single = out("mpi_time_single.exr");
+    auto r = runMpi(2, "render " + kSmall + " --time 1 --threads 1 -q -o " + two);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const std::string passes = tyndall::readImageAttribute(two, "tyndall:passes");
+    ASSERT_FALSE(passes.empty());
+    ASSERT_EQ(runTyndall("render " + kSmall + " --passes " + passes + " -q -o " + single).exitCode, 0);
+    EXPECT_TRUE(tyndall::test::identicalImages(tyndall::readImage(two), tyndall::readImage(single)))
+        << "the 2-rank --time render is not the single-process render of its " << passes << " passes";
+}
+
+TEST(Mpi, CheckpointUnderMpiResumesInOneProcess) {
+    if (!haveMpirun()) GTEST_SKIP() << "mpirun not installed (openmpi-bin)";
+    const std::string ck = out("mpi.ckpt"), full = out("mpi_full.exr"), resumed = out("mpi_resumed.exr");
+    fs::remove(ck);
+    ASSERT_EQ(runTyndall("render " + kSmall + " --passes 9 -q -o " + full).exitCode, 0);
+    auto r = runMpi(2, "render " + kSmall + " --passes 5 --threads 1 -q -o " + out("mpi_part.exr") + " --checkpoint " + ck);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    r = runTyndall("render --resume " + ck + " --passes 9 -q -o " + resumed);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(tyndall::test::identicalImages(tyndall::readImage(resumed), tyndall::readImage(full)));
+}
+
+}  // namespace
