@@ -48,11 +48,14 @@ float deltaTrack(const Medium& medium, const Ray& ray, float tEnd, Rng& rng) {
     const float sigmaT = medium.sigmaT().r;
     if (!(sigmaT > 0)) return kInfinity;
     MajorantPieces pieces(grid, ray, tEnd);
-    float tau = -std::log(1.0f - rng.uniform());
+    // The first target is drawn at the first piece that can collide: a ray through empty space
+    // (an empty grid, its empty parts) draws nothing, so an empty medium is clear air bit for bit.
+    float tau = -1.0f;
     float t0, t1, maj;
     while (pieces.next(&t0, &t1, &maj)) {
         const float mu = maj * sigmaT;
         if (!(mu > 0)) continue;
+        if (tau < 0) tau = -std::log(1.0f - rng.uniform());
         float t = t0;
         while (true) {
             float dt = tau / mu;
@@ -125,15 +128,19 @@ void sampleCollisionDistances(const Medium& medium, const Ray& ray, float tEnd, 
     int active = 0;
     for (int k = 0; k < n; ++k) {
         out[k] = kInfinity;
-        tau[k] = -std::log(1.0f - rng.uniform());
         live[active++] = k;
     }
     if (!(sigmaT > 0)) return;
     MajorantPieces pieces(grid, ray, tEnd);
     float t0, t1, maj;
+    bool drawn = false;  // targets drawn at the first piece that can collide (as in deltaTrack)
     while (active > 0 && pieces.next(&t0, &t1, &maj)) {
         const float mu = maj * sigmaT;
         if (!(mu > 0)) continue;
+        if (!drawn) {
+            for (int k = 0; k < n; ++k) tau[k] = -std::log(1.0f - rng.uniform());
+            drawn = true;
+        }
         for (int i = 0; i < active;) {
             const int k = live[i];
             float t = t0;

@@ -71,7 +71,7 @@ Rgb SurfacePhotonGrid::gather(const Vec3& x, const Vec3& n, const Weight& weight
                 if (seen) continue;
                 visited[nVisited++] = h;
                 for (uint32_t k = m_cellStart[h]; k < m_cellStart[h + 1]; ++k) {
-                    const SurfacePhoton& p = m_photons[m_order[k]];
+                    const SurfacePhoton& p = m_sorted[k];
                     Vec3 diff = p.position - x;
                     float d2 = dot(diff, diff);
                     if (d2 >= p.radius * p.radius) continue;

@@ -254,13 +254,14 @@ std::shared_ptr<const VdbDensityGrid> VdbDensityGrid::load(const VdbGridSource& 
             name = "density";
             std::vector<size_t> d = sameName(name);
             if (d.empty() || !(*grids)[d[0]]->isType<openvdb::FloatGrid>()) {
-                name.clear();
+                bool found = false;  // a grid's name may be "" (OpenVDB allows unnamed grids)
                 for (const auto& g : *grids)
                     if (g->isType<openvdb::FloatGrid>()) {
                         name = g->getName();
+                        found = true;
                         break;
                     }
-                if (name.empty()) throw Error(where + ": no float grid to use as density (" + available + ")");
+                if (!found) throw Error(where + ": no float grid to use as density (" + available + ")");
             }
         }
         std::vector<size_t> candidates = sameName(name);

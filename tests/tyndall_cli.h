@@ -15,9 +15,14 @@ struct CliRun {
 
 /// `tyndall <args>` through the shell (quote paths with spaces yourself), with `environment`
 /// ("NAME=value ...") added to its environment.
+inline CliRun runShell(const std::string& cmd);
 inline CliRun runTyndall(const std::string& args, const std::string& environment = "") {
-    std::string cmd =
-        (environment.empty() ? "" : "env " + environment + " ") + std::string(TYNDALL_BINARY) + " " + args + " 2>&1";
+    return runShell((environment.empty() ? "" : "env " + environment + " ") + std::string(TYNDALL_BINARY) + " " +
+                    args + " 2>&1");
+}
+
+/// A shell command line (popen: /bin/sh -c), its output and exit status.
+inline CliRun runShell(const std::string& cmd) {
     CliRun r;
     FILE* pipe = popen(cmd.c_str(), "r");
     if (!pipe) return r;

@@ -12,27 +12,16 @@
 
 #include "core/image_io.h"
 #include "tests/test_util.h"
+#include "tests/tyndall_cli.h"
 
 namespace {
 
-struct LimitedRun {
-    int exitCode = -1;
-    std::string output;
-};
+using tyndall::test::CliRun;
 
 /// `tyndall <args>` with its address space limited to `limitKiB` (ulimit -v).
-LimitedRun runLimited(uint64_t limitKiB, const std::string& args) {
-    std::string cmd = "ulimit -v " + std::to_string(limitKiB) + " && exec " + std::string(TYNDALL_BINARY) + " " +
-                      args + " 2>&1";
-    LimitedRun r;
-    FILE* pipe = popen(("sh -c '" + cmd + "'").c_str(), "r");
-    if (!pipe) return r;
-    char buf[4096];
-    size_t n;
-    while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) r.output.append(buf, n);
-    int status = pclose(pipe);
-    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
+CliRun runLimited(uint64_t limitKiB, const std::string& args) {
+    return tyndall::test::runShell("sh -c 'ulimit -v " + std::to_string(limitKiB) + " && exec " +
+                                   std::string(TYNDALL_BINARY) + " " + args + " 2>&1'");
 }
 
 /// Open fog around a point light between two quads: about one beam per photon path, so the
@@ -55,7 +44,7 @@ TEST(MemoryLimit, ThirtyMillionPhotonPathsInOnePassUnderFourGigabytes) {
     const std::string scene = writeOpenFogScene();
     const std::string out = tyndall::test::outputDir() + "/memory_limit_3e7.exr";
     std::remove(out.c_str());
-    LimitedRun r = runLimited(kFourGiB, "render " + scene + " --size 16x16 --passes 1 --photons 30000000 --gpu off --seed 3 -o " + out);
+    CliRun r = runLimited(kFourGiB, "render " + scene + " --size 16x16 --passes 1 --photons 30000000 --gpu off --seed 3 -o " + out);
     std::printf("%s", r.output.c_str());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("30000000 photon paths"), std::string::npos) << r.output;
@@ -73,7 +62,7 @@ TEST(MemoryLimit, ThirtyMillionPhotonPathsInOnePassUnderFourGigabytes) {
 
 TEST(MemoryLimit, ABudgetOverTheAddressSpaceLimitIsRefusedUpFront) {
     const std::string scene = writeOpenFogScene();
-    LimitedRun r = runLimited(kFourGiB, "render " + scene + " --size 16x16 --passes 1 --memory 8192 --gpu off -o " +
+    CliRun r = runLimited(kFourGiB, "render " + scene + " --size 16x16 --passes 1 --memory 8192 --gpu off -o " +
                                      tyndall::test::outputDir() + "/memory_limit_refused.png");
     EXPECT_EQ(r.exitCode, 1) << r.output;
     EXPECT_NE(r.output.find("--memory 8.0 GiB is more than this process's address-space limit (ulimit -v) of 4.0 GiB"),
