@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <nlohmann/json.hpp>
 
 #include "app/label_text.h"
@@ -191,8 +192,8 @@ void writePlot(const std::string& path, const std::vector<std::pair<std::string,
 
 void runQualityBench(const CommonOptions& common, const QualityBenchOptions& o) {
     std::vector<std::pair<std::string, std::vector<Curve>>> panels;
-    std::printf("quality at equal work: %dx%d, %u photon paths/pass, reference %u spp (its noise removed)\n",
-                common.settings.width, common.settings.height, common.settings.photonsPerPass, o.referenceSpp);
+    std::printf("quality at equal work: %dx%d, %u photon paths/pass, reference %u spp (its noise removed), %d seed(s)\n",
+                common.settings.width, common.settings.height, common.settings.photonsPerPass, o.referenceSpp, o.seeds);
     std::printf("  %-16s %-18s %7s %8s %9s %9s %9s %8s\n", "scene", "radii", "passes", "CPU s", "rel RMSE",
                 "(-1% top)", "rel bias", "r_end/px");
     for (const std::string& entry : o.scenes) {
@@ -221,34 +222,59 @@ void runQualityBench(const CommonOptions& common, const QualityBenchOptions& o) 
         variants.push_back({"LEGACY", legacy, Rgb(40.0f, 0.0f, 0.0f)});
         RenderSettings planned = base;
         variants.push_back({"AUTO, PLANNED", planned, Rgb(0.0f, 0.0f, 40.0f)});
+        RenderSettings noCone = base;
+        noCone.photonAngle = 0;
+        variants.push_back({"AUTO, NO CONE", noCone, Rgb(20.0f, 0.0f, 20.0f)});
         RenderSettings open = base;
         open.plannedPaths = RadiusDefaults::kOpenEndedPathsPerPixel * uint64_t(base.width) * uint64_t(base.height);
         variants.push_back({"AUTO, OPEN-ENDED", open, Rgb(0.0f, 8.0f, 0.0f)});
 
         std::vector<Curve> curves;
         for (const Variant& v : variants) {
-            PassRenderer renderer(scene, v.s);
-            const RenderSettings& r = renderer.settings();
-            Accumulator acc(base.width, base.height);
             Curve curve{v.label, {}, v.color};
-            double t0 = processCpuSeconds();
-            ImageError e;
-            for (uint64_t i = 0; i < passes; ++i) {
-                acc.addPass(renderer.renderPass(i));
-                uint64_t n = i + 1;
-                if ((n & (n - 1)) == 0 || n == passes) {
-                    e = measure(acc.mean(), ref);
-                    curve.points.push_back({double(n), e.relRmse});
+            ImageError e;  // squared errors summed over the seeds, then their root mean square
+            double cpu = 0;
+            std::vector<double> curveSquares;
+            std::unique_ptr<PassRenderer> last;
+            for (int k = 0; k < o.seeds; ++k) {
+                RenderSettings sk = v.s;
+                sk.seed = base.seed + uint64_t(k);
+                auto renderer = std::make_unique<PassRenderer>(scene, sk);
+                Accumulator acc(base.width, base.height);
+                double t0 = processCpuSeconds();
+                size_t point = 0;
+                for (uint64_t i = 0; i < passes; ++i) {
+                    acc.addPass(renderer->renderPass(i));
+                    uint64_t n = i + 1;
+                    if ((n & (n - 1)) == 0 || n == passes) {
+                        ImageError ek = measure(acc.mean(), ref);
+                        if (point == curveSquares.size()) curveSquares.push_back(0), curve.points.push_back({double(n), 0});
+                        curveSquares[point++] += ek.relRmse * ek.relRmse;
+                        if (n == passes) {
+                            e.relRmse += ek.relRmse * ek.relRmse;
+                            e.relRmse99 += ek.relRmse99 * ek.relRmse99;
+                            e.relBias += ek.relBias;
+                        }
+                    }
                 }
+                cpu += processCpuSeconds() - t0;
+                last = std::move(renderer);
             }
-            double cpu = processCpuSeconds() - t0;
+            for (size_t i = 0; i < curveSquares.size(); ++i) curve.points[i].second = std::sqrt(curveSquares[i] / o.seeds);
+            e.relRmse = std::sqrt(e.relRmse / o.seeds);
+            e.relRmse99 = std::sqrt(e.relRmse99 / o.seeds);
+            e.relBias /= o.seeds;
+            cpu /= o.seeds;
+            const PassRenderer& renderer = *last;
+            const RenderSettings& r = renderer.settings();
             // The beam radius at the end, in pixel footprints where the media are.
             PixelFootprint fp = measurePixelFootprint(renderer.rayTracer(), scene.camera, base.width, base.height);
             double rEnd = renderer.radii().beamRadiusOf(passes * r.photonsPerPass);
-            std::printf("  %-16s %-18s %7llu %8.1f %8.2f%% %8.2f%% %+8.2f%% %8.2f   (radius %.4g, surface %.4g, offset %llu)\n",
+            std::printf("  %-16s %-18s %7llu %8.1f %8.2f%% %8.2f%% %+8.2f%% %8.2f   (radius %.4g, surface %.4g, offset %llu, "
+                        "photon angle %.3g)\n",
                         scene.name.c_str(), v.label.c_str(), (unsigned long long)passes, cpu, 100 * e.relRmse,
                         100 * e.relRmse99, 100 * e.relBias, rEnd / fp.beam(1.0), r.radius, r.surfaceRadius,
-                        (unsigned long long)r.radiusOffset);
+                        (unsigned long long)r.radiusOffset, r.photonAngle);
             std::fflush(stdout);
             curves.push_back(std::move(curve));
         }

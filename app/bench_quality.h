@@ -6,7 +6,8 @@
 // render with the relative RMSE and bias taken at doubling pass counts, and the process CPU time
 // each took (so equal work can be checked against equal time). The settings: today's explicit
 // "legacy" radii (0.5% / 2% of the diagonal, offset 1000), the automatic radii planned for the
-// pass count, and the automatic radii of an open-ended render. Writes an error-vs-passes log-log
+// pass count, the same without the photon cone (cpu/beam_cone.h), and the automatic radii of an
+// open-ended render. Writes an error-vs-passes log-log
 // plot (PNG) with the N^(-alpha/2) slope drawn.
 #include <string>
 #include <vector>
@@ -20,6 +21,9 @@ struct QualityBenchOptions {
     std::string referenceDir = "build/quality-references";
     uint32_t referenceSpp = 1024;
     std::string plot;                 ///< PNG path; "" = no plot
+    /// Seeds each setting is rendered with (seed, seed + 1, ...): errors are the root mean square
+    /// over them, bias the mean (a visible light's central pixel is heavy-tailed: one seed misleads).
+    int seeds = 1;
 };
 
 /// Runs the benchmark; `common` carries size, seed, threads and photons. Prints a table.

@@ -96,6 +96,9 @@ void addPpbOptions(CLI::App* cmd, CommonOptions& o) {
                     "Photon paths the automatic radii plan for (default: passes x photons; with --time, the "
                     "open-ended horizon of 100 paths per pixel)")
         ->check(nonNegativeInteger());
+    cmd->add_option("--photon-angle", o.settings.photonAngle,
+                    "Photon cone angle of the first photon path, radians: near a light a beam's radius is at most "
+                    "this x its path distance from the light, 0 = off (default: automatic, see docs/algorithm.md)");
     cmd->add_option("--free-flights", o.settings.freeFlightSamples,
                     "Stored free-flight distances per beam and pixel (heterogeneous media)")
         ->capture_default_str();
@@ -135,6 +138,7 @@ nlohmann::json explicitSettings(const CommonOptions& o) {
                                                                       {"--surface-radius", "surface_radius"},
                                                                       {"--radius-offset", "radius_offset"},
                                                                       {"--planned-paths", "planned_paths"},
+                                                                      {"--photon-angle", "photon_angle"},
                                                                       {"--free-flights", "free_flights"},
                                                                       {"--seed", "seed"},
                                                                       {"--threads", "threads"},

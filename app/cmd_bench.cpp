@@ -81,6 +81,10 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                     "With --quality: samples per pixel of a reference rendered when not cached")
         ->check(positiveInteger())
         ->capture_default_str();
+    cmd->add_option("--quality-seeds", o->qualityOptions.seeds,
+                    "With --quality: render each setting with this many seeds; errors are their root mean square")
+        ->check(positiveInteger())
+        ->capture_default_str();
     cmd->add_option("--plot", o->qualityOptions.plot, "With --quality: write the error-vs-passes plot (PNG) (default: none)");
     cmd->callback([o, &exitCode]() {
         if (o->quality) {

@@ -62,7 +62,8 @@ bool given(const CLI::App* cmd, const char* name) {
 void rejectWithResume(const CLI::App* cmd) {
     static const char* kFixed[] = {"scene",           "--camera",        "--size",         "--seed",
                                    "--photons",       "--alpha",         "--radius",       "--surface-radius",
-                                   "--radius-offset", "--free-flights",  "--exposure",     "--aov"};
+                                   "--radius-offset", "--free-flights",  "--exposure",     "--aov",
+                                   "--photon-angle",  "--planned-paths"};
     for (const char* name : kFixed)
         if (given(cmd, name))
             throw Error(std::string("--resume: ") + (name[0] == '-' ? name : "the scene file") +

@@ -29,6 +29,12 @@ struct RenderSettings {
     /// with one until the rate is measured.
     uint64_t plannedPaths = 0;
     static constexpr uint64_t kAutoRadiusOffset = ~uint64_t(0);
+    /// Photon cone angle of the first photon path, radians (cpu/beam_cone.h): at path distance s
+    /// from its light a beam's radius is at most photonAngle x s (times the schedule's factor), so
+    /// beams stay thinner than the photons' own spacing near a light. 0 = off (radius alone);
+    /// kAutoPhotonAngle = chosen with the automatic radii (off when `radius` is explicit).
+    float photonAngle = kAutoPhotonAngle;
+    static constexpr float kAutoPhotonAngle = -1.0f;
     uint64_t seed = 1;
     int threads = 0;                 ///< 0 = all hardware threads
     int maxPhotonBounces = 32;       ///< photon path vertices before termination

@@ -9,7 +9,8 @@
 namespace tyndall {
 
 bool hasAutomaticRadii(const RenderSettings& s) {
-    return s.radius <= 0 || s.surfaceRadius <= 0 || s.radiusOffset == RenderSettings::kAutoRadiusOffset;
+    return s.radius <= 0 || s.surfaceRadius <= 0 || s.radiusOffset == RenderSettings::kAutoRadiusOffset ||
+           s.photonAngle == RenderSettings::kAutoPhotonAngle;
 }
 
 uint64_t plannedPhotonPaths(const RenderSettings& s) {
@@ -20,9 +21,29 @@ uint64_t plannedPhotonPaths(const RenderSettings& s) {
     return RadiusDefaults::kOpenEndedPathsPerPixel * uint64_t(s.width) * uint64_t(s.height);
 }
 
+bool pointLightNearTheImage(const Scene& scene, int width, int height, double reach) {
+    const Camera& c = scene.camera;
+    const double pixelsPerUnitAtDepth1 = height / (2.0 * std::tan(0.5 * double(c.yFov)));
+    for (const Light& l : scene.lights) {
+        if (l.type == LightType::Directional) continue;
+        if (length(l.position - c.position) <= reach) return true;
+        float x, y, depth;
+        if (!c.project(l.position, width, height, &x, &y, &depth)) continue;
+        const double margin = reach * pixelsPerUnitAtDepth1 / std::max(double(depth), 1e-30);
+        if (x >= -margin && x <= width + margin && y >= -margin && y <= height + margin) return true;
+    }
+    return false;
+}
+
+double photonConeAngle(uint64_t plannedPaths) {
+    return RadiusDefaults::kConeAngleScale * std::pow(double(std::max<uint64_t>(plannedPaths, 1)), -0.2);
+}
+
 RenderSettings resolveRadiusDefaults(const RenderSettings& in, const EmbreeScene& rt) {
-    if (!hasAutomaticRadii(in)) return in;
     RenderSettings s = in;
+    // An explicit radius keeps its meaning: no photon cone unless the angle is given too.
+    if (in.radius > 0 && s.photonAngle == RenderSettings::kAutoPhotonAngle) s.photonAngle = 0;
+    if (!hasAutomaticRadii(s)) return s;
     const Scene& scene = rt.scene();
     s.plannedPaths = plannedPhotonPaths(s);
     // Without media or surfaces in view, footprints that start the radii at 0.5% and 2% of the
@@ -42,6 +63,13 @@ RenderSettings resolveRadiusDefaults(const RenderSettings& in, const EmbreeScene
     }
     if (s.radius <= 0) s.radius = float(beamEnd / endFactor);
     if (s.surfaceRadius <= 0) s.surfaceRadius = float(surfaceEnd / std::sqrt(endFactor));
+    if (s.photonAngle == RenderSettings::kAutoPhotonAngle) {
+        // The cone reaches the full radius at path distance beamEnd / angle from the light (the
+        // same for every path); it only pays where camera rays pass that close to a light.
+        const double angle = photonConeAngle(s.plannedPaths);
+        const bool inView = pointLightNearTheImage(scene, s.width, s.height, beamEnd / angle);
+        s.photonAngle = inView ? float(angle / endFactor) : 0.0f;
+    }
     return s;
 }
 

@@ -28,9 +28,20 @@ struct RadiusDefaults {
     /// Horizon of an open-ended render (no pass count, time not yet measured): photon paths per
     /// image pixel, about a minute of a 2-core machine at 256x256 (docs/performance.md).
     static constexpr uint64_t kOpenEndedPathsPerPixel = 100;
+    /// Photon cone angle at the end of a plan of P paths: kConeAngleScale x P^(-1/5) radians
+    /// (photonConeAngle; the model in docs/algorithm.md, "The photon cone").
+    static constexpr double kConeAngleScale = 3.3;
 };
 
-/// True when any radius setting is left automatic.
+/// The photon cone's angle (radians) at the end of a plan of `plannedPaths` photon paths.
+double photonConeAngle(uint64_t plannedPaths);
+
+/// True when a point or spot light lies in the camera's image or within `reach` (scene units) of
+/// the frustum's sides at its depth, or within `reach` of the eye: where the automatic photon
+/// cone is turned on (elsewhere it would only split beams no camera ray passes close to the light).
+bool pointLightNearTheImage(const Scene& scene, int width, int height, double reach);
+
+/// True when any radius setting (radii, offset, photon cone angle) is left automatic.
 bool hasAutomaticRadii(const RenderSettings& s);
 
 /// The photon-path count the automatic radii plan for: settings.plannedPaths when set, else

@@ -111,7 +111,7 @@ TEST(Cli, HelpListsEveryOptionWithDefaults) {
     const std::vector<std::string> output = {"--output", "--exposure"};
     const std::vector<std::string> ppb = {"--passes", "--time",           "--photons",       "--alpha",
                                           "--radius", "--surface-radius", "--radius-offset", "--planned-paths",
-                                          "--free-flights", "--memory", "--simd"};
+                                          "--photon-angle", "--free-flights", "--memory", "--simd"};
     auto join = [](std::initializer_list<std::vector<std::string>> parts) {
         std::set<std::string> all = {"--help", "--help-all"};
         for (const auto& p : parts) all.insert(p.begin(), p.end());
@@ -123,7 +123,7 @@ TEST(Cli, HelpListsEveryOptionWithDefaults) {
                           "--reference", "--convergence"}})},
         {"reference", join({scene, output, {"--spp", "--max-depth", "--no-nee"}})},
         {"bench", join({scene, {"--passes", "--photons", "--rays", "--queries", "--free-flights", "--no-hybrid", "--quality",
-                            "--quality-scene", "--reference-dir", "--reference-spp", "--plot", "--radius",
+                            "--quality-scene", "--quality-seeds", "--reference-dir", "--reference-spp", "--plot", "--radius",
                             "--radius-offset", "--simd"}})},
         {"compare", join({scene, output, ppb, {"--gpu", "--density"}})}};
     for (const auto& [command, names] : expected) {

@@ -8,6 +8,7 @@
 
 #include "core/radius_schedule.h"
 #include "cpu/pass_renderer.h"
+#include "cpu/photon_tracer.h"
 #include "cpu/pixel_footprint.h"
 #include "cpu/radius_defaults.h"
 #include "loading/mesh_builders.h"
@@ -181,6 +182,60 @@ TEST(RadiusDefaults, ResolvedSettingsReproduceTheImageBitForBit) {
     EXPECT_FALSE(hasAutomaticRadii(resolved));
     for (uint64_t pass : {0ull, 2ull})
         EXPECT_TRUE(test::identicalImages(automatic.renderPass(pass), replay.renderPass(pass))) << pass;
+}
+
+TEST(RadiusDefaults, ThePhotonConeIsOnForALightInViewAndShapesTheBeams) {
+    Scene s = fogTunnel(4.0f);  // its point light is in view
+    RenderSettings in;
+    in.width = 48;
+    in.height = 32;
+    in.photonsPerPass = 300;
+    in.passes = 20;
+    PassRenderer r(s, in);
+    const RenderSettings& out = r.settings();
+    const double endFactor = RadiusSchedule(out.alpha, out.radiusOffset).beamFactor(out.plannedPaths);
+    EXPECT_NEAR(out.photonAngle * endFactor, photonConeAngle(out.plannedPaths), 1e-6)
+        << "the automatic angle at the end of the plan";
+    const double reach = r.radii().coneReach;
+    ASSERT_GT(reach, 0.0);
+    EXPECT_NEAR(reach, double(out.radius) / out.photonAngle, 1e-6 * reach);
+
+    // Every beam that starts at the light (a first segment, path distance = distance from the
+    // light) is no wider than the cone at its far end, and has the full radius beyond the reach.
+    // Planted bug: storing the first segment whole (appendConeBeam skipped) fails the first check.
+    const uint64_t pass = 7;
+    PhotonMap map = r.photonTracer().trace(pass);
+    const Vec3 light = s.lights[0].position;
+    int inside = 0, beyond = 0;
+    for (const PhotonBeam& b : map.beams) {
+        const Vec3 toOrigin = b.origin - light;
+        const double s0 = length(toOrigin);
+        if (s0 > 1e-4 && std::fabs(dot(toOrigin, b.dir) - s0) > 1e-4 * s0) continue;  // not radial
+        // The path index is unknown per beam: bound by the pass's widest radius (its first path).
+        const double rPass = r.radii().beamRadiusOf(pass * in.photonsPerPass);
+        const double rLast = r.radii().beamRadiusOf((pass + 1) * in.photonsPerPass - 1);
+        if (s0 + b.tMax <= reach * (1 - 1e-5)) {
+            EXPECT_LE(b.radius, rPass / reach * (s0 + b.tMax) * (1 + 1e-5)) << "at " << s0;
+            ++inside;
+        } else if (s0 >= reach * (1 + 1e-5)) {
+            EXPECT_GE(b.radius, rLast * (1 - 1e-6));
+            ++beyond;
+        }
+    }
+    EXPECT_GT(inside, 100) << "first segments split near the light";
+    EXPECT_GT(beyond, 100);
+
+    // Off where no point light is near the image, and with an explicit radius.
+    Scene away = fogTunnel(4.0f);
+    away.lights[0].position = Vec3(0.0f, 0.0f, 0.9f);  // behind the camera, out of its reach
+    away.finalize();
+    EXPECT_EQ(PassRenderer(away, in).settings().photonAngle, 0.0f);
+    RenderSettings explicitRadius = in;
+    explicitRadius.radius = 0.05f;
+    EXPECT_EQ(PassRenderer(s, explicitRadius).settings().photonAngle, 0.0f) << "an explicit radius keeps its meaning";
+    RenderSettings explicitAngle = explicitRadius;
+    explicitAngle.photonAngle = 0.3f;
+    EXPECT_EQ(PassRenderer(s, explicitAngle).settings().photonAngle, 0.3f);
 }
 
 TEST(RadiusSchedule, OffsetForRatioInvertsTheSchedule) {
