@@ -64,7 +64,8 @@ Scene floorScene(Map map, bool wall) {
 
 constexpr int kSize = 32;
 
-/// Pixels whose centre ray hits `mesh` with world x in [x0, x1].
+/// Pixels whose centre ray hits `mesh` with world x in [x0, x1], away from the floor's front and
+/// back edges (where jittered samples fall off it and PPB's kernel loses half its support).
 std::vector<int> pixelsOn(const Scene& s, int mesh, float x0, float x1) {
     EmbreeScene rt(s);
     std::vector<int> out;
@@ -72,7 +73,9 @@ std::vector<int> pixelsOn(const Scene& s, int mesh, float x0, float x1) {
         for (int x = 0; x < kSize; ++x) {
             SurfaceHit hit;
             Ray r = s.camera.generateRay(x + 0.5f, y + 0.5f, kSize, kSize, {0.5f, 0.5f});
-            if (rt.intersect(r, &hit) && hit.mesh == mesh && hit.p.x >= x0 && hit.p.x <= x1) out.push_back(y * kSize + x);
+            if (rt.intersect(r, &hit) && hit.mesh == mesh && hit.p.x >= x0 && hit.p.x <= x1 &&
+                (mesh != 0 || std::abs(hit.p.z) < 0.85f))
+                out.push_back(y * kSize + x);
         }
     return out;
 }
@@ -113,8 +116,8 @@ TEST(NormalMapRender, TheSideTiltedTowardTheLightIsBrighterByTheCosineRatio) {
     Image ref = reference(s, 16).mean;
     std::printf("reference: lit %.4f (expected %.4f), unlit %.4f (expected %.4f)\n", mean(ref, lit), expectLit,
                 mean(ref, unlit), expectUnlit);
-    EXPECT_NEAR(mean(ref, lit) / expectLit, 1.0, 0.01);
-    EXPECT_NEAR(mean(ref, unlit) / expectUnlit, 1.0, 0.01);
+    EXPECT_NEAR(mean(ref, lit) / expectLit, 1.0, 0.005);
+    EXPECT_NEAR(mean(ref, unlit) / expectUnlit, 1.0, 0.005);
     EXPECT_NEAR(mean(ref, lit) / mean(ref, unlit) / ratio, 1.0, 0.01);
 
     Image img = ppb(s, 16, 40000);

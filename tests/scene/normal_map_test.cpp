@@ -38,7 +38,10 @@ Quad normalMappedQuad(std::array<uint8_t, 3> texel, float scale, int set, const 
                            {"TEXCOORD_1", b.addFloats(uv1, "VEC2")}};
     if (!tangent.empty()) {
         std::vector<float> t;
-        for (int k = 0; k < 4; ++k) t.insert(t.end(), tangent.begin(), tangent.end());
+        if (tangent.size() == 4)
+            for (int k = 0; k < 4; ++k) t.insert(t.end(), tangent.begin(), tangent.end());
+        else
+            t = tangent;  // as given (bad-input tests)
         attr["TANGENT"] = b.addFloats(t, "VEC4");
     }
     nlohmann::json prim = {{"attributes", attr}, {"indices", b.addIndices(idx)}, {"material", 0}};
@@ -122,6 +125,12 @@ TEST(NormalMap, TheTangentAttributeIsHonouredWithItsHandedness) {
     expectNear(normalAt(plus.scene, 0.3f, 0.6f), Vec3(e.x, e.y, e.z), "w = +1");
     expectNear(normalAt(minus.scene, 0.3f, 0.6f), Vec3(e.x, -e.y, e.z), "w = -1");
     expectNear(normalAt(turned.scene, 0.3f, 0.6f), Vec3(-e.y, e.x, e.z), "T = +y");
+}
+
+TEST(NormalMap, ATangentAccessorOfTheWrongLengthIsAnErrorNamingThePrimitive) {
+    std::string err = test::errorOf([] { normalMappedQuad(kTiltUp, 1.0f, 0, {1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1}); });
+    EXPECT_NE(err.find("TANGENT has 3 elements for 4 positions"), std::string::npos) << err;
+    EXPECT_NE(err.find("mesh"), std::string::npos) << err;
 }
 
 TEST(NormalMap, AFlatTexelGivesTheVertexNormalExactly) {
