@@ -16,11 +16,11 @@ SurfacePhotonGrid::SurfacePhotonGrid(const std::vector<SurfacePhoton>& photons) 
         m_maxRadius = std::max(m_maxRadius, p.radius);
     }
     m_origin = b.lo;
-    // Cells as wide as the largest photon radius, but never so small that a cell index along the
+    // Cells as wide as the largest photon diameter, but never so small that a cell index along the
     // photons' extent passes 2^20 (relative, so a scene in millimetres or kilometres hashes alike).
     const Vec3 extent = b.hi - b.lo;
     const float span = std::max(extent.x, std::max(extent.y, extent.z));
-    m_cellSize = std::max(m_maxRadius, span * 0x1p-20f);
+    m_cellSize = std::max(2.0f * m_maxRadius, span * 0x1p-20f);
     if (!(m_cellSize > 0)) m_cellSize = 1.0f;  // one photon, radius 0: any cell size will do
     m_extentCells = extent / m_cellSize;
     m_buckets = 1;
@@ -46,33 +46,23 @@ uint32_t SurfacePhotonGrid::cellHash(int x, int y, int z) const {
 }
 
 int SurfacePhotonGrid::bucketsNear(const Vec3& x, const Vec3& n, uint32_t* buckets) const {
-    // In cell units (cells [i, i+1]); the reach is r_max (<= 1 cell), padded so that float
-    // rounding of a photon's cell index can never drop a cell that holds an accepted photon: a
-    // few ulps of the cell coordinate (< 0.5 cell, as indices stay below 2^20), so <= 5 cells a side.
+    (void)n;  // pruning cells by the slab round the plane was measured to pay nothing (photons lie
+              // on surfaces: the cells it drops are empty anyway; docs/performance.md)
+    // In cell units (cells [i, i+1], 2 r_max wide): the 2x2x2 block nearest to x covers the ball
+    // of radius r_max (half a cell) round it.
     const Vec3 c = (x - m_origin) / m_cellSize;
-    // Farther than a cell (> r_max) outside the photons' bounds, or not a number: nothing near.
-    if (!(c.x >= -2.0f && c.y >= -2.0f && c.z >= -2.0f && c.x <= m_extentCells.x + 2.0f &&
-          c.y <= m_extentCells.y + 2.0f && c.z <= m_extentCells.z + 2.0f))
+    // Farther than a cell outside the photons' bounds, or not a number: nothing near (and no
+    // float-to-int overflow below).
+    if (!(c.x >= -1.0f && c.y >= -1.0f && c.z >= -1.0f && c.x <= m_extentCells.x + 1.0f &&
+          c.y <= m_extentCells.y + 1.0f && c.z <= m_extentCells.z + 1.0f))
         return 0;
-    const float reach = std::min(1.0f, m_maxRadius / m_cellSize);
-    const float pad = 1e-3f + 4e-7f * std::max(std::abs(c.x), std::max(std::abs(c.y), std::abs(c.z)));
-    const float ballReach = reach + pad, slabReach = 0.25f * reach + pad;
-    const float cellHalfWidth = 0.5f * (std::abs(n.x) + std::abs(n.y) + std::abs(n.z));  // along n
-    const int x0 = int(std::floor(c.x - ballReach)), x1 = int(std::floor(c.x + ballReach));
-    const int y0 = int(std::floor(c.y - ballReach)), y1 = int(std::floor(c.y + ballReach));
-    const int z0 = int(std::floor(c.z - ballReach)), z1 = int(std::floor(c.z + ballReach));
-    auto gap = [](float lo, float v) { return std::max(0.0f, std::max(lo - v, v - (lo + 1.0f))); };
+    const int x0 = int(std::floor(c.x - 0.5f)), y0 = int(std::floor(c.y - 0.5f)), z0 = int(std::floor(c.z - 0.5f));
     int count = 0;
-    for (int iz = z0; iz <= z1; ++iz)
-        for (int iy = y0; iy <= y1; ++iy)
-            for (int ix = x0; ix <= x1; ++ix) {
-                // The cell must meet the ball round x ...
-                const float gx = gap(float(ix), c.x), gy = gap(float(iy), c.y), gz = gap(float(iz), c.z);
-                if (gx * gx + gy * gy + gz * gz > ballReach * ballReach) continue;
-                // ... and the slab round the plane through x.
-                const Vec3 centre(float(ix) + 0.5f - c.x, float(iy) + 0.5f - c.y, float(iz) + 0.5f - c.z);
-                if (std::abs(dot(centre, n)) - cellHalfWidth > slabReach) continue;
-                const uint32_t h = cellHash(ix, iy, iz);
+    for (int dz = 0; dz < 2; ++dz)
+        for (int dy = 0; dy < 2; ++dy)
+            for (int dx = 0; dx < 2; ++dx) {
+                const uint32_t h = cellHash(x0 + dx, y0 + dy, z0 + dz);
+                if (m_cellStart[h] == m_cellStart[h + 1]) continue;                     // empty
                 if (std::find(buckets, buckets + count, h) != buckets + count) continue;  // a hash collision
                 buckets[count++] = h;
             }
