@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -70,13 +71,37 @@ void rejectWithResume(const CLI::App* cmd) {
                         "log may be given)");
 }
 
-/// TYNDALL_TEST_CHECKPOINT_STALL_MS: the checkpoint writer sleeps that long halfway through the
-/// temporary file, so a test can kill it mid-write. Unset in normal use.
+// Test hooks (environment variables read only here, unset in normal use; docs/production.md,
+// "Test hooks"). They let the kill-and-resume tests stop a render at a chosen point and wait for
+// the test's signal, so what a test sees never depends on how fast the machine is.
+//   TYNDALL_TEST_CHECKPOINT_STALL_AT=K: the K-th checkpoint write of this run stops halfway
+//     through its temporary file and waits there until the process is killed or interrupted.
+//   TYNDALL_TEST_HOLD_AFTER_PASS=N: once the render holds N passes (resumed ones included) it
+//     waits, still writing its periodic checkpoints, until it is killed or interrupted.
+// Both give up waiting after kTestHoldLimit (a test that forgot to kill does not hang forever).
+constexpr double kTestHoldLimit = 300;
+
+uint64_t testHookValue(const char* name) {
+    const char* v = std::getenv(name);
+    return v && *v ? std::strtoull(v, nullptr, 10) : 0;
+}
+
+/// Sleeps in short steps until an interrupt or kTestHoldLimit seconds; `tick` runs at every step.
+void holdForTests(const std::function<void()>& tick) {
+    const auto start = std::chrono::steady_clock::now();
+    while (!interruptRequested() &&
+           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < kTestHoldLimit) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        if (tick) tick();
+    }
+}
+
 std::function<void()> checkpointStallForTests() {
-    const char* ms = std::getenv("TYNDALL_TEST_CHECKPOINT_STALL_MS");
-    if (!ms || !*ms) return {};
-    int n = std::atoi(ms);
-    return [n] { std::this_thread::sleep_for(std::chrono::milliseconds(n)); };
+    const uint64_t at = testHookValue("TYNDALL_TEST_CHECKPOINT_STALL_AT");
+    if (!at) return {};
+    return [at, writes = uint64_t(0)]() mutable {
+        if (++writes == at) holdForTests({});
+    };
 }
 
 /// Error before rendering when the checkpoint's directory is missing or not writable.
@@ -182,6 +207,17 @@ void runRender(RenderOptions& o, CLI::App* cmd, int& exitCode) {
                        stall);
         lastCheckpoint = Clock::now();
     };
+    auto checkpointIfDue = [&](const Accumulator& beauty, const LayerAccumulator* layers) {
+        if (o.checkpoint.empty() ||
+            std::chrono::duration<double>(Clock::now() - lastCheckpoint).count() < o.checkpointEvery)
+            return;
+        try {
+            writeCheckpoint(beauty, layers);
+        } catch (const Error& e) {
+            std::fprintf(stderr, "\ntyndall: warning: %s (rendering goes on)\n", e.what());
+        }
+    };
+    const uint64_t holdAfterPass = testHookValue("TYNDALL_TEST_HOLD_AFTER_PASS");
     auto onPass = [&](const Accumulator& beauty, const LayerAccumulator* layers, const RenderProgress& p) {
         runElapsed = p.elapsedSeconds;
         progress.update(p.passesDone, p.elapsedSeconds);
@@ -189,14 +225,9 @@ void runRender(RenderOptions& o, CLI::App* cmd, int& exitCode) {
         if (log)
             log->add(beauty, {beauty.passCount(), elapsedBefore + p.elapsedSeconds, paths,
                               renderer.radii().beamRadiusOf(paths ? paths - 1 : 0)});
-        if (!o.checkpoint.empty() &&
-            std::chrono::duration<double>(Clock::now() - lastCheckpoint).count() >= o.checkpointEvery) {
-            try {
-                writeCheckpoint(beauty, layers);
-            } catch (const Error& e) {
-                std::fprintf(stderr, "\ntyndall: warning: %s (rendering goes on)\n", e.what());
-            }
-        }
+        checkpointIfDue(beauty, layers);
+        if (holdAfterPass && beauty.passCount() == holdAfterPass)
+            holdForTests([&] { checkpointIfDue(beauty, layers); });
         return !interruptRequested();
     };
 
