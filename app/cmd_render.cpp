@@ -125,7 +125,7 @@ void runRender(RenderOptions& o, CLI::App* cmd, int& exitCode) {
         record = {c.scene, c.camera, sceneHash(c.scene, scene), c.settings, c.output, c.exposure, o.aov, 0.0};
         allocating("the accumulator of a " + std::to_string(c.settings.width) + "x" +
                        std::to_string(c.settings.height) + " image",
-                   uint64_t(c.settings.width) * c.settings.height * 3 * sizeof(double) * (o.aov ? 5 : 1),
+                   accumulatorBytes(c.settings, o.aov),
                    [&] { acc.emplace(c.settings.width, c.settings.height, o.aov); });
     } else {
         // Nothing is written before every check passed: a bad resume leaves the checkpoint as it was.
@@ -176,7 +176,9 @@ void runRender(RenderOptions& o, CLI::App* cmd, int& exitCode) {
     RenderSettings run = s;
     run.passes = s.timeBudget > 0 ? s.passes : s.passes - std::min(s.passes, passesBefore);
     run.timeBudget = s.timeBudget > 0 ? std::max(s.timeBudget - elapsedBefore, 1e-9) : 0;
-    PassRenderer renderer(scene, run);  // a pass does not depend on the target: the same bits as with `s`
+    // A pass does not depend on the target: the same bits as with `s`. The AOV layers' buffers
+    // count in the memory plan (record.aov: the same plan when resumed).
+    PassRenderer renderer(scene, run, BeamBvh::Kind::FlatCurves, record.aov);
     if (root && renderer.memoryPlan().batches > 1)
         std::fprintf(stderr, "tyndall: %s\n", renderer.memoryPlan().describe().c_str());
 
@@ -201,10 +203,12 @@ void runRender(RenderOptions& o, CLI::App* cmd, int& exitCode) {
     // `layers` is the whole state; null in the scheduler's case, where `beauty` is.
     auto writeCheckpoint = [&](const Accumulator& beauty, const LayerAccumulator* layers) {
         record.elapsed = elapsedBefore + runElapsed;
-        saveCheckpoint(o.checkpoint,
-                       layers ? makeCheckpoint(record, *layers)
-                              : makeCheckpoint(record, LayerAccumulator::fromNamed({{"beauty", beauty}}, false, "")),
-                       stall);
+        std::vector<std::pair<std::string, Accumulator>> sums;
+        if (layers)
+            sums = layers->named();
+        else
+            sums.emplace_back("beauty", beauty);
+        saveCheckpoint(o.checkpoint, makeCheckpoint(record, std::move(sums)), stall);
         lastCheckpoint = Clock::now();
     };
     auto checkpointIfDue = [&](const Accumulator& beauty, const LayerAccumulator* layers) {
@@ -234,6 +238,7 @@ void runRender(RenderOptions& o, CLI::App* cmd, int& exitCode) {
     RenderProgress p;
     if (scheduler) {
         Accumulator beauty = acc->beauty();
+        acc.reset();  // one copy of the sums during the render, as the memory plan counts
         CallbackDisplay display([&](const Accumulator& a, const RenderProgress& pr) {
             return onPass(a, nullptr, pr) ? DisplayCommand::Continue : DisplayCommand::Exit;
         });

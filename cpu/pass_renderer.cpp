@@ -60,11 +60,11 @@ PassStats& PassStats::operator+=(const PassStats& o) {
     return *this;
 }
 
-PassRenderer::PassRenderer(const Scene& scene, const RenderSettings& settings, BeamBvh::Kind beamBvh)
+PassRenderer::PassRenderer(const Scene& scene, const RenderSettings& settings, BeamBvh::Kind beamBvh, bool aovLayers)
     : m_scene(scene),
       m_settings(settings),
       m_radii(RadiusSetup::resolve(settings, scene)),
-      m_memory(MemoryPlan::resolve(settings, storedFreeFlights(scene, settings))),
+      m_memory(MemoryPlan::resolve(settings, storedFreeFlights(scene, settings), aovLayers)),
       m_bvhKind(beamBvh),
       m_rt(std::make_unique<EmbreeScene>(scene)),
       m_photons(std::make_unique<PhotonTracer>(*m_rt, settings, m_radii)),
