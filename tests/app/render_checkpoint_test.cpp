@@ -107,23 +107,20 @@ uint64_t checkpointPasses(const std::string& path) {
 
 class KillAndResume : public ::testing::Test {
 protected:
-    static void SetUpTestSuite() {
-        s_dir = dirFor("reference");
-        s_full = s_dir + "/full.exr";
-        auto r = runTyndall(kRender + " -q -o " + s_full);
-        ASSERT_EQ(r.exitCode, 0) << r.output;
-    }
-    /// Resumes `ck` to `out` and expects the uninterrupted image, bit for bit.
+    /// Resumes `ck` to `out` and expects the uninterrupted render, bit for bit. The reference is
+    /// rendered beside `out`: each test has its own directory, so tests run in parallel (ctest -j)
+    /// never share (or delete) each other's files.
     void expectResumedEqualsFull(const std::string& ck, const std::string& out) {
-        auto r = runTyndall("render --resume " + ck + " -o " + out + " -q");
+        const std::string full = fs::path(out).parent_path().string() + "/full.exr";
+        auto r = runTyndall(kRender + " -q -o " + full);
         ASSERT_EQ(r.exitCode, 0) << r.output;
-        EXPECT_TRUE(tyndall::test::identicalImages(tyndall::readImage(out), tyndall::readImage(s_full)))
+        r = runTyndall("render --resume " + ck + " -o " + out + " -q");
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        EXPECT_TRUE(tyndall::test::identicalImages(tyndall::readImage(out), tyndall::readImage(full)))
             << "resumed render differs from the uninterrupted one";
         EXPECT_EQ(tyndall::readImageAttribute(out, "tyndall:passes"), "48");
     }
-    static std::string s_dir, s_full;
 };
-std::string KillAndResume::s_dir, KillAndResume::s_full;
 
 // The render is held after pass kHold (TYNDALL_TEST_HOLD_AFTER_PASS) until it is killed, so it can
 // never finish its 48 passes before the test's signal arrives, however loaded the machine is.
