@@ -31,14 +31,31 @@ struct Material {
     /// Up to kSmoothRoughness the surface is an exact delta lobe; above it a GGX lobe (isGlossy).
     float roughness = 0.0f;
     Rgb emission{0.0f};  ///< emitted radiance (W m^-2 sr^-1) from the front face; makes an area light
+    /// Dielectric only: KHR_materials_transmission's factor, (0, 1]. Where the transmission at a
+    /// point (this x transmissionTexture R) is t < 1, the surface is a mix: the dielectric lobe with
+    /// probability t, else the diffuse base (albedo); chosen per path vertex (docs/algorithm.md).
+    float transmission = 1.0f;
+    /// glTF normalTexture scale: multiplies the tangent-space normal's x and y.
+    float normalScale = 1.0f;
 
     // Textures (glTF's slots; core/material_eval.h reads them). Each multiplies its factor above.
     TextureRef baseColorTexture;          ///< sRGB RGB x albedo, alpha x baseColor alpha
     TextureRef emissiveTexture;           ///< sRGB RGB x emission
     TextureRef metallicRoughnessTexture;  ///< linear: G x roughness, B x metallic (glTF's packing)
+    /// Linear, tangent space (glTF): n = normalize((2 rgb - 1) x (normalScale, normalScale, 1)) in
+    /// the frame (T, B, N) of the mesh's tangents (TriangleMesh::tangents) and shading normal.
+    TextureRef normalTexture;
+    TextureRef transmissionTexture;       ///< linear: R x transmission
 
     bool isTextured() const {
-        return baseColorTexture.present() || emissiveTexture.present() || metallicRoughnessTexture.present();
+        return baseColorTexture.present() || emissiveTexture.present() || metallicRoughnessTexture.present() ||
+               transmissionTexture.present();
+    }
+    /// The shading normal comes from a normal map (every stage then shades with it, diffuse included).
+    bool isNormalMapped() const { return normalTexture.present(); }
+    /// A dielectric that is partly the diffuse base somewhere: each vertex chooses its lobe.
+    bool isPartlyTransmissive() const {
+        return type == MaterialType::Dielectric && (transmission < 1.0f || transmissionTexture.present());
     }
 
     static constexpr float kSmoothRoughness = 0.05f;

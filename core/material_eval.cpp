@@ -41,6 +41,7 @@ SurfacePoint evalSurface(const Scene& scene, const TriangleMesh& mesh, uint32_t 
     sp.emission = mat.emission;
     sp.metallic = mat.metallic;
     sp.roughness = mat.roughness;
+    sp.transmission = mat.transmission;
     if (!mat.isTextured()) return sp;
     if (mat.baseColorTexture.present()) {
         auto t = sampleSlot(scene, mat.baseColorTexture, mesh, tri, b1, b2, footprint);
@@ -56,7 +57,20 @@ SurfacePoint evalSurface(const Scene& scene, const TriangleMesh& mesh, uint32_t 
         sp.roughness *= t[1];
         sp.metallic *= t[2];
     }
+    if (mat.transmissionTexture.present()) {
+        auto t = sampleSlot(scene, mat.transmissionTexture, mesh, tri, b1, b2, footprint);
+        sp.transmission *= t[0];
+    }
     return sp;
+}
+
+Vec3 normalMappedNormal(const Scene& scene, const TriangleMesh& mesh, uint32_t tri, float b1, float b2,
+                        const Vec3& ng, float footprint) {
+    const Material& mat = scene.materials[size_t(mesh.material)];
+    const TangentFrame frame = normalMapFrame(mesh, mat.normalTexture.texcoord, tri, b1, b2, ng);
+    auto t = sampleSlot(scene, mat.normalTexture, mesh, tri, b1, b2, footprint);
+    Vec3 m{(2.0f * t[0] - 1.0f) * mat.normalScale, (2.0f * t[1] - 1.0f) * mat.normalScale, 2.0f * t[2] - 1.0f};
+    return perturbedNormal(frame, m, ng);
 }
 
 }  // namespace tyndall

@@ -12,6 +12,7 @@
 #include <cstdint>
 
 #include "core/scene.h"
+#include "core/tangent_frame.h"
 
 namespace tyndall {
 
@@ -22,6 +23,7 @@ struct SurfacePoint {
     Rgb emission{0.0f};    ///< Material::emission x emissiveTexture
     float metallic = 0.0f;
     float roughness = 1.0f;
+    float transmission = 1.0f;  ///< Dielectric: Material::transmission x transmissionTexture R
 };
 
 /// TEXCOORD_`set` of triangle `tri` at barycentrics (b1, b2); (0, 0) when the mesh has none.
@@ -33,6 +35,14 @@ float texcoordScale(const TriangleMesh& mesh, int set, uint32_t tri);
 /// Untextured materials return their factors without touching a texture. Thread-safe.
 SurfacePoint evalSurface(const Scene& scene, const TriangleMesh& mesh, uint32_t tri, float b1, float b2,
                          float footprint);
+
+/// The normal-mapped shading normal (unit, within kMinHorizonCos of ng's hemisphere or above) of
+/// `mesh` at (tri, b1, b2), `ng` the unit geometric normal toward the exterior: the normalTexture
+/// texel in the tangent frame (core/tangent_frame.h) of the normal map's TEXCOORD set. Only for
+/// materials with a normal map (Material::isNormalMapped). A flat texel (0.5, 0.5, 1 exactly)
+/// gives the interpolated vertex normal, or ng itself for meshes without normals.
+Vec3 normalMappedNormal(const Scene& scene, const TriangleMesh& mesh, uint32_t tri, float b1, float b2,
+                        const Vec3& ng, float footprint);
 
 /// One texture slot at a point: RGBA, (1, 1, 1, 1) when the slot is empty.
 std::array<float, 4> sampleSlot(const Scene& scene, const TextureRef& ref, const TriangleMesh& mesh, uint32_t tri,

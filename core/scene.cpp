@@ -1,5 +1,7 @@
 #include "core/scene.h"
 
+#include "core/tangent_frame.h"
+
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -48,6 +50,7 @@ void Scene::finalize() {
         if (mesh.exteriorMedium == kInheritMedium) mesh.exteriorMedium = globalMedium;
         if (mesh.interiorMedium == kInheritMedium)
             mesh.interiorMedium = mat.isTransmissive() ? kVacuum : mesh.exteriorMedium;
+        if (mat.isNormalMapped() && mesh.tangents.empty()) generateTangents(mesh, mat.normalTexture.texcoord);
         if (!mat.isEmissive()) continue;
         for (uint32_t t = 0; t < mesh.triangleCount(); ++t) {
             float area = 0.5f * length(mesh.geometricNormal(t));

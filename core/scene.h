@@ -31,6 +31,11 @@ struct TriangleMesh {
     std::vector<Vec3> positions;     ///< world space
     std::vector<Vec3> normals;       ///< optional per-vertex shading normals (world, unit); empty = flat
     std::vector<Vec2> texcoords[2];  ///< optional per-vertex TEXCOORD_0 / TEXCOORD_1 (glTF uv); empty = none
+    /// Optional per-vertex tangents for normal maps (world, unit, perpendicular to the normal) and
+    /// the bitangent sign: B = tangentSigns[i] x cross(N, T) (glTF's TANGENT.w). Both empty = none;
+    /// core/tangent_frame.h generates them from TEXCOORD when a normal-mapped mesh has none.
+    std::vector<Vec3> tangents;
+    std::vector<float> tangentSigns;
     std::vector<uint32_t> indices;   ///< 3 per triangle, counter-clockwise seen from the exterior
     int material = 0;                ///< index into Scene::materials
     MediumId interiorMedium = kInheritMedium;

@@ -189,14 +189,23 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
             for (int depth = 0;;) {
                 const TriangleMesh& mesh = m_scene.meshes[hit.mesh];
                 const Material& mat = m_scene.materials[mesh.material];
+                const float footprint = spread * pathLength;
+                applyNormalMap(m_scene, &hit, footprint);
                 HitSide side = hitSide(hit, dir);
-                const SurfacePoint sp = surfaceAt(m_scene, hit, spread * pathLength);
+                const SurfacePoint sp = surfaceAt(m_scene, hit, footprint);
                 if (emission && mat.isEmissive() && side.entering) {
                     L += throughput * sp.emission;
                     Lsurface += throughput * sp.emission;
                 }
-                if (mat.type == MaterialType::Diffuse) {
-                    Rgb density = throughput * sp.baseColor * kInvPi * surfacePhotons.density(hit.p, side.nf);
+                if (diffuseBaseChosen(mat, sp, mat.isPartlyTransmissive() ? rng.uniform() : 0.0f)) {
+                    // With a shading normal each photon is weighted by its light-side cosine ratio
+                    // (surface_scattering.h, shadingCosineRatio); the same photons as density().
+                    Rgb E = !hasShadingNormal(hit)
+                                ? surfacePhotons.density(hit.p, side.nf)
+                                : surfacePhotons.gather(hit.p, side.nf, [&](const SurfacePhoton& p) {
+                                      return dot(p.normal, side.nf) < 0.7f ? 0.0f : shadingCosineRatio(side, p.wi);
+                                  });
+                    Rgb density = throughput * sp.baseColor * kInvPi * E;
                     L += density;
                     Lsurface += density;
                     break;
@@ -207,11 +216,16 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                     // delta interactions only) with the BSDF evaluated, then continue by sampling it.
                     const GlossyBsdf bsdf = glossyBsdf(mat, sp, hit, dir);
                     const Vec3 wo = -dir;
-                    const Rgb glossy = throughput * surfacePhotons.gather(hit.p, hit.ng, [&](const SurfacePhoton& p) {
-                        return bsdf.eval(wo, p.wi, TransportMode::Radiance);
-                    });
-                    L += glossy;
-                    Lsurface += glossy;
+                    // A partly transmissive surface stores all its photons for the diffuse base:
+                    // gathering them here would count the light the continuation finds twice.
+                    if (!mat.isPartlyTransmissive()) {
+                        const Rgb glossy =
+                            throughput * surfacePhotons.gather(hit.p, hit.ng, [&](const SurfacePhoton& p) {
+                                return bsdf.eval(wo, p.wi, TransportMode::Radiance);
+                            });
+                        L += glossy;
+                        Lsurface += glossy;
+                    }
                     float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
                     if (!sampleGlossy(bsdf, mesh, hit, dir, medium, u0, u1, u2, TransportMode::Radiance, &ev)) break;
                 } else if (!sampleSpecular(mat, sp.baseColor, mesh, hit, dir, medium, rng.uniform(),

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <string>
 
 namespace tyndall {
@@ -15,6 +18,19 @@ int storedFreeFlights(const Scene& scene, const RenderSettings& settings) {
     for (const Medium& m : scene.media)
         if (!m.homogeneous()) return settings.freeFlightSamples;
     return 0;
+}
+// Test hook TYNDALL_TEST_NAN_PIXEL=X,Y (unset in normal use; docs/production.md, "Test hooks"):
+// the camera stage's radiance at pixel (X, Y) is NaN in every pass, so a test can follow planted
+// NaN samples through the render loop to the accumulator's guard and the end-of-render report.
+void plantNanForTests(Image& radiance) {
+    static const int* xy = [] {
+        static int v[2] = {-1, -1};
+        const char* e = std::getenv("TYNDALL_TEST_NAN_PIXEL");
+        if (e) std::sscanf(e, "%d,%d", &v[0], &v[1]);
+        return v;
+    }();
+    if (xy[0] >= 0 && xy[0] < radiance.width && xy[1] >= 0 && xy[1] < radiance.height)
+        radiance.pixels[size_t(xy[1]) * radiance.width + xy[0]].g = std::nanf("");
 }
 }  // namespace
 
@@ -44,11 +60,11 @@ PassStats& PassStats::operator+=(const PassStats& o) {
     return *this;
 }
 
-PassRenderer::PassRenderer(const Scene& scene, const RenderSettings& settings, BeamBvh::Kind beamBvh)
+PassRenderer::PassRenderer(const Scene& scene, const RenderSettings& settings, BeamBvh::Kind beamBvh, bool aovLayers)
     : m_scene(scene),
       m_settings(settings),
       m_radii(RadiusSetup::resolve(settings, scene)),
-      m_memory(MemoryPlan::resolve(settings, storedFreeFlights(scene, settings))),
+      m_memory(MemoryPlan::resolve(settings, storedFreeFlights(scene, settings), aovLayers)),
       m_bvhKind(beamBvh),
       m_rt(std::make_unique<EmbreeScene>(scene)),
       m_photons(std::make_unique<PhotonTracer>(*m_rt, settings, m_radii)),
@@ -86,7 +102,9 @@ Image PassRenderer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                           static const std::vector<PhotonBeam> kNoBeams;
                           BeamBvh bvh(*m_rt->device(), m_anyNonDiffuse ? photons.beams : kNoBeams, m_bvhKind);
                           SurfacePhotonGrid grid(photons.surfacePhotons);
-                          return m_camera->traceSecondary(primary, photons, bvh, grid, stats, layers, emission);
+                          Image radiance = m_camera->traceSecondary(primary, photons, bvh, grid, stats, layers, emission);
+                          if (emission) plantNanForTests(radiance);  // once per pass (its first batch)
+                          return radiance;
                       });
 }
 

@@ -162,7 +162,21 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
         const Vec3 ng = normalize(Vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
         const TriangleMesh& mesh = m_scene.meshes[rh.hit.geomID];
         const Material& mat = m_scene.materials[mesh.material];
-        if (mat.type == MaterialType::Diffuse) {
+        SurfaceHit hit;
+        hit.mesh = int(rh.hit.geomID);
+        hit.triangle = rh.hit.primID;
+        hit.b1 = rh.hit.u;
+        hit.b2 = rh.hit.v;
+        hit.p = p;
+        hit.ng = ng;
+        hit.ns = mat.type == MaterialType::Diffuse
+                     ? ng
+                     : m_rt.shadingNormal(int(rh.hit.geomID), rh.hit.primID, rh.hit.u, rh.hit.v, ng);
+        applyNormalMap(m_scene, &hit, surfaceRadius);
+        const bool partly = mat.isPartlyTransmissive();
+        SurfacePoint at;
+        if (partly) at = evalSurface(m_scene, mesh, rh.hit.primID, rh.hit.u, rh.hit.v, surfaceRadius);
+        if (mat.type == MaterialType::Diffuse || (partly && at.transmission < 1.0f)) {
             const Vec3 nf = dot(d, ng) < 0 ? ng : -ng;  // hitSide(hit, d).nf
             SurfacePhoton& sp = out.surfacePhotons.emplace_back();
             sp.position = p;
@@ -177,23 +191,24 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
                 float a = evalSurface(m_scene, mesh, rh.hit.primID, rh.hit.u, rh.hit.v, 0.0f).alpha;
                 if (a > 0) sp.power *= 1.0f / a;
             }
-            power *= mat.isTextured()
+        }
+        if (diffuseBaseChosen(mat, at, partly ? rng.uniform() : 0.0f)) {
+            const HitSide side = hitSide(hit, d);
+            if (hasShadingNormal(hit)) power *= shadingCosineRatio(side, -d);  // Veach's adjoint
+            power *= mat.isTextured() && !partly
                          ? evalSurface(m_scene, mesh, rh.hit.primID, rh.hit.u, rh.hit.v, surfaceRadius).baseColor
-                         : mat.albedo;
+                         : partly ? at.baseColor : mat.albedo;
             float q = std::min(1.0f, power.maxComponent() / startMax);
             if (!(rng.uniform() < q)) return;
             power *= 1.0f / q;
-            d = Frame(nf).toWorld(sampleCosineHemisphere(rng.uniform(), rng.uniform()));
-            o = m_rt.offsetOrigin(p, tHit, nf, d);
+            d = Frame(side.nf).toWorld(sampleCosineHemisphere(rng.uniform(), rng.uniform()));
+            o = m_rt.offsetOrigin(p, tHit, side.nf, d);
             deltaDirect = false;
             continue;
         }
-        SurfaceHit hit;
-        hit.ng = ng;
-        hit.ns = m_rt.shadingNormal(int(rh.hit.geomID), rh.hit.primID, rh.hit.u, rh.hit.v, ng);
         SpecularEvent ev;
         if (mat.isGlossy()) {
-            if (deltaDirect) {
+            if (deltaDirect && !partly) {  // partly transmissive: already stored for the diffuse base
                 SurfacePhoton& sp = out.surfacePhotons.emplace_back();
                 sp.position = p;
                 sp.radius = surfaceRadius;
@@ -217,6 +232,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
             if (!sampleSpecular(mat, tint, mesh, hit, d, medium, rng.uniform(), TransportMode::Importance, &ev))
                 return;
         }
+        if (hasShadingNormal(hit)) ev.weight *= shadingNormalAdjoint(hit, -d, ev.d);
         power *= ev.weight;
         if (power.isBlack()) return;
         medium = ev.medium;

@@ -164,6 +164,7 @@ Rgb ReferenceTracer::radiance(Ray ray, MediumId medium, Rng& rng) const {
 
         const TriangleMesh& mesh = m_scene.meshes[hit.mesh];
         const Material& mat = m_scene.materials[mesh.material];
+        applyNormalMap(m_scene, &hit, spread * pathLength);
         HitSide side = hitSide(hit, ray.d);
         const SurfacePoint sp = surfaceAt(m_scene, hit, spread * pathLength);
         if (mat.isEmissive() && side.entering) {
@@ -184,10 +185,15 @@ Rgb ReferenceTracer::radiance(Ray ray, MediumId medium, Rng& rng) const {
         if (vertices >= m_settings.maxDepth) break;
         ++vertices;
 
-        if (mat.type == MaterialType::Diffuse) {
+        if (diffuseBaseChosen(mat, sp, mat.isPartlyTransmissive() ? rng.uniform() : 0.0f)) {
+            // With a shading normal (surface_scattering.h, shadingCosineRatio): f cos = rho/pi
+            // max(0, wi . nsf) for wi above the geometric surface; cosine sampling about nsf, and
+            // a sampled direction below the geometric surface ends the path.
+            const bool shading = hasShadingNormal(hit);
             if (nee) {
                 DirectLightSample ls = m_lights.sampleDirect(hit.p, rng);
                 float cosine = dot(ls.wi, side.nf);
+                if (shading && cosine > 0) cosine = std::max(0.0f, dot(ls.wi, side.nsf));
                 if (ls.pdf > 0 && cosine > 0 && !ls.incident.isBlack()) {
                     Rgb tr = shadowTransmittance(m_rt.offsetOrigin(hit.p, side.nf, ls.wi), ls, medium, rng);
                     float bsdfPdf = cosine * kInvPi;
@@ -195,9 +201,11 @@ Rgb ReferenceTracer::radiance(Ray ray, MediumId medium, Rng& rng) const {
                     L += beta * sp.baseColor * ls.incident * tr * (kInvPi * cosine * mis / ls.pdf);
                 }
             }
-            Vec3 d = Frame(side.nf).toWorld(sampleCosineHemisphere(rng.uniform(), rng.uniform()));
+            const Vec3 n = shading ? side.nsf : side.nf;
+            Vec3 d = Frame(n).toWorld(sampleCosineHemisphere(rng.uniform(), rng.uniform()));
+            if (shading && !(dot(d, side.nf) > 0)) break;
             beta *= sp.baseColor;  // (rho/pi) cos / (cos/pi)
-            lastPdf = std::max(dot(d, side.nf), 0.0f) * kInvPi;
+            lastPdf = std::max(dot(d, n), 0.0f) * kInvPi;
             lastVertex = hit.p;
             afterSpecular = false;
             if (beta.isBlack() || !survives()) break;

@@ -41,6 +41,49 @@ inline SurfacePoint surfaceAt(const Scene& scene, const SurfaceHit& hit, float f
     return evalSurface(scene, scene.meshes[size_t(hit.mesh)], hit.triangle, hit.b1, hit.b2, footprint);
 }
 
+/// Normal maps: replaces hit->ns by the normal-mapped shading normal when the material has a normal
+/// map (texture filtered over `footprint` world units); otherwise leaves the hit as it is (ns = ng
+/// on diffuse surfaces, the interpolated normal on specular ones). Every stage calls this before
+/// hitSide(), so camera paths, photons and the reference tracer shade with the same normal.
+inline void applyNormalMap(const Scene& scene, SurfaceHit* hit, float footprint) {
+    const TriangleMesh& mesh = scene.meshes[size_t(hit->mesh)];
+    if (!scene.materials[size_t(mesh.material)].isNormalMapped()) return;
+    hit->ns = normalMappedNormal(scene, mesh, hit->triangle, hit->b1, hit->b2, hit->ng, footprint);
+}
+
+/// The diffuse base with a shading normal (docs/algorithm.md "Normal maps"): radiance leaving
+/// toward any direction on the geometric side `nf` is rho/pi x max(0, wi . nsf) x L(wi), with wi
+/// the light-side direction; per unit of the geometric cosine that is
+///   max(0, wi . nsf) / (wi . nf)   (0 for wi below the geometric surface),
+/// the factor a photon's density estimate is weighted with (wi: toward where the photon came from)
+/// and, by Veach's adjoint, the factor a photon's power takes when it bounces off the surface
+/// (wi = the direction it arrived from; the bounce then samples cos about nf). 1 when nsf = nf.
+inline float shadingCosineRatio(const HitSide& side, const Vec3& wi) {
+    float cg = dot(wi, side.nf);
+    return cg > 0 ? std::max(0.0f, dot(wi, side.nsf)) / cg : 0.0f;
+}
+
+/// Veach's adjoint correction for a shading normal on a photon path (importance transport) at a
+/// specular or glossy vertex: |wo . ns| |wi . ng| / (|wo . ng| |wi . ns|), with wo toward where the
+/// photon came from and wi where it goes. Multiplies the weight of sampleSpecular/sampleGlossy
+/// (which use ns for the cosine); 1 when ns = ng.
+inline bool hasShadingNormal(const SurfaceHit& hit) {
+    return hit.ns.x != hit.ng.x || hit.ns.y != hit.ng.y || hit.ns.z != hit.ng.z;
+}
+
+inline float shadingNormalAdjoint(const SurfaceHit& hit, const Vec3& wo, const Vec3& wi) {
+    float num = std::abs(dot(wo, hit.ns)) * std::abs(dot(wi, hit.ng));
+    float den = std::abs(dot(wo, hit.ng)) * std::abs(dot(wi, hit.ns));
+    return den > 0 ? num / den : 0.0f;
+}
+
+/// A partly transmissive dielectric (Material::isPartlyTransmissive) is at each vertex the
+/// dielectric with probability sp.transmission, else its diffuse base: true = the diffuse base.
+/// `u` is drawn only for such materials, so other materials' random streams are unchanged.
+inline bool diffuseBaseChosen(const Material& mat, const SurfacePoint& sp, float u) {
+    return mat.type == MaterialType::Diffuse || (mat.isPartlyTransmissive() && !(u < sp.transmission));
+}
+
 /// `tint`: the mirror reflectance / dielectric transmission tint at the hit (Material::albedo, times
 /// baseColorTexture where the material has one).
 inline bool sampleSpecular(const Material& mat, const Rgb& tint, const TriangleMesh& mesh, const SurfaceHit& hit,

@@ -47,15 +47,13 @@ GltfMaterialMapping mapGltfMaterial(const GltfMaterialInput& in) {
         out.notes.push_back({kind, at + ": " + what});
     };
 
-    if (in.transmission > 0.0f && in.transmission < 0.5f) {
-        note("partial transmission", "transmissionFactor < 0.5 rendered as opaque");
-    }
-    if (in.transmission >= 0.5f) {
+    if (in.transmission > 0.0f) {
+        // glTF's mix: the dielectric lobe with weight transmission (x transmissionTexture R), the
+        // diffuse base with the rest (Material::isPartlyTransmissive).
         m.type = MaterialType::Dielectric;
         m.albedo = in.baseColor;
         m.ior = in.ior;
-        if (in.transmission < 1.0f)
-            note("partial transmission", "transmissionFactor >= 0.5 rendered as fully transmissive");
+        m.transmission = in.transmission;
     } else if (in.metallic >= 0.5f) {
         m.type = MaterialType::Mirror;  // a GGX conductor when roughness > Material::kSmoothRoughness
         m.albedo = in.baseColor;

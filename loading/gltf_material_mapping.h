@@ -1,9 +1,11 @@
 #pragma once
 // glTF 2.0 material -> Tyndall Material (+ interior medium): the nearest material Tyndall has.
 // Kept free of tinygltf so the mapping is unit-testable; gltf_loader.cpp fills the input.
-//   transmission >= 0.5 (KHR_materials_transmission)  -> Dielectric, ior (KHR_materials_ior),
+//   transmission > 0 (KHR_materials_transmission)     -> Dielectric, ior (KHR_materials_ior),
 //                                                       tint = baseColorFactor, roughness (GGX
-//                                                       transmission above Material::kSmoothRoughness)
+//                                                       transmission above Material::kSmoothRoughness);
+//                                                       transmission < 1 (or a transmissionTexture,
+//                                                       read by the loader) mixes in the diffuse base
 //   else metallic >= 0.5                              -> Mirror (GGX conductor when rough),
 //                                                       F0 = baseColorFactor
 //   else                                              -> Diffuse, albedo = baseColorFactor (the

@@ -104,6 +104,19 @@ Material readMaterial(JsonObject& obj, const std::string& baseDir, const SceneLo
         readTexture(obj, "roughness_texture", TextureEncoding::Linear, scale, baseDir, options, scene);
     if (m.metallicRoughnessTexture.present() && !m.isSpecular())
         obj.get("roughness_texture")->fail("roughness_texture applies to mirror and dielectric materials only");
+    m.normalTexture = readTexture(obj, "normal_texture", TextureEncoding::Linear, scale, baseDir, options, scene);
+    if (auto ns = obj.get("normal_scale")) {
+        if (!m.normalTexture.present()) ns->fail("normal_scale needs a normal_texture");
+        m.normalScale = float(ns->number(0.0, 100.0));
+    }
+    if (auto t = obj.get("transmission")) {
+        if (m.type != MaterialType::Dielectric) t->fail("transmission applies to dielectric materials only");
+        m.transmission = float(t->number(0.0, 1.0));
+    }
+    m.transmissionTexture =
+        readTexture(obj, "transmission_texture", TextureEncoding::Linear, scale, baseDir, options, scene);
+    if (m.transmissionTexture.present() && m.type != MaterialType::Dielectric)
+        obj.get("transmission_texture")->fail("transmission_texture applies to dielectric materials only");
     obj.finish();
     return m;
 }

@@ -382,7 +382,6 @@ TEST(GltfMaterialMapping, DielectricPbrIsDiffuseWithBaseColourAndEmission) {
 TEST(GltfMaterialMapping, ApproximationsAreNotedByKind) {
     GltfMaterialInput in = input("leaf");
     in.metallic = 0.0f;
-    in.transmission = 0.3f;
     in.alphaMode = "MASK";
     in.textures = {"baseColorTexture", "normalTexture"};
     in.hasVolume = true;
@@ -391,8 +390,21 @@ TEST(GltfMaterialMapping, ApproximationsAreNotedByKind) {
         kinds.push_back(n.kind);
         EXPECT_EQ(n.message.rfind("m.gltf: material 'leaf' (index 0): ", 0), 0u) << n.message;
     }
-    EXPECT_EQ(kinds, (std::vector<std::string>{"partial transmission", "volume without transmission",
-                                               "texture baseColorTexture", "texture normalTexture"}));
+    EXPECT_EQ(kinds, (std::vector<std::string>{"volume without transmission", "texture baseColorTexture",
+                                               "texture normalTexture"}));
+}
+
+TEST(GltfMaterialMapping, PartialTransmissionIsAMixWithTheDiffuseBase) {
+    GltfMaterialInput in = input("frosted");
+    in.metallic = 0.0f;
+    in.transmission = 0.3f;
+    GltfMaterialMapping m = mapGltfMaterial(in);
+    EXPECT_TRUE(m.notes.empty());
+    EXPECT_EQ(m.material.type, MaterialType::Dielectric);
+    EXPECT_FLOAT_EQ(m.material.transmission, 0.3f);
+    EXPECT_TRUE(m.material.isPartlyTransmissive());
+    in.transmission = 1.0f;
+    EXPECT_FALSE(mapGltfMaterial(in).material.isPartlyTransmissive());
 }
 
 TEST(GltfMaterialMapping, OutOfRangeValuesAreErrorsNamingTheMaterial) {
