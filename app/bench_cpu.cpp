@@ -87,34 +87,44 @@ PhotonStageRate measurePhotonStage(const PassRenderer& renderer, int passes, int
     return r;
 }
 
-GatherRate measureBeamGather(const PassRenderer& renderer, BeamBvh::Kind kind, uint64_t count) {
+std::vector<GatherRate> measureBeamGather(const PassRenderer& renderer, const std::vector<BeamBvh::Kind>& kinds,
+                                          uint64_t count, int rounds) {
+    std::vector<GatherRate> best(kinds.size());
     PhotonMap photons = renderer.tracePhotons(0);
     CameraPassResult camera = renderer.traceCamera(0, photons);
     std::vector<PrimaryRay> rays;
     for (const PrimaryRay& r : camera.primary.rays)
         if (r.medium != kVacuum && r.tMax > 0) rays.push_back(r);
-    GatherRate rate;
-    if (rays.empty()) return rate;
-    auto tb = Clock::now();
-    BeamBvh bvh(*renderer.rayTracer().device(), photons.beams, kind);
-    rate.buildSeconds = since(tb);
-    std::atomic<uint64_t> hits{0};
-    const uint64_t block = 256;
-    auto t0 = Clock::now();
-    tbb::parallel_for(uint64_t(0), (count + block - 1) / block, [&](uint64_t k) {
-        std::vector<BeamHitRecord> found;
-        uint64_t local = 0;
-        for (uint64_t i = k * block; i < std::min(count, (k + 1) * block); ++i) {
-            const PrimaryRay& r = rays[(i * 7919) % rays.size()];
-            bvh.query(r.origin, r.dir, r.tMax, found);
-            local += found.size();
+    if (rays.empty()) return best;
+    const uint64_t perRound = std::max<uint64_t>(1, count / uint64_t(std::max(rounds, 1)));
+    for (int round = 0; round < rounds; ++round) {
+        for (size_t k = 0; k < kinds.size(); ++k) {
+            auto tb = Clock::now();
+            BeamBvh bvh(*renderer.rayTracer().device(), photons.beams, kinds[k]);
+            const double build = since(tb);
+            std::atomic<uint64_t> hits{0};
+            const uint64_t block = 256;
+            auto t0 = Clock::now();
+            tbb::parallel_for(uint64_t(0), (perRound + block - 1) / block, [&](uint64_t b) {
+                std::vector<BeamHitRecord> found;
+                uint64_t local = 0;
+                for (uint64_t i = b * block; i < std::min(perRound, (b + 1) * block); ++i) {
+                    const PrimaryRay& r = rays[(i * 7919) % rays.size()];
+                    bvh.query(r.origin, r.dir, r.tMax, found);
+                    local += found.size();
+                }
+                hits += local;
+            });
+            const double s = since(t0);
+            GatherRate& g = best[k];
+            if (round == 0 || build < g.buildSeconds) g.buildSeconds = build;
+            if (double(perRound) / s > g.queriesPerSecond) {
+                g.queriesPerSecond = double(perRound) / s;
+                g.hitsPerSecond = double(hits) / s;
+            }
         }
-        hits += local;
-    });
-    double s = since(t0);
-    rate.queriesPerSecond = double(count) / s;
-    rate.hitsPerSecond = double(hits) / s;
-    return rate;
+    }
+    return best;
 }
 
 PassRate measurePasses(const PassRenderer& renderer, int passes) {

@@ -32,8 +32,10 @@ struct GatherRate {
     double queriesPerSecond = 0, hitsPerSecond = 0, buildSeconds = 0;
 };
 /// Gathers the beams of one pass along `count` of that pass's primary segments, through a BeamBvh
-/// of the given kind.
-GatherRate measureBeamGather(const PassRenderer& renderer, BeamBvh::Kind kind, uint64_t count);
+/// of each given kind: `rounds` rounds alternating between the kinds (count / rounds queries and
+/// one build each), the best round of each kind kept, so load on the machine hits all alike.
+std::vector<GatherRate> measureBeamGather(const PassRenderer& renderer, const std::vector<BeamBvh::Kind>& kinds,
+                                          uint64_t count, int rounds = 3);
 
 struct PassRate {
     double passesPerSecond = 0;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -72,13 +73,37 @@ void rejectWithResume(const CLI::App* cmd) {
                         "log may be given)");
 }
 
-/// TYNDALL_TEST_CHECKPOINT_STALL_MS: the checkpoint writer sleeps that long halfway through the
-/// temporary file, so a test can kill it mid-write. Unset in normal use.
+// Test hooks (environment variables read only here, unset in normal use; docs/production.md,
+// "Test hooks"). They let the kill-and-resume tests stop a render at a chosen point and wait for
+// the test's signal, so what a test sees never depends on how fast the machine is.
+//   TYNDALL_TEST_CHECKPOINT_STALL_AT=K: the K-th checkpoint write of this run stops halfway
+//     through its temporary file and waits there until the process is killed or interrupted.
+//   TYNDALL_TEST_HOLD_AFTER_PASS=N: once the render holds N passes (resumed ones included) it
+//     waits, still writing its periodic checkpoints, until it is killed or interrupted.
+// Both give up waiting after kTestHoldLimit (a test that forgot to kill does not hang forever).
+constexpr double kTestHoldLimit = 300;
+
+uint64_t testHookValue(const char* name) {
+    const char* v = std::getenv(name);
+    return v && *v ? std::strtoull(v, nullptr, 10) : 0;
+}
+
+/// Sleeps in short steps until an interrupt or kTestHoldLimit seconds; `tick` runs at every step.
+void holdForTests(const std::function<void()>& tick) {
+    const auto start = std::chrono::steady_clock::now();
+    while (!interruptRequested() &&
+           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < kTestHoldLimit) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        if (tick) tick();
+    }
+}
+
 std::function<void()> checkpointStallForTests() {
-    const char* ms = std::getenv("TYNDALL_TEST_CHECKPOINT_STALL_MS");
-    if (!ms || !*ms) return {};
-    int n = std::atoi(ms);
-    return [n] { std::this_thread::sleep_for(std::chrono::milliseconds(n)); };
+    const uint64_t at = testHookValue("TYNDALL_TEST_CHECKPOINT_STALL_AT");
+    if (!at) return {};
+    return [at, writes = uint64_t(0)]() mutable {
+        if (++writes == at) holdForTests({});
+    };
 }
 
 /// Error before rendering when the checkpoint's directory is missing or not writable.
@@ -109,7 +134,7 @@ void runRender(RenderOptions& o, CLI::App* cmd, int& exitCode) {
         record = {c.scene, c.camera, sceneHash(c.scene, scene), c.settings, c.output, c.exposure, o.aov, 0.0};
         allocating("the accumulator of a " + std::to_string(c.settings.width) + "x" +
                        std::to_string(c.settings.height) + " image",
-                   uint64_t(c.settings.width) * c.settings.height * 3 * sizeof(double) * (o.aov ? 5 : 1),
+                   accumulatorBytes(c.settings, o.aov),
                    [&] { acc.emplace(c.settings.width, c.settings.height, o.aov); });
     } else {
         // Nothing is written before every check passed: a bad resume leaves the checkpoint as it was.
@@ -160,7 +185,9 @@ void runRender(RenderOptions& o, CLI::App* cmd, int& exitCode) {
     RenderSettings run = s;
     run.passes = s.timeBudget > 0 ? s.passes : s.passes - std::min(s.passes, passesBefore);
     run.timeBudget = s.timeBudget > 0 ? std::max(s.timeBudget - elapsedBefore, 1e-9) : 0;
-    PassRenderer renderer(scene, run);  // a pass does not depend on the target: the same bits as with `s`
+    // A pass does not depend on the target: the same bits as with `s`. The AOV layers' buffers
+    // count in the memory plan (record.aov: the same plan when resumed).
+    PassRenderer renderer(scene, run, BeamBvh::Kind::FlatCurves, record.aov);
     if (root && renderer.memoryPlan().batches > 1)
         std::fprintf(stderr, "tyndall: %s\n", renderer.memoryPlan().describe().c_str());
 
@@ -185,12 +212,25 @@ void runRender(RenderOptions& o, CLI::App* cmd, int& exitCode) {
     // `layers` is the whole state; null in the scheduler's case, where `beauty` is.
     auto writeCheckpoint = [&](const Accumulator& beauty, const LayerAccumulator* layers) {
         record.elapsed = elapsedBefore + runElapsed;
-        saveCheckpoint(o.checkpoint,
-                       layers ? makeCheckpoint(record, *layers)
-                              : makeCheckpoint(record, LayerAccumulator::fromNamed({{"beauty", beauty}}, false, "")),
-                       stall);
+        std::vector<std::pair<std::string, Accumulator>> sums;
+        if (layers)
+            sums = layers->named();
+        else
+            sums.emplace_back("beauty", beauty);
+        saveCheckpoint(o.checkpoint, makeCheckpoint(record, std::move(sums)), stall);
         lastCheckpoint = Clock::now();
     };
+    auto checkpointIfDue = [&](const Accumulator& beauty, const LayerAccumulator* layers) {
+        if (o.checkpoint.empty() ||
+            std::chrono::duration<double>(Clock::now() - lastCheckpoint).count() < o.checkpointEvery)
+            return;
+        try {
+            writeCheckpoint(beauty, layers);
+        } catch (const Error& e) {
+            std::fprintf(stderr, "\ntyndall: warning: %s (rendering goes on)\n", e.what());
+        }
+    };
+    const uint64_t holdAfterPass = testHookValue("TYNDALL_TEST_HOLD_AFTER_PASS");
     auto onPass = [&](const Accumulator& beauty, const LayerAccumulator* layers, const RenderProgress& p) {
         runElapsed = p.elapsedSeconds;
         progress.update(p.passesDone, p.elapsedSeconds);
@@ -198,20 +238,16 @@ void runRender(RenderOptions& o, CLI::App* cmd, int& exitCode) {
         if (log)
             log->add(beauty, {beauty.passCount(), elapsedBefore + p.elapsedSeconds, paths,
                               renderer.radii().beamRadiusOf(paths ? paths - 1 : 0)});
-        if (!o.checkpoint.empty() &&
-            std::chrono::duration<double>(Clock::now() - lastCheckpoint).count() >= o.checkpointEvery) {
-            try {
-                writeCheckpoint(beauty, layers);
-            } catch (const Error& e) {
-                std::fprintf(stderr, "\ntyndall: warning: %s (rendering goes on)\n", e.what());
-            }
-        }
+        checkpointIfDue(beauty, layers);
+        if (holdAfterPass && beauty.passCount() == holdAfterPass)
+            holdForTests([&] { checkpointIfDue(beauty, layers); });
         return !interruptRequested();
     };
 
     RenderProgress p;
     if (scheduler) {
         Accumulator beauty = acc->beauty();
+        acc.reset();  // one copy of the sums during the render, as the memory plan counts
         CallbackDisplay display([&](const Accumulator& a, const RenderProgress& pr) {
             return onPass(a, nullptr, pr) ? DisplayCommand::Continue : DisplayCommand::Exit;
         });

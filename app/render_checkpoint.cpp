@@ -53,7 +53,7 @@ std::string hashText(uint64_t hash) {
     return buf;
 }
 
-Checkpoint makeCheckpoint(const RenderRecord& r, const LayerAccumulator& acc) {
+Checkpoint makeCheckpoint(const RenderRecord& r, std::vector<std::pair<std::string, Accumulator>> layers) {
     Checkpoint c;
     c.header = {{"format", kFormat},
                 {"version", kVersion},
@@ -65,8 +65,8 @@ Checkpoint makeCheckpoint(const RenderRecord& r, const LayerAccumulator& acc) {
                 {"exposure", r.exposure},
                 {"aov", r.aov},
                 {"elapsed", r.elapsed},
-                {"passes_done", acc.passCount()}};
-    c.layers = acc.named();
+                {"passes_done", layers.empty() ? uint64_t(0) : layers.front().second.passCount()}};
+    c.layers = std::move(layers);
     return c;
 }
 

@@ -32,7 +32,12 @@ struct RenderRecord {
 uint64_t sceneHash(const std::string& scenePath, const Scene& scene);
 std::string hashText(uint64_t hash);
 
-Checkpoint makeCheckpoint(const RenderRecord& record, const LayerAccumulator& acc);
+/// The checkpoint of `record` and `layers` (LayerAccumulator::named(), or a beauty-only
+/// {"beauty", ...}); holds them as given (moved in: one copy of the sums, as the memory plan counts).
+Checkpoint makeCheckpoint(const RenderRecord& record, std::vector<std::pair<std::string, Accumulator>> layers);
+inline Checkpoint makeCheckpoint(const RenderRecord& record, const LayerAccumulator& acc) {
+    return makeCheckpoint(record, acc.named());
+}
 /// Reads the record back; Error "<where>: ..." for a checkpoint of another kind or version.
 RenderRecord readRecord(const Checkpoint& checkpoint, const std::string& where);
 

@@ -77,6 +77,41 @@ PrimaryHitBuffer CameraTracer::acquireHits(size_t pixels) const {
     });
 }
 
+namespace {
+// A kept array whose size is `size` if there is one, else any (its capacity may fit), else none.
+template <class T>
+std::vector<T> takeFrom(std::vector<std::vector<T>>& kept, size_t size) {
+    std::vector<T> out;
+    auto it = std::find_if(kept.begin(), kept.end(), [&](const auto& v) { return v.size() == size; });
+    if (it == kept.end() && !kept.empty()) it = kept.begin();
+    if (it != kept.end()) {
+        out = std::move(*it);
+        kept.erase(it);
+    }
+    return out;
+}
+template <class T>
+void keep(std::vector<std::vector<T>>& kept, std::vector<T>& v) {
+    if (v.capacity() > 0 && kept.size() < 2) kept.push_back(std::move(v));
+}
+}  // namespace
+
+void PrimarySegmentPool::take(size_t pixels, size_t freeFlights, PrimarySegments& into) {
+    {
+        std::lock_guard<std::mutex> lock(m_mutex);
+        into.rays = takeFrom(m_rays, pixels);
+        if (freeFlights > 0) into.freeFlights = takeFrom(m_freeFlights, freeFlights);
+    }
+    into.rays.resize(pixels);
+    into.freeFlights.resize(freeFlights);
+}
+
+void PrimarySegmentPool::giveBack(PrimarySegments& from) {
+    std::lock_guard<std::mutex> lock(m_mutex);
+    keep(m_rays, from.rays);
+    keep(m_freeFlights, from.freeFlights);
+}
+
 PrimaryPass CameraTracer::tracePrimary(uint64_t pass) const {
     const int w = m_settings.width, h = m_settings.height;
     const int nff = m_anyHeterogeneous ? m_settings.freeFlightSamples : 0;
@@ -84,12 +119,12 @@ PrimaryPass CameraTracer::tracePrimary(uint64_t pass) const {
     const MediumId cameraMedium = m_rt.mediumAt(camera.position);
     PrimaryPass out;
     out.pass = pass;
+    out.pool = m_segmentPool;
     PrimarySegments& primary = out.segments;
     primary.width = w;
     primary.height = h;
-    primary.rays.resize(size_t(w) * h);
+    m_segmentPool->take(size_t(w) * h, size_t(w) * h * nff, primary);  // every entry written below
     primary.freeFlightsPerRay = nff;
-    primary.freeFlights.assign(size_t(w) * h * nff, kInfinity);
     out.hits = acquireHits(size_t(w) * h);
     std::vector<PrimaryHit>& hits = *out.hits;
 
@@ -101,6 +136,7 @@ PrimaryPass CameraTracer::tracePrimary(uint64_t pass) const {
             Vec2 lens{jitter.uniform(), jitter.uniform()};
             Ray ray = camera.generateRay(float(x) + jx, float(y) + jy, w, h, lens);
             PrimaryHit& ph = hits[pixel];
+            if (nff > 0) std::fill_n(&primary.freeFlights[pixel * nff], nff, kInfinity);  // none stored
             ph.medium = cameraMedium;
             ph.throughput = Rgb(1.0f);
             ph.surface = m_rt.intersect(ray, &ph.hit);

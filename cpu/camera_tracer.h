@@ -49,12 +49,36 @@ struct PrimaryHit {
 /// holding them goes; the pool keeps at most two (a pass and the one a scheduler overlaps with it).
 using PrimaryHitBuffer = std::shared_ptr<std::vector<PrimaryHit>>;
 
+/// Where PrimaryPass gives its segments' arrays back (CameraTracer's pool; see PrimaryPass).
+class PrimarySegmentPool {
+public:
+    /// Storage for `pixels` rays and `freeFlights` distances (contents stale).
+    void take(size_t pixels, size_t freeFlights, PrimarySegments& into);
+    void giveBack(PrimarySegments& from);
+
+private:
+    std::mutex m_mutex;
+    std::vector<std::vector<PrimaryRay>> m_rays;  // at most two of each kept
+    std::vector<std::vector<float>> m_freeFlights;
+};
+
 /// The primary stage of a pass: the splatters' input and where the secondary stage goes on.
+/// Move-only. Its segments' arrays (66 MB of rays at 1080p) go back to the CameraTracer's pool
+/// when it is destroyed, unless they were moved out first, so the next pass reuses them instead
+/// of allocating and page-faulting them anew (docs/performance.md).
 struct PrimaryPass {
     uint64_t pass = 0;
     PrimarySegments segments;
     PrimaryHitBuffer hits;  ///< per pixel, row-major like segments.rays
     uint64_t rays = 0;      ///< surface rays traced
+    std::shared_ptr<PrimarySegmentPool> pool;
+
+    PrimaryPass() = default;
+    PrimaryPass(PrimaryPass&&) = default;
+    PrimaryPass& operator=(PrimaryPass&&) = default;
+    ~PrimaryPass() {
+        if (pool) pool->giveBack(segments);
+    }
 };
 
 /// The secondary stage's radiance split by what it comes from (AOV layers); the two add up to
@@ -96,6 +120,7 @@ private:
     RenderSettings m_settings;
     bool m_anyHeterogeneous = false;
     std::shared_ptr<HitPool> m_hitPool = std::make_shared<HitPool>();
+    std::shared_ptr<PrimarySegmentPool> m_segmentPool = std::make_shared<PrimarySegmentPool>();
 };
 
 /// Medium radiance gathered from `beams` along the segment o + s d, s in [0, sMax], inside

@@ -26,17 +26,46 @@ constexpr uint64_t kBytesPerPiece = 24 + 32 + 4 + 100;
 // Float images (12 B/pixel) a pass in flight may hold: its secondary radiance and pass image, the
 // CPU splat, the GL splat sum and the two pending GL splats, and their sums.
 constexpr uint64_t kImagesPerPass = 8;
+// AOV layers: LayerAccumulator's double sums (beauty, its three components, the beauty squares).
+constexpr uint64_t kAovAccumulators = 5;
+// Float images an AOV pass adds (app/render_rounds.cpp, PassRenderer::renderPassLayers): its three
+// component images, the secondary stage's two parts, and the packed, gathered and unpacked copies
+// of its four images.
+constexpr uint64_t kAovImagesPerPass = 3 + 2 + 3 * 4;
+// A checkpoint's JSON header (the resolved settings, paths) and layer records: a few KiB.
+constexpr uint64_t kCheckpointHeaderBytes = 64 * 1024;
 }  // namespace
 
-uint64_t imageBufferBytes(const RenderSettings& s, int freeFlights) {
+uint64_t accumulatorBytes(const RenderSettings& s, bool aovLayers) {
+    return uint64_t(s.width) * uint64_t(s.height) * 3 * sizeof(double) * (aovLayers ? kAovAccumulators : 1);
+}
+
+ImageBuffers imageBuffers(const RenderSettings& s, int freeFlights, bool aovLayers) {
     const uint64_t pixels = uint64_t(s.width) * uint64_t(s.height);
     const uint64_t ff = 4 * uint64_t(freeFlights);
-    const uint64_t passesInFlight = 2;  // the scheduler's queue (1) and the pass being traced
     const uint64_t perPass = sizeof(PrimaryRay) + ff + sizeof(PrimaryHit) + kImagesPerPass * sizeof(Rgb);
-    const uint64_t accumulator = 3 * sizeof(double);
-    const uint64_t output = sizeof(Rgb) + 16;   // the mean and the writer's converted copy
-    const uint64_t gl = 16 + sizeof(PrimaryRay) + ff;  // RGBA32F target, uploaded rays and distances
-    return pixels * (accumulator + passesInFlight * perPass + output + gl);
+    ImageBuffers b;
+    b.sums = accumulatorBytes(s, aovLayers);
+    // A checkpoint holds a copy of the sums (the Checkpoint's layers) and its serialized bytes (the
+    // sums again, the JSON header, the layer names). Counted whether or not --checkpoint is given:
+    // asking for checkpoints (and so resuming) never changes the batches, nor the image's rounding.
+    b.checkpoint = 2 * b.sums + kCheckpointHeaderBytes;
+    if (!aovLayers) {
+        const uint64_t passesInFlight = 2;  // the scheduler's queue (1) and the pass being traced
+        b.passes = pixels * passesInFlight * perPass;
+        b.output = pixels * (sizeof(Rgb) + 16);               // the mean and the writer's converted copy
+        b.gl = pixels * (16 + sizeof(PrimaryRay) + ff);      // RGBA32F target, uploaded rays and distances
+    } else {
+        // AOV layers render in rounds, one pass at a time and without GL (app/render_rounds.h); the
+        // EXR writer holds the mean, the four layer images and the 15 interleaved channels.
+        b.passes = pixels * (perPass + kAovImagesPerPass * sizeof(Rgb));
+        b.output = pixels * (sizeof(Rgb) * (1 + 4) + 15 * sizeof(float));
+    }
+    return b;
+}
+
+uint64_t imageBufferBytes(const RenderSettings& s, int freeFlights, bool aovLayers) {
+    return imageBuffers(s, freeFlights, aovLayers).total();
 }
 
 uint64_t photonPathBytes(const RenderSettings& s, int freeFlights) {
@@ -61,10 +90,10 @@ std::string formatBytes(uint64_t bytes) {
     return text;
 }
 
-MemoryPlan MemoryPlan::resolve(const RenderSettings& s, int freeFlights) {
+MemoryPlan MemoryPlan::resolve(const RenderSettings& s, int freeFlights, bool aovLayers) {
     MemoryPlan plan;
     plan.budgetBytes = s.memoryMiB * kMiB;
-    plan.imageBytes = imageBufferBytes(s, freeFlights);
+    plan.imageBytes = imageBufferBytes(s, freeFlights, aovLayers);
     plan.bytesPerPath = photonPathBytes(s, freeFlights);
 
     const std::string size = std::to_string(s.width) + "x" + std::to_string(s.height);
@@ -83,7 +112,8 @@ MemoryPlan MemoryPlan::resolve(const RenderSettings& s, int freeFlights) {
     const uint64_t minBytes = plan.imageBytes + uint64_t(kBatchesHeld) * minPaths * plan.bytesPerPath;
     if (minBytes > plan.budgetBytes)
         throw Error("--size " + size + " needs " + formatBytes(plan.imageBytes) +
-                    " of image buffers (accumulator, pass images, primary rays; " +
+                    " of image buffers (accumulator" + std::string(aovLayers ? " and AOV layers" : "") +
+                    ", checkpoint, pass images, primary rays; " +
                     std::to_string(plan.imageBytes / (uint64_t(s.width) * s.height)) + " bytes per pixel) plus " +
                     formatBytes(minBytes - plan.imageBytes) + " for the smallest photon batches, more than --memory " +
                     formatBytes(plan.budgetBytes) + ": lower --size or raise --memory");

@@ -10,7 +10,8 @@
 // stored free flights, its beam-BVH pieces and its rasterizer footprint and bins.
 //
 // The image buffers (accumulator, pass images, primary rays and hits of the passes in flight, the
-// GL images) do not shrink with batching: when they alone exceed the budget, or the budget
+// GL images, a checkpoint's copies of the sums, the EXR writer's; with --aov the layers' sums and
+// images) do not shrink with batching: when they alone exceed the budget, or the budget
 // exceeds the address-space limit (ulimit -v) or the physical memory, resolve() throws an Error
 // that names the resource and the figures, before anything is rendered.
 #include <cstdint>
@@ -33,8 +34,9 @@ struct MemoryPlan {
 
     /// Throws Error when the image buffers do not fit the budget, or the budget does not fit the
     /// process's address-space limit or the machine's physical memory. `freeFlights`: stored
-    /// distances per beam and per pixel (0 without grid media).
-    static MemoryPlan resolve(const RenderSettings& settings, int freeFlights);
+    /// distances per beam and per pixel (0 without grid media). `aovLayers`: the render keeps the
+    /// AOV layers (--aov; recorded in a checkpoint, so a resumed render plans the same batches).
+    static MemoryPlan resolve(const RenderSettings& settings, int freeFlights, bool aovLayers = false);
 
     /// Memory the pass loop may hold at its peak (image buffers + the batches held).
     uint64_t peakBytes() const { return imageBytes + uint64_t(kBatchesHeld) * batchPaths * bytesPerPath; }
@@ -42,8 +44,21 @@ struct MemoryPlan {
     std::string describe() const;
 };
 
-/// Bytes of the buffers a render at settings' size holds however its photons are batched.
-uint64_t imageBufferBytes(const RenderSettings& settings, int freeFlights);
+/// The buffers a render at settings' size holds however its photons are batched, by kind.
+struct ImageBuffers {
+    uint64_t sums = 0;        ///< the accumulator's double sums (accumulatorBytes)
+    uint64_t checkpoint = 0;  ///< a checkpoint's copy of the sums and its serialized bytes
+    uint64_t passes = 0;      ///< the passes in flight: primary rays and hits, pass and layer images
+    uint64_t output = 0;      ///< the mean image and the image writer's buffers
+    uint64_t gl = 0;          ///< the GL splatter's target and uploads (not with AOV layers)
+    uint64_t total() const { return sums + checkpoint + passes + output + gl; }
+};
+ImageBuffers imageBuffers(const RenderSettings& settings, int freeFlights, bool aovLayers = false);
+/// imageBuffers(...).total(). A checkpoint's buffers are always counted (asking for checkpoints must
+/// not change the batches); not counted: an MPI rank 0's gathered pass images (ranks x one pass's).
+uint64_t imageBufferBytes(const RenderSettings& settings, int freeFlights, bool aovLayers = false);
+/// Bytes of the render's double sums (LayerAccumulator): 24 per pixel, 5 times that with AOV layers.
+uint64_t accumulatorBytes(const RenderSettings& settings, bool aovLayers);
 /// Bound on the bytes one photon path adds to a batch (see the header comment).
 uint64_t photonPathBytes(const RenderSettings& settings, int freeFlights);
 /// "1.5 GiB", "96 MiB", "12 KiB".

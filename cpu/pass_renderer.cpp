@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <string>
 
 #include "cpu/radius_defaults.h"
@@ -17,6 +20,19 @@ int storedFreeFlights(const Scene& scene, const RenderSettings& settings) {
     for (const Medium& m : scene.media)
         if (!m.homogeneous()) return settings.freeFlightSamples;
     return 0;
+}
+// Test hook TYNDALL_TEST_NAN_PIXEL=X,Y (unset in normal use; docs/production.md, "Test hooks"):
+// the camera stage's radiance at pixel (X, Y) is NaN in every pass, so a test can follow planted
+// NaN samples through the render loop to the accumulator's guard and the end-of-render report.
+void plantNanForTests(Image& radiance) {
+    static const int* xy = [] {
+        static int v[2] = {-1, -1};
+        const char* e = std::getenv("TYNDALL_TEST_NAN_PIXEL");
+        if (e) std::sscanf(e, "%d,%d", &v[0], &v[1]);
+        return v;
+    }();
+    if (xy[0] >= 0 && xy[0] < radiance.width && xy[1] >= 0 && xy[1] < radiance.height)
+        radiance.pixels[size_t(xy[1]) * radiance.width + xy[0]].g = std::nanf("");
 }
 }  // namespace
 
@@ -46,12 +62,12 @@ PassStats& PassStats::operator+=(const PassStats& o) {
     return *this;
 }
 
-PassRenderer::PassRenderer(const Scene& scene, const RenderSettings& settings, BeamBvh::Kind beamBvh)
+PassRenderer::PassRenderer(const Scene& scene, const RenderSettings& settings, BeamBvh::Kind beamBvh, bool aovLayers)
     : m_scene(scene),
       m_rt(std::make_unique<EmbreeScene>(scene)),
       m_settings(resolveRadiusDefaults(settings, *m_rt)),
       m_radii(RadiusSetup::resolve(m_settings, scene)),
-      m_memory(MemoryPlan::resolve(m_settings, storedFreeFlights(scene, m_settings))),
+      m_memory(MemoryPlan::resolve(m_settings, storedFreeFlights(scene, m_settings), aovLayers)),
       m_bvhKind(beamBvh),
       m_photons(std::make_unique<PhotonTracer>(*m_rt, m_settings, m_radii)),
       m_camera(std::make_unique<CameraTracer>(*m_rt, m_settings)),
@@ -88,7 +104,9 @@ Image PassRenderer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                           static const std::vector<PhotonBeam> kNoBeams;
                           BeamBvh bvh(*m_rt->device(), m_anyNonDiffuse ? photons.beams : kNoBeams, m_bvhKind);
                           SurfacePhotonGrid grid(photons.surfacePhotons);
-                          return m_camera->traceSecondary(primary, photons, bvh, grid, stats, layers, emission);
+                          Image radiance = m_camera->traceSecondary(primary, photons, bvh, grid, stats, layers, emission);
+                          if (emission) plantNanForTests(radiance);  // once per pass (its first batch)
+                          return radiance;
                       });
 }
 

@@ -62,7 +62,10 @@ class PassRenderer {
 public:
     /// Resolves the automatic radius settings (cpu/radius_defaults.h) against the scene's camera.
     /// Throws Error when the settings' image does not fit their memory budget (MemoryPlan).
-    PassRenderer(const Scene& scene, const RenderSettings& settings, BeamBvh::Kind beamBvh = BeamBvh::Kind::FlatCurves);
+    /// `aovLayers`: the render keeps AOV layers (renderPassLayers); its buffers count in the
+    /// memory plan, so fewer photon paths may go in a batch.
+    PassRenderer(const Scene& scene, const RenderSettings& settings, BeamBvh::Kind beamBvh = BeamBvh::Kind::FlatCurves,
+                 bool aovLayers = false);
 
     PhotonMap tracePhotons(uint64_t pass) const;
     /// Batch `batch` (< memoryPlan().batches) of pass `pass`'s photon paths.

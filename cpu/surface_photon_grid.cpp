@@ -22,6 +22,7 @@ SurfacePhotonGrid::SurfacePhotonGrid(const std::vector<SurfacePhoton>& photons) 
     const float span = std::max(extent.x, std::max(extent.y, extent.z));
     m_cellSize = std::max(2.0f * m_maxRadius, span * 0x1p-20f);
     if (!(m_cellSize > 0)) m_cellSize = 1.0f;  // one photon, radius 0: any cell size will do
+    m_extentCells = extent / m_cellSize;
     m_buckets = 1;
     while (m_buckets < 2 * photons.size()) m_buckets <<= 1;
     std::vector<uint32_t> counts(m_buckets + 1, 0);
@@ -36,8 +37,7 @@ SurfacePhotonGrid::SurfacePhotonGrid(const std::vector<SurfacePhoton>& photons) 
     m_sorted.resize(photons.size());
     for (size_t i = 0; i < photons.size(); ++i) m_sorted[counts[bucketOf[i]]++] = photons[i];
     m_candidates.resize(photons.size());
-    for (size_t i = 0; i < m_sorted.size(); ++i)
-        m_candidates[i] = {m_sorted[i].position, m_sorted[i].radius * m_sorted[i].radius};
+    for (size_t i = 0; i < m_sorted.size(); ++i) m_candidates[i] = {m_sorted[i].position, m_sorted[i].radius};
 }
 
 uint32_t SurfacePhotonGrid::cellHash(int x, int y, int z) const {
@@ -45,32 +45,36 @@ uint32_t SurfacePhotonGrid::cellHash(int x, int y, int z) const {
     return h & (m_buckets - 1);
 }
 
-Rgb SurfacePhotonGrid::density(const Vec3& x, const Vec3& n) const {
-    Rgb sum;
-    if (m_photons.empty()) return sum;
-    // Cells are 2 r_max wide, so the 2x2x2 block nearest to x covers the query ball.
-    Vec3 c = (x - m_origin) / m_cellSize;
-    int x0 = int(std::floor(c.x - 0.5f)), y0 = int(std::floor(c.y - 0.5f)), z0 = int(std::floor(c.z - 0.5f));
-    uint32_t visited[8];
-    int nVisited = 0;
+int SurfacePhotonGrid::bucketsNear(const Vec3& x, const Vec3& n, uint32_t* buckets) const {
+    (void)n;  // pruning cells by the slab round the plane was measured to pay nothing (photons lie
+              // on surfaces: the cells it drops are empty anyway; docs/performance.md)
+    // In cell units (cells [i, i+1], 2 r_max wide): the 2x2x2 block nearest to x covers the ball
+    // of radius r_max (half a cell) round it.
+    const Vec3 c = (x - m_origin) / m_cellSize;
+    // Farther than a cell outside the photons' bounds, or not a number: nothing near (and no
+    // float-to-int overflow below).
+    if (!(c.x >= -1.0f && c.y >= -1.0f && c.z >= -1.0f && c.x <= m_extentCells.x + 1.0f &&
+          c.y <= m_extentCells.y + 1.0f && c.z <= m_extentCells.z + 1.0f))
+        return 0;
+    const int x0 = int(std::floor(c.x - 0.5f)), y0 = int(std::floor(c.y - 0.5f)), z0 = int(std::floor(c.z - 0.5f));
+    int count = 0;
     for (int dz = 0; dz < 2; ++dz)
         for (int dy = 0; dy < 2; ++dy)
             for (int dx = 0; dx < 2; ++dx) {
-                uint32_t h = cellHash(x0 + dx, y0 + dy, z0 + dz);
-                if (std::find(visited, visited + nVisited, h) != visited + nVisited) continue;
-                visited[nVisited++] = h;
-                for (uint32_t k = m_cellStart[h]; k < m_cellStart[h + 1]; ++k) {
-                    const Candidate& c = m_candidates[k];
-                    Vec3 diff = c.position - x;
-                    float d2 = dot(diff, diff);
-                    if (d2 >= c.radius2) continue;
-                    const SurfacePhoton& p = m_sorted[k];
-                    // Same side of the surface, and close to its plane (no leaks round corners).
-                    if (dot(p.normal, n) < 0.7f) continue;
-                    if (std::abs(dot(diff, n)) > 0.25f * p.radius) continue;
-                    sum += p.power * kernel(d2, p.radius);
-                }
+                const uint32_t h = cellHash(x0 + dx, y0 + dy, z0 + dz);
+                if (m_cellStart[h] == m_cellStart[h + 1]) continue;                     // empty
+                if (std::find(buckets, buckets + count, h) != buckets + count) continue;  // a hash collision
+                buckets[count++] = h;
             }
+    return count;
+}
+
+Rgb SurfacePhotonGrid::density(const Vec3& x, const Vec3& n) const {
+    Rgb sum;
+    forEachNear(x, n, [&](const SurfacePhoton& p, float d2) {
+        if (dot(p.normal, n) < 0.7f) return;  // same side of the surface
+        sum += p.power * kernel(d2, p.radius);
+    });
     return sum;
 }
 

@@ -14,6 +14,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "app/progress_meter.h"
 #include "core/image_io.h"
 #include "core/layer_accumulator.h"
 #include "tests/test_util.h"
@@ -87,12 +88,30 @@ TEST(Progress, PipeGetsPlainLinesAndQuietGetsNone) {
     EXPECT_EQ(lines, 5) << "one line per pass with --progress-every 0:\n" << r.output;
     EXPECT_NE(r.output.find("pass 5/5"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("ETA"), std::string::npos);
-    // The default: a line every 5 s, so a one-second render prints none.
-    r = runTyndall("render " + kSmall + " --passes 3 -o " + out("pipe.png"));
+    // A line every S seconds: none in a render shorter than S (an hour here, so that the test does
+    // not depend on the machine's speed; the 5 s default is tested on the meter below).
+    r = runTyndall("render " + kSmall + " --passes 3 --progress-every 3600 -o " + out("pipe.png"));
     EXPECT_EQ(r.output.find("ETA"), std::string::npos) << r.output;
     r = runTyndall("render " + kSmall + " --passes 3 --progress-every 0 --quiet -o " + out("pipe.png"));
     EXPECT_EQ(r.output.find("ETA"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("rendered"), std::string::npos);
+}
+
+TEST(Progress, PlainLinesComeEveryFiveSecondsByDefault) {
+    // The meter's own throttle, on the elapsed times it is given (no clock, no render).
+    std::FILE* f = std::tmpfile();
+    ASSERT_NE(f, nullptr);
+    tyndall::app::ProgressMeter meter(f, tyndall::app::ProgressStyle::Lines, {100, 0, 0});
+    for (int pass = 1; pass <= 100; ++pass) meter.update(uint64_t(pass), 0.11 * pass);  // 11 s in all
+    std::rewind(f);
+    std::string text;
+    for (int ch; (ch = std::fgetc(f)) != EOF;) text.push_back(char(ch));
+    std::fclose(f);
+    int lines = 0;
+    for (size_t at = 0; (at = text.find('\n', at)) != std::string::npos; ++at) ++lines;
+    EXPECT_EQ(lines, 2) << "a line 5 s after the start and 5 s after that line:\n" << text;
+    EXPECT_NE(text.find("pass 46/100"), std::string::npos) << text;  // 5.06 s: the first pass at or past 5 s
+    EXPECT_NE(text.find("pass 92/100"), std::string::npos) << text;  // 10.12 s: 5 s after the first line
 }
 
 TEST(Aov, LayersAreNamedAddUpToBeautyAndLeaveItUnchanged) {
@@ -181,6 +200,44 @@ TEST(Convergence, CsvHasOneRowPerPassAndReachesZeroAgainstItself) {
                    ref + " --convergence " + csv);
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_NE(r.output.find("48x36"), std::string::npos) << r.output;
+}
+
+// --- Bad samples ----------------------------------------------------------------------------
+
+TEST(BadSamples, PlantedNanSamplesAreLeftOutAndReportedAtTheEnd) {
+    // TYNDALL_TEST_NAN_PIXEL makes the camera stage's radiance at one pixel NaN in every pass
+    // (cpu/pass_renderer.cpp): the render must leave those samples out (the pixel is black, every
+    // other pixel is the clean render's bit for bit), say so in one line at the end and record the
+    // count in the EXR. Through the hybrid scheduler's loop and through the rounds (--aov).
+    const int x = 5, y = 7, passes = 4;
+    const std::string clean = out("nan_clean.exr"), planted = out("nan_planted.exr");
+    auto r = runTyndall("render " + kSmall + " --passes 4 -q -o " + clean);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(r.output.find("NaN"), std::string::npos) << "a clean render reports nothing:\n" << r.output;
+    EXPECT_EQ(tyndall::readImageAttribute(clean, "tyndall:rejected_samples"), "0");
+    for (const std::string aov : {"", " --aov"}) {
+        r = runTyndall("render " + kSmall + " --passes 4 -q" + aov + " -o " + planted, "TYNDALL_TEST_NAN_PIXEL=5,7");
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        EXPECT_NE(r.output.find("tyndall: warning: " + std::to_string(passes) +
+                                " pixel samples were NaN or infinite and were left out"),
+                  std::string::npos)
+            << aov << "\n" << r.output;
+        EXPECT_EQ(tyndall::readImageAttribute(planted, "tyndall:rejected_samples"), std::to_string(passes)) << aov;
+        tyndall::Image a = tyndall::readImageLayer(planted, ""), b = tyndall::readImage(clean);
+        ASSERT_EQ(a.pixels.size(), b.pixels.size());
+        EXPECT_GT(b.at(x, y).r + b.at(x, y).g + b.at(x, y).b, 0.0f) << "the planted pixel is lit in the clean render";
+        size_t differing = 0;
+        for (int j = 0; j < a.height; ++j)
+            for (int i = 0; i < a.width; ++i)
+                for (int c = 0; c < 3; ++c) {
+                    ASSERT_TRUE(std::isfinite(a.at(i, j)[c])) << aov << " pixel " << i << "," << j;
+                    if (i == x && j == y)
+                        EXPECT_EQ(a.at(i, j)[c], 0.0f) << aov << ": a left-out sample counts as black";
+                    else
+                        differing += a.at(i, j)[c] != b.at(i, j)[c];
+                }
+        EXPECT_EQ(differing, 0u) << aov << ": only the planted pixel may differ";
+    }
 }
 
 // --- Open MPI --------------------------------------------------------------------------------

@@ -5,6 +5,10 @@
 #include <tbb/global_control.h>
 
 #include "loading/default_scene.h"
+#include "loading/default_smoke_scene.h"
+
+#include <algorithm>
+#include <cstring>
 #include "cpu/pass_renderer.h"
 #include "tests/test_scenes.h"
 #include "tests/test_util.h"
@@ -63,4 +67,42 @@ TEST(Determinism, RadiusShrinksPerPhotonPathInTheRenderer) {
     }
     ASSERT_FALSE(first.surfacePhotons.empty());
     EXPECT_NEAR(first.surfacePhotons.front().radius, surfaceRadius, surfaceRadius * 0.06f);
+}
+
+// CameraTracer recycles the primary hits, rays and stored free flights of finished passes: a
+// pass traced into another pass's buffers (different image size too) equals a fresh renderer's.
+TEST(Determinism, RecycledPassBuffersCarryNothingOver) {
+    Scene scene = makeDefaultSmokeScene();  // a grid medium: stored free flights per pixel
+    RenderSettings s;
+    s.width = 48;
+    s.height = 40;
+    s.photonsPerPass = 300;
+    s.seed = 5;
+    PassRenderer fresh(scene, s);
+    const Image want = fresh.renderPass(2);
+    PassRenderer reused(scene, s);
+    (void)reused.renderPass(5);
+    (void)reused.renderPass(6);
+    EXPECT_TRUE(test::identicalImages(want, reused.renderPass(2)));
+    {
+        const PrimaryPass a = reused.tracePrimary(4);  // held while the next one is traced
+        const PrimaryPass b = reused.tracePrimary(2);
+        const PrimaryPass c = fresh.tracePrimary(2);
+        ASSERT_EQ(b.segments.rays.size(), c.segments.rays.size());
+        ASSERT_EQ(b.segments.freeFlights.size(), c.segments.freeFlights.size());
+        EXPECT_GT(b.segments.freeFlights.size(), 0u);
+        EXPECT_EQ(0, std::memcmp(b.segments.rays.data(), c.segments.rays.data(),
+                                 b.segments.rays.size() * sizeof(PrimaryRay)));
+        EXPECT_EQ(0, std::memcmp(b.segments.freeFlights.data(), c.segments.freeFlights.data(),
+                                 b.segments.freeFlights.size() * sizeof(float)));
+        EXPECT_GT(std::count_if(b.segments.freeFlights.begin(), b.segments.freeFlights.end(),
+                                [](float f) { return f < kInfinity; }),
+                  100);  // collisions in the smoke: finite distances the next pass's buffer holds
+    }
+    // The camera moves out of the smoke (the viewer's reset): rays that meet no grid medium store
+    // no distances (all infinite), whatever the recycled buffer held.
+    scene.camera.position = Vec3(1e4f);
+    const PrimaryPass out = reused.tracePrimary(3);
+    for (size_t p = 0; p < out.segments.rays.size(); ++p) ASSERT_EQ(out.segments.rays[p].medium, kVacuum);
+    for (float f : out.segments.freeFlights) ASSERT_EQ(f, kInfinity);
 }

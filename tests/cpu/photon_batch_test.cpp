@@ -14,7 +14,9 @@
 
 #include <cmath>
 
+#include "core/checkpoint.h"
 #include "core/error.h"
+#include "core/layer_accumulator.h"
 #include "cpu/pass_renderer.h"
 #include "loading/mesh_builders.h"
 #include "tests/test_scenes.h"
@@ -155,6 +157,60 @@ TEST(PhotonBatches, AnImageThatCannotFitIsRefusedWithItsFigures) {
         EXPECT_NE(m.find("GiB"), std::string::npos) << m;
         EXPECT_NE(m.find("--memory 2.0 GiB"), std::string::npos) << m;
     }
+}
+
+TEST(PhotonBatches, ImageBuffersCountAovLayersAndCheckpoints) {
+    // The plan's figures against the real buffers: the sums of a LayerAccumulator and the bytes of
+    // a checkpoint of them, with and without AOV layers.
+    RenderSettings s = batchSettings(2048);
+    s.width = 640;
+    s.height = 400;
+    s.photonsPerPass = 4000;
+    const uint64_t pixels = uint64_t(s.width) * s.height;
+    ImageBuffers plain = imageBuffers(s, 0, false), aov = imageBuffers(s, 0, true);
+    for (bool layers : {false, true}) {
+        const ImageBuffers& b = layers ? aov : plain;
+        LayerAccumulator acc(s.width, s.height, layers);
+        uint64_t sums = 0;
+        for (const auto& [name, a] : acc.named()) sums += a.sums().size() * sizeof(double);
+        EXPECT_EQ(b.sums, sums) << "aov " << layers;
+        Checkpoint c;
+        c.header = {{"scene", std::string(200, 's')}, {"settings", s.toJson()}, {"passes_done", 0}};
+        c.layers = acc.named();
+        const uint64_t serialized = serializeCheckpoint(c).size();
+        EXPECT_GE(b.checkpoint, sums + serialized) << "a checkpoint holds the sums' copy and its bytes (aov " << layers << ")";
+        EXPECT_EQ(b.total(), imageBufferBytes(s, 0, layers));
+    }
+    // The AOV pass: three component images more than the beauty pass, at least; the EXR writer's
+    // 15 interleaved float channels.
+    EXPECT_GE(aov.passes, plain.passes / 2 + pixels * 3 * sizeof(Rgb));
+    EXPECT_GE(aov.output, pixels * 15 * sizeof(float));
+
+    // A budget that holds the plain render's image buffers and all its photons in one batch gives
+    // the AOV render smaller batches, both under the budget.
+    const uint64_t mib = 1024 * 1024, bytesPerPath = photonPathBytes(s, 0);
+    s.memoryMiB = (plain.total() + 2 * s.photonsPerPass * bytesPerPath) / mib + 1;
+    MemoryPlan p = MemoryPlan::resolve(s, 0, false), q = MemoryPlan::resolve(s, 0, true);
+    EXPECT_EQ(p.batches, 1u) << p.describe();
+    EXPECT_GT(q.batches, 1u) << q.describe();
+    EXPECT_LE(p.peakBytes(), p.budgetBytes);
+    EXPECT_LE(q.peakBytes(), q.budgetBytes);
+    // A budget under the AOV image buffers: the AOV render is refused with its figures, the plain one fits.
+    s.memoryMiB = aov.total() / mib;
+    ASSERT_LE(plain.total() + 2 * 256 * bytesPerPath, s.memoryMiB * mib) << "the plain render should fit";
+    EXPECT_NO_THROW(MemoryPlan::resolve(s, 0, false));
+    try {
+        MemoryPlan::resolve(s, 0, true);
+        FAIL() << "the AOV image buffers (" << formatBytes(aov.total()) << ") fit in --memory " << s.memoryMiB;
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("AOV layers"), std::string::npos) << e.what();
+    }
+    // For the record (docs/production.md): 1920x1080 at the default --memory and --photons.
+    RenderSettings hd;
+    hd.width = 1920;
+    hd.height = 1080;
+    for (bool layers : {false, true})
+        std::printf("1920x1080%s: %s\n", layers ? " --aov" : "", MemoryPlan::resolve(hd, 0, layers).describe().c_str());
 }
 
 }  // namespace

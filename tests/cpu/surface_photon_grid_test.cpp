@@ -1,0 +1,117 @@
+// SurfacePhotonGrid's density() and gather() must sum exactly the photons brute force finds
+// (within the radius, near the plane, normal agreeing), each once, whatever the cell layout:
+// photons on planes in all orientations and scattered in space, radii varying per photon (the
+// schedule), queries on, near and far from the photons, with and without hash collisions.
+#include "cpu/surface_photon_grid.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "core/rng.h"
+#include "core/sampling.h"
+
+using namespace tyndall;
+
+namespace {
+
+Rgb bruteDensity(const std::vector<SurfacePhoton>& photons, const Vec3& x, const Vec3& n, bool eitherSide) {
+    Rgb sum;
+    for (const SurfacePhoton& p : photons) {
+        Vec3 diff = p.position - x;
+        float d2 = dot(diff, diff);
+        if (d2 >= p.radius * p.radius || std::abs(dot(diff, n)) > 0.25f * p.radius) continue;
+        float agree = dot(p.normal, n);
+        if ((eitherSide ? std::abs(agree) : agree) < 0.7f) continue;
+        sum += p.power * SurfacePhotonGrid::kernel(d2, p.radius) * (eitherSide ? p.wi.x + 2.0f : 1.0f);
+    }
+    return sum;
+}
+
+// Photons on a few planes (axis-aligned and tilted, both sides) plus a scatter in space, with
+// radii spread over a factor 4 round `radius`, around a centre far from the origin.
+std::vector<SurfacePhoton> makePhotons(int n, float radius, const Vec3& centre, uint64_t seed) {
+    Rng rng(seed, 5);
+    const Vec3 normals[] = {{0, 1, 0}, {1, 0, 0}, {0, 0, -1}, normalize(Vec3(1, 2, 3)), normalize(Vec3(-0.3f, 1, 0.1f))};
+    std::vector<SurfacePhoton> photons;
+    for (int i = 0; i < n; ++i) {
+        SurfacePhoton p;
+        const int plane = i % 6;
+        Vec3 q = Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 2.0f - Vec3(1.0f);
+        if (plane < 5) {
+            const Vec3 nn = normals[plane];
+            q = q - nn * dot(q, nn) + nn * (0.1f * float(plane) - 0.2f);  // onto the plane
+            p.normal = rng.uniform() < 0.8f ? nn : -nn;
+        } else {
+            p.normal = sampleUniformSphere(rng.uniform(), rng.uniform());
+        }
+        p.position = centre + q;
+        p.radius = radius * (0.25f + 0.75f * rng.uniform());
+        p.wi = sampleUniformSphere(rng.uniform(), rng.uniform());
+        p.power = Rgb(rng.uniform(), rng.uniform(), 1.0f);
+        photons.push_back(p);
+    }
+    return photons;
+}
+
+void expectMatchesBruteForce(const std::vector<SurfacePhoton>& photons, const Vec3& centre, uint64_t seed) {
+    SurfacePhotonGrid grid(photons);
+    Rng rng(seed, 9);
+    int nonZero = 0;
+    for (int q = 0; q < 3000; ++q) {
+        Vec3 x, n;
+        if (q % 3 == 0) {  // exactly at a photon's position and normal
+            const SurfacePhoton& p = photons[std::min(photons.size() - 1, size_t(rng.uniform() * float(photons.size())))];
+            x = p.position;
+            n = p.normal;
+        } else if (q % 3 == 1) {  // near a photon, off its plane, any normal
+            const SurfacePhoton& p = photons[std::min(photons.size() - 1, size_t(rng.uniform() * float(photons.size())))];
+            x = p.position + sampleUniformSphere(rng.uniform(), rng.uniform()) * (p.radius * rng.uniform());
+            n = rng.uniform() < 0.5f ? p.normal : sampleUniformSphere(rng.uniform(), rng.uniform());
+        } else {  // anywhere, also well outside the photons' bounds
+            x = centre + (Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 2.0f - Vec3(1.0f)) * 1.5f;
+            n = sampleUniformSphere(rng.uniform(), rng.uniform());
+        }
+        const Rgb want = bruteDensity(photons, x, n, false);
+        const Rgb got = grid.density(x, n);
+        const Rgb wantGather = bruteDensity(photons, x, n, true);
+        const Rgb gotGather = grid.gather(x, n, [](const SurfacePhoton& p) { return Rgb(p.wi.x + 2.0f); });
+        nonZero += want.b > 0;
+        // Summation order differs from brute force: rounding only.
+        ASSERT_NEAR(got.r, want.r, 1e-5f * want.b + 1e-30f) << "query " << q;
+        ASSERT_NEAR(got.b, want.b, 1e-5f * want.b + 1e-30f) << "query " << q;
+        ASSERT_NEAR(gotGather.g, wantGather.g, 1e-5f * wantGather.b + 1e-30f) << "query " << q;
+        ASSERT_NEAR(gotGather.b, wantGather.b, 1e-5f * wantGather.b + 1e-30f) << "query " << q;
+    }
+    EXPECT_GT(nonZero, 1000);  // the queries do find photons
+}
+
+}  // namespace
+
+TEST(SurfacePhotonGrid, DensityAndGatherMatchBruteForce) {
+    const Vec3 centre(3.0f, -1.0f, 0.5f);
+    expectMatchesBruteForce(makePhotons(6000, 0.05f, centre, 1), centre, 2);
+}
+
+TEST(SurfacePhotonGrid, MatchesBruteForceFarFromTheOriginWithTinyRadii) {
+    // Coordinates ~1000 with radii ~1e-3: cell indices near 1e6, where float rounding of a
+    // photon's cell matters.
+    const Vec3 centre(1000.0f, 700.0f, -900.0f);
+    expectMatchesBruteForce(makePhotons(4000, 0.002f, centre, 3), centre, 4);
+}
+
+TEST(SurfacePhotonGrid, OnePhotonAndNone) {
+    std::vector<SurfacePhoton> none;
+    SurfacePhotonGrid empty(none);
+    EXPECT_EQ(empty.density(Vec3(0.0f), Vec3(0, 1, 0)).b, 0.0f);
+    std::vector<SurfacePhoton> one(1);
+    one[0].position = Vec3(1, 2, 3);
+    one[0].normal = Vec3(0, 1, 0);
+    one[0].radius = 0.1f;
+    one[0].power = Rgb(1.0f);
+    SurfacePhotonGrid grid(one);
+    EXPECT_FLOAT_EQ(grid.density(Vec3(1, 2, 3), Vec3(0, 1, 0)).b, SurfacePhotonGrid::kernel(0.0f, 0.1f));
+    EXPECT_EQ(grid.density(Vec3(1.2f, 2, 3), Vec3(0, 1, 0)).b, 0.0f);
+    EXPECT_EQ(grid.density(Vec3(1, 2, 3), Vec3(0, -1, 0)).b, 0.0f);  // the other side
+    EXPECT_EQ(grid.density(Vec3(kInfinity, 0, 0), Vec3(0, 1, 0)).b, 0.0f);
+}
