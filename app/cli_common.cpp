@@ -82,15 +82,23 @@ void addPpbOptions(CLI::App* cmd, CommonOptions& o) {
     cmd->add_option("--alpha", o.settings.alpha, "Radius reduction alpha in (0,1): lower = less noise, more bias")
         ->capture_default_str();
     cmd->add_option("--radius", o.settings.radius,
-                    "Beam radius of the first photon path, scene units (0 = 0.5% of the scene diagonal)")
+                    "Beam radius of the first photon path, scene units (0 = automatic: from the pixel footprint "
+                    "where the media are and the budget, see docs/algorithm.md)")
         ->capture_default_str();
     cmd->add_option("--surface-radius", o.settings.surfaceRadius,
-                    "Surface photon radius of the first photon path (0 = 2% of the scene diagonal)")
+                    "Surface photon radius of the first photon path (0 = automatic, from the footprint on the surfaces)")
         ->capture_default_str();
     cmd->add_option("--radius-offset", o.settings.radiusOffset,
-                    "Photon paths the radius schedule treats as already traced (see docs/algorithm.md)")
-        ->check(nonNegativeInteger())
-        ->capture_default_str();
+                    "Photon paths the radius schedule treats as already traced (default: automatic, so the beam "
+                    "radius ends the budget near a pixel footprint; see docs/algorithm.md)")
+        ->check(nonNegativeInteger());
+    cmd->add_option("--planned-paths", o.settings.plannedPaths,
+                    "Photon paths the automatic radii plan for (default: passes x photons; with --time, the "
+                    "open-ended horizon of 100 paths per pixel)")
+        ->check(nonNegativeInteger());
+    cmd->add_option("--photon-angle", o.settings.photonAngle,
+                    "Photon cone angle of the first photon path, radians: near a light a beam's radius is at most "
+                    "this x its path distance from the light, 0 = off (default: automatic, see docs/algorithm.md)");
     cmd->add_option("--free-flights", o.settings.freeFlightSamples,
                     "Stored free-flight distances per beam and pixel (heterogeneous media)")
         ->capture_default_str();
@@ -129,6 +137,8 @@ nlohmann::json explicitSettings(const CommonOptions& o) {
                                                                       {"--radius", "radius"},
                                                                       {"--surface-radius", "surface_radius"},
                                                                       {"--radius-offset", "radius_offset"},
+                                                                      {"--planned-paths", "planned_paths"},
+                                                                      {"--photon-angle", "photon_angle"},
                                                                       {"--free-flights", "free_flights"},
                                                                       {"--seed", "seed"},
                                                                       {"--threads", "threads"},

@@ -7,6 +7,7 @@
 #include "app/bench_cpu.h"
 #include "app/bench_hybrid.h"
 #include "app/bench_media.h"
+#include "app/bench_quality.h"
 #include "app/cli_common.h"
 #include "cpu/beam_splat_simd.h"
 #include "loading/default_smoke_scene.h"
@@ -21,6 +22,8 @@ struct BenchOptions {
     uint64_t queries = 200000;
     uint64_t freeFlights = 2000000;
     bool noHybrid = false;
+    bool quality = false;
+    QualityBenchOptions qualityOptions;
 };
 
 void printRate(const char* what, double value, const char* unit, const std::string& note = "") {
@@ -63,7 +66,36 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
         ->capture_default_str();
     addSimdOption(cmd, o->common);
     cmd->add_flag("--no-hybrid", o->noHybrid, "Skip the hybrid (GL splat) figures");
+    cmd->add_flag("--quality", o->quality,
+                  "Instead of throughput: image error against cached path-traced references, legacy against "
+                  "automatic radii at equal work (docs/performance.md, 'Equal-work quality'); --photons "
+                  "defaults to 4000 here");
+    o->qualityOptions.scenes = {"bench/scenes/fog-box.json:1584", "bench/scenes/walls-fog-box.json:421",
+                                "bench/scenes/fog-lamp-box.json:1584"};
+    cmd->add_option("--quality-scene", o->qualityOptions.scenes,
+                    "With --quality: FILE:PASSES, repeatable (default: bench/scenes' fog box and fog box with a lamp "
+                    "in view at 1584 passes and the box with walls at 421: 60 s at 256x256 on an idle 2-core machine)");
+    cmd->add_option("--reference-dir", o->qualityOptions.referenceDir, "With --quality: the reference cache")
+        ->capture_default_str();
+    cmd->add_option("--reference-spp", o->qualityOptions.referenceSpp,
+                    "With --quality: samples per pixel of a reference rendered when not cached")
+        ->check(positiveInteger())
+        ->capture_default_str();
+    cmd->add_option("--quality-seeds", o->qualityOptions.seeds,
+                    "With --quality: render each setting with this many seeds; errors are their root mean square")
+        ->check(positiveInteger())
+        ->capture_default_str();
+    cmd->add_option("--plot", o->qualityOptions.plot, "With --quality: write the error-vs-passes plot (PNG) (default: none)");
     cmd->callback([o, &exitCode]() {
+        if (o->quality) {
+            if (o->common.command->get_option("--photons")->count() == 0) o->common.settings.photonsPerPass = 4000;
+            if (o->common.command->get_option("--size")->count() == 0) o->common.size = "256x256";
+            finishOptions(o->common);
+            ThreadLimit threads(o->common.settings.threads);
+            runQualityBench(o->common, o->qualityOptions);
+            exitCode = 0;
+            return;
+        }
         finishOptions(o->common);
         const RenderSettings& s = o->common.settings;
         Scene scene = loadScene(o->common);

@@ -21,6 +21,7 @@
 #include "app/render_rounds.h"
 #include "core/error.h"
 #include "cpu/memory_plan.h"
+#include "cpu/radius_defaults.h"
 #include "hybrid/pass_scheduler.h"
 
 namespace tyndall::app {
@@ -62,7 +63,8 @@ bool given(const CLI::App* cmd, const char* name) {
 void rejectWithResume(const CLI::App* cmd) {
     static const char* kFixed[] = {"scene",           "--camera",        "--size",         "--seed",
                                    "--photons",       "--alpha",         "--radius",       "--surface-radius",
-                                   "--radius-offset", "--free-flights",  "--exposure",     "--aov"};
+                                   "--radius-offset", "--free-flights",  "--exposure",     "--aov",
+                                   "--photon-angle",  "--planned-paths"};
     for (const char* name : kFixed)
         if (given(cmd, name))
             throw Error(std::string("--resume: ") + (name[0] == '-' ? name : "the scene file") +
@@ -122,6 +124,13 @@ void runRender(RenderOptions& o, CLI::App* cmd, int& exitCode) {
         finishOptions(c);
         if (root) checkOutputWritable(c.output);
         scene = loadScene(c);
+        {
+            // The automatic radii become plain numbers here, once, so a resume or another MPI rank
+            // renders with the same ones whatever share of the target it runs. A --time budget plans
+            // for the open-ended horizon (a measured rate would differ between ranks and resumes).
+            const EmbreeScene rt(scene);
+            c.settings = resolveRadiusDefaults(c.settings, rt);
+        }
         record = {c.scene, c.camera, sceneHash(c.scene, scene), c.settings, c.output, c.exposure, o.aov, 0.0};
         allocating("the accumulator of a " + std::to_string(c.settings.width) + "x" +
                        std::to_string(c.settings.height) + " image",

@@ -43,6 +43,20 @@ double RadiusSchedule::beamFactor(uint64_t j) const {
     return std::exp(m_terms(double(j) + double(m_offset) + 1.0) - m_logR0);
 }
 
+uint64_t RadiusSchedule::offsetForRatio(double alpha, uint64_t paths, double ratio) {
+    TYNDALL_CHECK(ratio > 0.0 && ratio <= 1.0, "offsetForRatio: ratio must lie in (0, 1]");
+    // beamFactor(paths) rises monotonically towards 1 as the offset grows.
+    auto factor = [&](uint64_t offset) { return RadiusSchedule(alpha, offset).beamFactor(paths); };
+    uint64_t lo = 0, hi = uint64_t(1) << 50;
+    if (factor(lo) >= ratio) return lo;
+    if (factor(hi) < ratio) return hi;
+    while (hi - lo > 1) {
+        uint64_t mid = lo + (hi - lo) / 2;
+        (factor(mid) >= ratio ? hi : lo) = mid;
+    }
+    return hi;
+}
+
 double RadiusSchedule::surfaceFactor(uint64_t j) const { return std::sqrt(beamFactor(j)); }
 
 }  // namespace tyndall

@@ -16,7 +16,7 @@
 //     factor(j) = R(j + n0) / R(n0),
 // so `--radius` is the radius of the very first photon path and later paths shrink from it
 // exactly as the PPB sequence does from its n0-th step. Convergence is unaffected (only the
-// start of the sequence is skipped). Default offset: 1000 paths.
+// start of the sequence is skipped). The default offset is planned (cpu/radius_defaults.h).
 #include <cstdint>
 
 namespace tyndall {
@@ -35,6 +35,12 @@ public:
 
     /// log R(n) for the unnormalised sequence (n >= 1), stable for n up to ~1e18.
     static double logR(double alpha, double n);
+
+    /// The smallest offset whose schedule has shrunk the beam radius to at least `ratio` (in (0, 1])
+    /// of its first value after `paths` photon paths: beamFactor(paths) >= ratio. A pure function
+    /// (bisection over exact evaluations), so a plan resolves to the same offset on every machine.
+    /// Capped at 2^50 (a near-constant radius) when even that shrinks too fast.
+    static uint64_t offsetForRatio(double alpha, uint64_t paths, double ratio);
 
 private:
     /// logR with its n-independent terms precomputed (the same values, so the same result).

@@ -17,6 +17,8 @@ void RenderSettings::validate() const {
     if (photonsPerPass == 0) fail("--photons must be positive");
     if (!(radius >= 0) || !std::isfinite(radius)) fail("--radius must be >= 0 (0 = automatic)");
     if (!(surfaceRadius >= 0) || !std::isfinite(surfaceRadius)) fail("--surface-radius must be >= 0 (0 = automatic)");
+    if (!(photonAngle >= 0 || photonAngle == kAutoPhotonAngle) || !std::isfinite(photonAngle))
+        fail("--photon-angle must be >= 0 radians (0 = off) or automatic");
     if (threads < 0) fail("--threads must be >= 0 (0 = all cores)");
     if (maxPhotonBounces <= 0 || maxCameraBounces <= 0) fail("bounce limits must be positive");
     if (freeFlightSamples < 1 || freeFlightSamples > 64) fail("--free-flights must be in 1..64");
@@ -35,7 +37,9 @@ nlohmann::json RenderSettings::toJson() const {
             {"alpha", alpha},
             {"radius", radius},
             {"surface_radius", surfaceRadius},
-            {"radius_offset", radiusOffset},
+            {"radius_offset", radiusOffset == kAutoRadiusOffset ? nlohmann::json("auto") : nlohmann::json(radiusOffset)},
+            {"planned_paths", plannedPaths},
+            {"photon_angle", photonAngle == kAutoPhotonAngle ? nlohmann::json("auto") : nlohmann::json(photonAngle)},
             {"seed", seed},
             {"threads", threads},
             {"max_photon_bounces", maxPhotonBounces},
@@ -75,7 +79,7 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
 RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::string& where, RenderSettings s) {
     if (!j.is_object()) throw Error(where + ": expected an object of render settings");
     static const char* kKeys[] = {"width", "height", "passes", "time", "photons", "alpha", "radius",
-                                  "surface_radius", "radius_offset", "seed", "threads",
+                                  "surface_radius", "radius_offset", "planned_paths", "photon_angle", "seed", "threads",
                                   "max_photon_bounces", "max_camera_bounces", "free_flights", "gpu", "memory", "simd"};
     for (auto it = j.begin(); it != j.end(); ++it) {
         bool known = false;
@@ -90,7 +94,19 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
     read(j, "alpha", s.alpha, where);
     read(j, "radius", s.radius, where);
     read(j, "surface_radius", s.surfaceRadius, where);
-    read(j, "radius_offset", s.radiusOffset, where);
+    if (auto it = j.find("radius_offset"); it != j.end() && it->is_string()) {
+        if (*it != "auto") throw Error(where + "/radius_offset: expected a non-negative integer or \"auto\"");
+        s.radiusOffset = kAutoRadiusOffset;
+    } else {
+        read(j, "radius_offset", s.radiusOffset, where);
+    }
+    read(j, "planned_paths", s.plannedPaths, where);
+    if (auto it = j.find("photon_angle"); it != j.end() && it->is_string()) {
+        if (*it != "auto") throw Error(where + "/photon_angle: expected a number of radians >= 0 or \"auto\"");
+        s.photonAngle = kAutoPhotonAngle;
+    } else {
+        read(j, "photon_angle", s.photonAngle, where);
+    }
     read(j, "seed", s.seed, where);
     read(j, "threads", s.threads, where);
     read(j, "max_photon_bounces", s.maxPhotonBounces, where);

@@ -15,12 +15,26 @@ struct RenderSettings {
     double timeBudget = 0.0;         ///< seconds; > 0 renders passes until the budget is spent
     uint32_t photonsPerPass = 4000;  ///< photon paths emitted per pass (the bench uses 1000)
     double alpha = 0.5;              ///< radius reduction, in (0, 1): low = less noise, more bias
-    /// Beam radius of the first photon path, scene units; 0 = 0.5% of the scene's bounding-box
-    /// diagonal. Later paths shrink by RadiusSchedule::beamFactor.
+    /// Beam radius of the first photon path, scene units; 0 = automatic: chosen from the pixel
+    /// footprint where the media are and the planned path count (cpu/radius_defaults.h). Later
+    /// paths shrink by RadiusSchedule::beamFactor.
     float radius = 0.0f;
-    /// Surface-photon radius of the first photon path; 0 = 2% of the scene diagonal.
+    /// Surface-photon radius of the first photon path; 0 = automatic (footprint on the surfaces).
     float surfaceRadius = 0.0f;
-    uint64_t radiusOffset = 1000;    ///< RadiusSchedule offset n0 - 1 (see radius_schedule.h)
+    /// RadiusSchedule offset n0 - 1 (see radius_schedule.h); kAutoRadiusOffset = chosen so the
+    /// radius ends the planned budget near the pixel footprint.
+    uint64_t radiusOffset = kAutoRadiusOffset;
+    /// Photon paths the automatic radii plan for; 0 = passes x photons without a time budget, an
+    /// open-ended horizon (RadiusDefaults::kOpenEndedPathsPerPixel per pixel, cpu/radius_defaults.h)
+    /// with one until the rate is measured.
+    uint64_t plannedPaths = 0;
+    static constexpr uint64_t kAutoRadiusOffset = ~uint64_t(0);
+    /// Photon cone angle of the first photon path, radians (cpu/beam_cone.h): at path distance s
+    /// from its light a beam's radius is at most photonAngle x s (times the schedule's factor), so
+    /// beams stay thinner than the photons' own spacing near a light. 0 = off (radius alone);
+    /// kAutoPhotonAngle = chosen with the automatic radii (off when `radius` is explicit).
+    float photonAngle = kAutoPhotonAngle;
+    static constexpr float kAutoPhotonAngle = -1.0f;
     uint64_t seed = 1;
     int threads = 0;                 ///< 0 = all hardware threads
     int maxPhotonBounces = 32;       ///< photon path vertices before termination

@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "core/photon_beam.h"
+#include "cpu/beam_cone.h"
 #include "core/primary_segments.h"
 #include "cpu/camera_tracer.h"
 
@@ -74,7 +75,8 @@ uint64_t photonPathBytes(const RenderSettings& s, int freeFlights) {
     const uint64_t beam = 3 * (sizeof(PhotonBeam) + ff) + kPiecesPerBeam * kBytesPerPiece +
                           32 /* footprint */ + 2 * 4 * bands /* band bins, doubled by growth */;
     const uint64_t photon = 3 * sizeof(SurfacePhoton) + 4 + 4 + 16 /* hash grid */;
-    return uint64_t(std::max(s.maxPhotonBounces, 1)) * (beam + photon);
+    // The photon cone (cpu/beam_cone.h) adds at most kConePieces beams to a path.
+    return uint64_t(std::max(s.maxPhotonBounces, 1)) * (beam + photon) + uint64_t(kConePieces) * beam;
 }
 
 std::string formatBytes(uint64_t bytes) {

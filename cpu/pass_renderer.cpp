@@ -7,6 +7,8 @@
 #include <cstdlib>
 #include <string>
 
+#include "cpu/radius_defaults.h"
+
 namespace tyndall {
 
 namespace {
@@ -62,14 +64,14 @@ PassStats& PassStats::operator+=(const PassStats& o) {
 
 PassRenderer::PassRenderer(const Scene& scene, const RenderSettings& settings, BeamBvh::Kind beamBvh, bool aovLayers)
     : m_scene(scene),
-      m_settings(settings),
-      m_radii(RadiusSetup::resolve(settings, scene)),
-      m_memory(MemoryPlan::resolve(settings, storedFreeFlights(scene, settings), aovLayers)),
-      m_bvhKind(beamBvh),
       m_rt(std::make_unique<EmbreeScene>(scene)),
-      m_photons(std::make_unique<PhotonTracer>(*m_rt, settings, m_radii)),
-      m_camera(std::make_unique<CameraTracer>(*m_rt, settings)),
-      m_rasterizer(scene, settings.simd == "off" ? SplatKernel::Scalar : SplatKernel::Simd) {
+      m_settings(resolveRadiusDefaults(settings, *m_rt)),
+      m_radii(RadiusSetup::resolve(m_settings, scene)),
+      m_memory(MemoryPlan::resolve(m_settings, storedFreeFlights(scene, m_settings), aovLayers)),
+      m_bvhKind(beamBvh),
+      m_photons(std::make_unique<PhotonTracer>(*m_rt, m_settings, m_radii)),
+      m_camera(std::make_unique<CameraTracer>(*m_rt, m_settings)),
+      m_rasterizer(scene, m_settings.simd == "off" ? SplatKernel::Scalar : SplatKernel::Simd) {
     for (const Material& m : scene.materials) m_anyNonDiffuse |= m.type != MaterialType::Diffuse;
 }
 

@@ -60,6 +60,7 @@ struct PassLayers {
 
 class PassRenderer {
 public:
+    /// Resolves the automatic radius settings (cpu/radius_defaults.h) against the scene's camera.
     /// Throws Error when the settings' image does not fit their memory budget (MemoryPlan).
     /// `aovLayers`: the render keeps AOV layers (renderPassLayers); its buffers count in the
     /// memory plan, so fewer photon paths may go in a batch.
@@ -87,6 +88,8 @@ public:
     void sceneChanged();
 
     const Scene& scene() const { return m_scene; }
+    /// The settings with the automatic radii resolved for this scene and camera: plain numbers
+    /// that reproduce the render bit for bit (what the EXR metadata records).
     const RenderSettings& settings() const { return m_settings; }
     const RadiusSetup& radii() const { return m_radii; }
     const MemoryPlan& memoryPlan() const { return m_memory; }
@@ -98,12 +101,12 @@ private:
     Image renderBatches(uint64_t pass, PassStats* stats, PassLayers* layers) const;
 
     const Scene& m_scene;
-    RenderSettings m_settings;
+    std::unique_ptr<EmbreeScene> m_rt;
+    RenderSettings m_settings;  // automatic radii resolved (cpu/radius_defaults.h)
     RadiusSetup m_radii;
     MemoryPlan m_memory;
     BeamBvh::Kind m_bvhKind;
     bool m_anyNonDiffuse = false;  // a camera path can have secondary segments
-    std::unique_ptr<EmbreeScene> m_rt;
     std::unique_ptr<PhotonTracer> m_photons;
     std::unique_ptr<CameraTracer> m_camera;
     BeamRasterizer m_rasterizer;

@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "core/phase.h"
 #include "core/sampling.h"
+#include "cpu/beam_cone.h"
 #include "cpu/free_flight.h"
 #include "cpu/surface_scattering.h"
 
@@ -18,7 +19,11 @@ RadiusSetup RadiusSetup::resolve(const RenderSettings& settings, const Scene& sc
     float diagonal = scene.bounds.empty() ? 1.0f : length(scene.bounds.diagonal());
     r.beamRadius = settings.radius > 0 ? settings.radius : 0.005f * diagonal;
     r.surfaceRadius = settings.surfaceRadius > 0 ? settings.surfaceRadius : 0.02f * diagonal;
-    r.schedule = RadiusSchedule(settings.alpha, settings.radiusOffset);
+    // Settings that were not resolved (cpu/radius_defaults.h) get the scene-relative defaults.
+    uint64_t offset = settings.radiusOffset == RenderSettings::kAutoRadiusOffset ? 1000 : settings.radiusOffset;
+    r.schedule = RadiusSchedule(settings.alpha, offset);
+    // An automatic angle left unresolved is off (the scene-relative defaults had no cone).
+    if (settings.photonAngle > 0) r.coneReach = double(r.beamRadius) / double(settings.photonAngle);
     return r;
 }
 
@@ -27,6 +32,12 @@ PhotonTracer::PhotonTracer(const EmbreeScene& rt, const RenderSettings& settings
     for (const Light& l : m_scene.lights)
         m_lightMedium.push_back(l.type == LightType::Directional ? m_scene.globalMedium : m_rt.mediumAt(l.position));
     for (const Medium& m : m_scene.media) m_anyHeterogeneous |= !m.homogeneous();
+    // The photon cone of an area light starts at its equivalent radius sqrt(area / 4 pi).
+    for (const TriangleMesh& mesh : m_scene.meshes) {
+        double area = 0;
+        for (size_t t = 0; t < mesh.triangleCount(); ++t) area += 0.5 * double(length(mesh.geometricNormal(t)));
+        m_emitterStart.push_back(std::sqrt(area / (4.0 * M_PI)));
+    }
 }
 
 PhotonMap PhotonTracer::trace(uint64_t pass) const {
@@ -112,6 +123,10 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
     // From a point, spot or directional light through delta interactions only: what glossy surfaces
     // store (docs/algorithm.md, "Glossy vertices").
     bool deltaDirect = e.light >= 0;
+    // Path distance from the light at o (the photon cone, cpu/beam_cone.h).
+    double travelled = e.light < 0                                                ? m_emitterStart[e.emitterMesh]
+                       : m_scene.lights[e.light].type == LightType::Directional ? kInfinity
+                                                                                  : 0.0;
 
     for (int bounce = 0; bounce < m_settings.maxPhotonBounces; ++bounce) {
         RTCRayHit rh;
@@ -140,6 +155,18 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
                 out.freeFlights.resize(at + size_t(n), kInfinity);
                 if (!med.homogeneous()) sampleCollisionDistances(med, seg, seg.tMax, rng, n, &out.freeFlights[at]);
             }
+            if (const double s0 = travelled + double(t0); s0 < m_radii.coneReach) {
+                // Within the photon cone: stored again as its pieces.
+                const PhotonBeam whole = beam;
+                out.beams.pop_back();
+                const int n = out.freeFlightsPerBeam;
+                float stored[64];
+                if (n > 0) {
+                    std::copy(out.freeFlights.end() - n, out.freeFlights.end(), stored);
+                    out.freeFlights.resize(out.freeFlights.size() - size_t(n));
+                }
+                appendConeBeam(whole, s0, m_radii.coneReach, med, stored, n, out.beams, out.freeFlights);
+            }
             FreeFlight ff = sampleFreeFlight(med, seg, seg.tMax, rng);
             power *= ff.weight;
             if (ff.scattered) {
@@ -149,6 +176,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
                 power *= 1.0f / q;
                 Vec3 x = seg.at(ff.t);
                 d = sampleHg(d, med.g, rng.uniform(), rng.uniform());
+                travelled += double(t0) + double(ff.t);
                 o = x;
                 deltaDirect = false;
                 continue;
@@ -158,6 +186,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
 
         // The hit record, only for paths that reach the surface.
         const Vec3 p = o + d * tHit;
+        travelled += double(tHit);
         // Embree's Ng is cross(v1 - v0, v2 - v0): the same orientation as Scene's CCW convention.
         const Vec3 ng = normalize(Vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
         const TriangleMesh& mesh = m_scene.meshes[rh.hit.geomID];

@@ -22,6 +22,9 @@ struct RadiusSetup {
     float beamRadius = 0;     ///< radius of photon path 0
     float surfaceRadius = 0;  ///< surface-photon radius of photon path 0
     RadiusSchedule schedule{0.5, 1000};
+    /// Photon cone (cpu/beam_cone.h): path distance from the light where a beam reaches its full
+    /// radius, beamRadius / photonAngle; 0 = no cone.
+    double coneReach = 0;
 
     static RadiusSetup resolve(const RenderSettings& settings, const Scene& scene);
     float beamRadiusOf(uint64_t path) const { return float(beamRadius * schedule.beamFactor(path)); }
@@ -69,6 +72,7 @@ private:
     RadiusSetup m_radii;
     LightSampler m_lights;
     std::vector<MediumId> m_lightMedium;  // per Scene::lights entry
+    std::vector<double> m_emitterStart;   // per mesh: path distance an area light's photons start at
     bool m_anyHeterogeneous = false;
 };
 

@@ -110,8 +110,8 @@ TEST(Cli, HelpListsEveryOptionWithDefaults) {
     const std::vector<std::string> scene = {"--camera", "--size", "--seed", "--threads"};
     const std::vector<std::string> output = {"--output", "--exposure"};
     const std::vector<std::string> ppb = {"--passes", "--time",           "--photons",       "--alpha",
-                                          "--radius", "--surface-radius", "--radius-offset", "--free-flights",
-                                          "--memory", "--simd"};
+                                          "--radius", "--surface-radius", "--radius-offset", "--planned-paths",
+                                          "--photon-angle", "--free-flights", "--memory", "--simd"};
     auto join = [](std::initializer_list<std::vector<std::string>> parts) {
         std::set<std::string> all = {"--help", "--help-all"};
         for (const auto& p : parts) all.insert(p.begin(), p.end());
@@ -122,8 +122,9 @@ TEST(Cli, HelpListsEveryOptionWithDefaults) {
                          {"--gpu", "--checkpoint", "--checkpoint-every", "--resume", "--quiet", "--progress-every", "--aov",
                           "--reference", "--convergence"}})},
         {"reference", join({scene, output, {"--spp", "--max-depth", "--no-nee"}})},
-        {"bench", join({scene, {"--passes", "--photons", "--rays", "--queries", "--free-flights", "--no-hybrid",
-                                "--radius", "--radius-offset", "--simd"}})},
+        {"bench", join({scene, {"--passes", "--photons", "--rays", "--queries", "--free-flights", "--no-hybrid", "--quality",
+                            "--quality-scene", "--quality-seeds", "--reference-dir", "--reference-spp", "--plot", "--radius",
+                            "--radius-offset", "--simd"}})},
         {"compare", join({scene, output, ppb, {"--gpu", "--density"}})}};
     for (const auto& [command, names] : expected) {
         CliRun r = runTyndall(command + " --help");
@@ -141,7 +142,7 @@ TEST(Cli, HelpListsEveryOptionWithDefaults) {
 
     CliRun r = runTyndall("render --help");
     for (const char* opt : {"--passes UINT=64", "--photons UINT=4000", "--alpha FLOAT=0.5", "--radius FLOAT=0",
-                            "--radius-offset UINT=1000", "--free-flights INT=4", "--seed UINT=1", "--size TEXT=512x512",
+                            "--radius-offset UINT ", "(default: automatic, so the beam radius ends", "--free-flights INT=4", "--seed UINT=1", "--size TEXT=512x512",
                             "--threads INT=0", "-o,--output TEXT=tyndall.png", "--exposure FLOAT=1", "--gpu TEXT=auto",
                             "(default: off, --passes decides)"})
         EXPECT_NE(r.output.find(opt), std::string::npos) << opt << " missing from:\n" << r.output;
@@ -328,7 +329,8 @@ TEST(Cli, FewerPassesAreExactlyTheFirstPassesOfMore) {
     // function of its index, and the render loop adds passes 0, 1, 2, ... in order), so the
     // 16-pass mean is (8 mean8 + 8 mean(passes 8..15)) / 16 up to float rounding.
     const std::string dir = tyndall::test::outputDir();
-    const std::string common = "render --photons 200 --size 40x24 --seed 9 --gpu off ";
+    // The automatic radii plan for the budget, so both renders are given the same plan.
+    const std::string common = "render --photons 200 --size 40x24 --seed 9 --gpu off --planned-paths 3200 ";
     CliRun r8 = runTyndall(common + "--passes 8 --threads 1 -o " + dir + "/cli_prefix8.exr");
     CliRun r16 = runTyndall(common + "--passes 16 --threads 2 -o " + dir + "/cli_prefix16.exr");
     ASSERT_EQ(r8.exitCode, 0) << r8.output;
@@ -359,4 +361,58 @@ TEST(Cli, FewerPassesAreExactlyTheFirstPassesOfMore) {
     EXPECT_LT(maxErr, 1e-6) << "16-pass mean vs (8 mean8 + 8 mean(8..15)) / 16";
     EXPECT_GT(sum, 0.0);
     EXPECT_GT(diff, 0.0) << "passes 8..15 should differ from passes 0..7";
+}
+
+namespace {
+/// The settings recorded in an EXR's header, as render options.
+nlohmann::json recordedSettings(const std::string& exr) {
+    nlohmann::json j = nlohmann::json::parse(tyndall::readImageAttribute(exr, "tyndall:settings"));
+    j.erase("resolved_radius");
+    j.erase("resolved_surface_radius");
+    return j;
+}
+std::string number(const nlohmann::json& v) {
+    return v.dump();  // nlohmann prints the shortest text that reads back to the same number
+}
+}  // namespace
+
+TEST(Cli, AutomaticRadiiAreRecordedAsPlainSettingsThatReproduceTheImage) {
+    // Defaults: the radii and the schedule are chosen from the camera and the budget, and written
+    // into the header as plain numbers; rendering with those numbers given explicitly (and no
+    // budget to plan from: a different pass count) gives the same passes bit for bit.
+    const std::string dir = tyndall::test::outputDir();
+    CliRun a = runTyndall("render --photons 300 --size 40x24 --seed 3 --gpu off --passes 6 -o " + dir + "/cli_auto.exr");
+    ASSERT_EQ(a.exitCode, 0) << a.output;
+    nlohmann::json j = recordedSettings(dir + "/cli_auto.exr");
+    ASSERT_TRUE(j.at("radius_offset").is_number_integer()) << j.dump();
+    EXPECT_GT(j.at("radius").get<double>(), 0.0);
+    EXPECT_GT(j.at("surface_radius").get<double>(), 0.0);
+    EXPECT_EQ(j.at("planned_paths"), 1800);
+    CliRun b = runTyndall("render --photons 300 --size 40x24 --seed 3 --gpu off --passes 6 --radius " +
+                          number(j.at("radius")) + " --surface-radius " + number(j.at("surface_radius")) +
+                          " --radius-offset " + number(j.at("radius_offset")) + " --alpha " + number(j.at("alpha")) +
+                          " -o " + dir + "/cli_auto_replay.exr");
+    ASSERT_EQ(b.exitCode, 0) << b.output;
+    EXPECT_TRUE(tyndall::test::identicalImages(tyndall::readImage(dir + "/cli_auto.exr"),
+                                               tyndall::readImage(dir + "/cli_auto_replay.exr")));
+}
+
+TEST(Cli, TimeBudgetRecordsItsPlanAndReplaysFromIt) {
+    // --time plans the automatic radii for the open-ended horizon; the planned count goes into the
+    // header, so the same settings with the recorded pass count reproduce the image bit for bit
+    // whatever the machine's speed.
+    const std::string dir = tyndall::test::outputDir();
+    CliRun t = runTyndall("render --photons 200 --size 32x20 --seed 4 --gpu off --time 1 -o " + dir + "/cli_time.exr");
+    ASSERT_EQ(t.exitCode, 0) << t.output;
+    nlohmann::json j = recordedSettings(dir + "/cli_time.exr");
+    EXPECT_GT(j.at("planned_paths").get<uint64_t>(), 0u);
+    std::string passes = tyndall::readImageAttribute(dir + "/cli_time.exr", "tyndall:passes");
+    j["time"] = 0.0;
+    j["passes"] = std::stoull(passes);
+    tyndall::RenderSettings s = tyndall::RenderSettings::fromJson(j, "cli_time.exr");
+    tyndall::Scene scene = tyndall::makeDefaultScene();
+    scene.validate();
+    tyndall::PassRenderer renderer(scene, s);
+    EXPECT_TRUE(tyndall::test::identicalImages(tyndall::readImage(dir + "/cli_time.exr"),
+                                               renderPasses(renderer, 0, s.passes)));
 }

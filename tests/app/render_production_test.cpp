@@ -277,11 +277,12 @@ TEST(Mpi, TwoRanksEqualOneProcessBitForBit) {
 TEST(Mpi, TimeBudgetRanksAgreeOnOnePassCount) {
     if (!haveMpirun()) GTEST_SKIP() << "mpirun not installed (openmpi-bin)";
     const std::string two = out("mpi_time.exr"), single = out("mpi_time_single.exr");
-    auto r = runMpi(2, "render " + kSmall + " --time 1 --threads 1 -q -o " + two);
+    // One plan for both (a --time render plans the open-ended horizon, --passes N plans N passes).
+    auto r = runMpi(2, "render " + kSmall + " --time 1 --planned-paths 20000 --threads 1 -q -o " + two);
     ASSERT_EQ(r.exitCode, 0) << r.output;
     const std::string passes = tyndall::readImageAttribute(two, "tyndall:passes");
     ASSERT_FALSE(passes.empty());
-    ASSERT_EQ(runTyndall("render " + kSmall + " --passes " + passes + " -q -o " + single).exitCode, 0);
+    ASSERT_EQ(runTyndall("render " + kSmall + " --passes " + passes + " --planned-paths 20000 -q -o " + single).exitCode, 0);
     EXPECT_TRUE(tyndall::test::identicalImages(tyndall::readImage(two), tyndall::readImage(single)))
         << "the 2-rank --time render is not the single-process render of its " << passes << " passes";
 }
@@ -290,8 +291,10 @@ TEST(Mpi, CheckpointUnderMpiResumesInOneProcess) {
     if (!haveMpirun()) GTEST_SKIP() << "mpirun not installed (openmpi-bin)";
     const std::string ck = out("mpi.ckpt"), full = out("mpi_full.exr"), resumed = out("mpi_resumed.exr");
     fs::remove(ck);
+    // The 5-pass part plans for the 9 passes it is resumed to (the radii come from the checkpoint).
     ASSERT_EQ(runTyndall("render " + kSmall + " --passes 9 -q -o " + full).exitCode, 0);
-    auto r = runMpi(2, "render " + kSmall + " --passes 5 --threads 1 -q -o " + out("mpi_part.exr") + " --checkpoint " + ck);
+    auto r = runMpi(2, "render " + kSmall + " --passes 5 --planned-paths 3600 --threads 1 -q -o " + out("mpi_part.exr") +
+                           " --checkpoint " + ck);
     ASSERT_EQ(r.exitCode, 0) << r.output;
     r = runTyndall("render --resume " + ck + " --passes 9 -q -o " + resumed);
     ASSERT_EQ(r.exitCode, 0) << r.output;

@@ -45,6 +45,7 @@ TEST(Determinism, RadiusShrinksPerPhotonPathInTheRenderer) {
     s.photonsPerPass = 100;
     s.alpha = 0.5;
     s.radius = 0.05f;
+    s.radiusOffset = 1000;
     PassRenderer renderer(scene, s);
     PhotonMap first = renderer.tracePhotons(0), later = renderer.tracePhotons(200);
     ASSERT_FALSE(first.beams.empty());

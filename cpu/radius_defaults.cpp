@@ -1,0 +1,76 @@
+#include "cpu/radius_defaults.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/radius_schedule.h"
+#include "cpu/pixel_footprint.h"
+
+namespace tyndall {
+
+bool hasAutomaticRadii(const RenderSettings& s) {
+    return s.radius <= 0 || s.surfaceRadius <= 0 || s.radiusOffset == RenderSettings::kAutoRadiusOffset ||
+           s.photonAngle == RenderSettings::kAutoPhotonAngle;
+}
+
+uint64_t plannedPhotonPaths(const RenderSettings& s) {
+    if (s.plannedPaths > 0) return s.plannedPaths;
+    // A pass count whose paths overflow (the viewer's "until stopped") is open-ended too.
+    bool openEnded = s.timeBudget > 0 || s.passes > (uint64_t(1) << 50) / std::max<uint64_t>(1, s.photonsPerPass);
+    if (!openEnded) return std::max<uint64_t>(1, s.passes * s.photonsPerPass);
+    return RadiusDefaults::kOpenEndedPathsPerPixel * uint64_t(s.width) * uint64_t(s.height);
+}
+
+bool pointLightNearTheImage(const Scene& scene, int width, int height, double reach) {
+    const Camera& c = scene.camera;
+    const double pixelsPerUnitAtDepth1 = height / (2.0 * std::tan(0.5 * double(c.yFov)));
+    for (const Light& l : scene.lights) {
+        if (l.type == LightType::Directional) continue;
+        if (length(l.position - c.position) <= reach) return true;
+        float x, y, depth;
+        if (!c.project(l.position, width, height, &x, &y, &depth)) continue;
+        const double margin = reach * pixelsPerUnitAtDepth1 / std::max(double(depth), 1e-30);
+        if (x >= -margin && x <= width + margin && y >= -margin && y <= height + margin) return true;
+    }
+    return false;
+}
+
+double photonConeAngle(uint64_t plannedPaths) {
+    return RadiusDefaults::kConeAngleScale * std::pow(double(std::max<uint64_t>(plannedPaths, 1)), -0.2);
+}
+
+RenderSettings resolveRadiusDefaults(const RenderSettings& in, const EmbreeScene& rt) {
+    RenderSettings s = in;
+    // An explicit radius keeps its meaning: no photon cone unless the angle is given too.
+    if (in.radius > 0 && s.photonAngle == RenderSettings::kAutoPhotonAngle) s.photonAngle = 0;
+    if (!hasAutomaticRadii(s)) return s;
+    const Scene& scene = rt.scene();
+    s.plannedPaths = plannedPhotonPaths(s);
+    // Without media or surfaces in view, footprints that start the radii at 0.5% and 2% of the
+    // scene's diagonal (the scene-relative defaults of earlier versions) stand in.
+    const double k = RadiusDefaults::kStartOverEnd;
+    const double kb = RadiusDefaults::kBeamEndFootprints, ks = RadiusDefaults::kSurfaceEndFootprints;
+    double diagonal = scene.bounds.empty() ? 1.0 : double(length(scene.bounds.diagonal()));
+    PixelFootprint fp = measurePixelFootprint(rt, scene.camera, s.width, s.height);
+    const double beamEnd = kb * fp.beam(0.005 * diagonal / (k * kb));
+    const double surfaceEnd = ks * fp.surfaces(0.02 * diagonal / (std::sqrt(k) * ks));
+
+    double endFactor = 1.0 / k;  // beam factor at the end of the plan
+    if (s.radiusOffset == RenderSettings::kAutoRadiusOffset) {
+        double start = s.radius > 0 ? double(s.radius) : k * beamEnd;
+        s.radiusOffset = RadiusSchedule::offsetForRatio(s.alpha, s.plannedPaths, std::min(1.0, beamEnd / start));
+        endFactor = RadiusSchedule(s.alpha, s.radiusOffset).beamFactor(s.plannedPaths);
+    }
+    if (s.radius <= 0) s.radius = float(beamEnd / endFactor);
+    if (s.surfaceRadius <= 0) s.surfaceRadius = float(surfaceEnd / std::sqrt(endFactor));
+    if (s.photonAngle == RenderSettings::kAutoPhotonAngle) {
+        // The cone reaches the full radius at path distance beamEnd / angle from the light (the
+        // same for every path); it only pays where camera rays pass that close to a light.
+        const double angle = photonConeAngle(s.plannedPaths);
+        const bool inView = pointLightNearTheImage(scene, s.width, s.height, beamEnd / angle);
+        s.photonAngle = inView ? float(angle / endFactor) : 0.0f;
+    }
+    return s;
+}
+
+}  // namespace tyndall

@@ -1,0 +1,56 @@
+#pragma once
+// The automatic photon radii: the settings left at "automatic" (radius 0, surface radius 0,
+// radius offset kAutoRadiusOffset) resolved into plain numbers from the camera's pixel footprint
+// where the media and surfaces are (cpu/pixel_footprint.h) and the planned photon-path count.
+// The model and the measurements behind the constants: docs/algorithm.md ("Where the radius
+// sits") and docs/performance.md ("Equal-work quality").
+//
+//   beam radius at the end of the plan    = kBeamEndFootprints    x media footprint
+//   surface radius at the end of the plan = kSurfaceEndFootprints x surface footprint
+//   first beam radius                     = kStartOverEnd x the end radius (auto radius)
+//   offset                                = the one whose schedule shrinks the first radius to the
+//                                           end radius over the planned paths (auto offset)
+// With an explicit offset, automatic radii start at kStartOverEnd x their end footprints (surface:
+// sqrt of it, the 2D kernel's rate). An explicit radius with an automatic offset is shrunk to the
+// end radius by the plan (kept constant when it is already smaller). Explicit values are never
+// changed. The result is a plain RenderSettings: rendering with it reproduces the image bit for bit.
+#include <cstdint>
+
+#include "core/settings.h"
+#include "cpu/embree_scene.h"
+
+namespace tyndall {
+
+struct RadiusDefaults {
+    static constexpr double kBeamEndFootprints = 1.0;
+    static constexpr double kSurfaceEndFootprints = 3.0;
+    static constexpr double kStartOverEnd = 4.0;
+    /// Horizon of an open-ended render (no pass count, time not yet measured): photon paths per
+    /// image pixel, about a minute of a 2-core machine at 256x256 (docs/performance.md).
+    static constexpr uint64_t kOpenEndedPathsPerPixel = 100;
+    /// Photon cone angle at the end of a plan of P paths: kConeAngleScale x P^(-1/5) radians
+    /// (photonConeAngle; the model in docs/algorithm.md, "The photon cone").
+    static constexpr double kConeAngleScale = 3.3;
+};
+
+/// The photon cone's angle (radians) at the end of a plan of `plannedPaths` photon paths.
+double photonConeAngle(uint64_t plannedPaths);
+
+/// True when a point or spot light lies in the camera's image or within `reach` (scene units) of
+/// the frustum's sides at its depth, or within `reach` of the eye: where the automatic photon
+/// cone is turned on (elsewhere it would only split beams no camera ray passes close to the light).
+bool pointLightNearTheImage(const Scene& scene, int width, int height, double reach);
+
+/// True when any radius setting (radii, offset, photon cone angle) is left automatic.
+bool hasAutomaticRadii(const RenderSettings& s);
+
+/// The photon-path count the automatic radii plan for: settings.plannedPaths when set, else
+/// passes x photons without a time budget, else (time budget, or a pass count too large to plan
+/// for such as the viewer's "until stopped") the open-ended horizon for the image size.
+uint64_t plannedPhotonPaths(const RenderSettings& s);
+
+/// `s` with every automatic radius setting replaced by its value for `rt`'s scene and camera
+/// (and plannedPaths filled in when anything was automatic); `s` unchanged when nothing is.
+RenderSettings resolveRadiusDefaults(const RenderSettings& s, const EmbreeScene& rt);
+
+}  // namespace tyndall
