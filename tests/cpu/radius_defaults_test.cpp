@@ -243,9 +243,12 @@ TEST(RadiusSchedule, OffsetForRatioInvertsTheSchedule) {
         for (uint64_t paths : {1000ull, 1000000ull, 100000000ull}) {
             uint64_t n0 = RadiusSchedule::offsetForRatio(alpha, paths, 0.25);
             EXPECT_GE(RadiusSchedule(alpha, n0).beamFactor(paths), 0.25);
-            if (n0 > 0)
+            if (n0 > 0) {
                 EXPECT_LT(RadiusSchedule(alpha, n0 - 1).beamFactor(paths), 0.25) << "the smallest such offset";
-            if (paths >= 1000000) EXPECT_GT(n0, 0u) << "the paper's schedule shrinks far below 1/4 here";
+            }
+            if (paths >= 1000000) {
+                EXPECT_GT(n0, 0u) << "the paper's schedule shrinks far below 1/4 here";
+            }
         }
     EXPECT_EQ(RadiusSchedule::offsetForRatio(0.5, 1000, 1e-9), 0u) << "the paper's schedule shrinks enough";
 }
