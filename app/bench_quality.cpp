@@ -207,7 +207,6 @@ void runQualityBench(const CommonOptions& common, const QualityBenchOptions& o) 
         base.passes = passes;
         base.timeBudget = 0;
         Reference ref = loadOrRenderReference(scene, scene.name, base, o);
-        float diag = length(scene.bounds.diagonal());
 
         struct Variant {
             std::string label;
@@ -215,11 +214,7 @@ void runQualityBench(const CommonOptions& common, const QualityBenchOptions& o) 
             Rgb color;
         };
         std::vector<Variant> variants;
-        RenderSettings legacy = base;
-        legacy.radius = 0.005f * diag;
-        legacy.surfaceRadius = 0.02f * diag;
-        legacy.radiusOffset = 1000;
-        variants.push_back({"LEGACY", legacy, Rgb(40.0f, 0.0f, 0.0f)});
+        variants.push_back({"LEGACY", withSceneRelativeRadii(base, scene), Rgb(40.0f, 0.0f, 0.0f)});
         RenderSettings planned = base;
         variants.push_back({"AUTO, PLANNED", planned, Rgb(0.0f, 0.0f, 40.0f)});
         RenderSettings noCone = base;

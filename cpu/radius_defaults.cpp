@@ -73,4 +73,12 @@ RenderSettings resolveRadiusDefaults(const RenderSettings& in, const EmbreeScene
     return s;
 }
 
+RenderSettings withSceneRelativeRadii(RenderSettings s, const Scene& scene) {
+    const float diagonal = length(scene.bounds.diagonal());
+    s.radius = 0.005f * diagonal;
+    s.surfaceRadius = 0.02f * diagonal;
+    s.radiusOffset = 1000;
+    return s;
+}
+
 }  // namespace tyndall

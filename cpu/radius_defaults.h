@@ -49,6 +49,12 @@ bool hasAutomaticRadii(const RenderSettings& s);
 /// for such as the viewer's "until stopped") the open-ended horizon for the image size.
 uint64_t plannedPhotonPaths(const RenderSettings& s);
 
+/// `s` with the scene-relative radii Tyndall used before the automatic ones: the first beam radius
+/// 0.5% and the surface radius 2% of the scene's diagonal, offset 1000 (the photon cone angle is
+/// left as it is). `tyndall bench --quality`'s LEGACY row, and tests whose bounds were measured with
+/// these radii rather than with the defaults of the day.
+RenderSettings withSceneRelativeRadii(RenderSettings s, const Scene& scene);
+
 /// `s` with every automatic radius setting replaced by its value for `rt`'s scene and camera
 /// (and plannedPaths filled in when anything was automatic); `s` unchanged when nothing is.
 RenderSettings resolveRadiusDefaults(const RenderSettings& s, const EmbreeScene& rt);

@@ -102,10 +102,7 @@ Image ppb(const Scene& s, uint64_t passes, uint32_t photons) {
     ps.seed = 3;
     // The scene-relative radii these expectations were measured with (the automatic ones end at
     // 3 surface footprints: boundary bias at the regions compared, not what this test is about).
-    const float diagonal = length(s.bounds.diagonal());
-    ps.radius = 0.005f * diagonal;
-    ps.surfaceRadius = 0.02f * diagonal;
-    ps.radiusOffset = 1000;
+    ps = withSceneRelativeRadii(ps, s);
     PassRenderer renderer(s, ps);
     return test::renderPpbPasses(renderer, 0, passes);
 }

@@ -85,10 +85,7 @@ Renders render(const Scene& s) {
     ps.seed = 12;
     // The scene-relative radii these expectations were measured with (the automatic ones end at
     // 3 surface footprints: boundary bias at the regions compared, not what this test is about).
-    const float diagonal = length(s.bounds.diagonal());
-    ps.radius = 0.005f * diagonal;
-    ps.surfaceRadius = 0.02f * diagonal;
-    ps.radiusOffset = 1000;
+    ps = withSceneRelativeRadii(ps, s);
     PassRenderer renderer(s, ps);
     out.ppb = test::renderPpbPasses(renderer, 0, 16);
     return out;

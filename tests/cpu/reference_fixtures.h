@@ -15,6 +15,7 @@
 #include "loading/mesh_builders.h"
 #include "core/scene.h"
 #include "cpu/pass_renderer.h"
+#include "cpu/radius_defaults.h"
 #include "cpu/reference_tracer.h"
 
 namespace tyndall::test {
@@ -278,10 +279,7 @@ inline void expectPpbConvergesToReference(const Scene& scene, const ConsistencyB
     // with. The automatic ones end at 1 / 3 pixel footprints: at 32 x 32 a surface kernel a tenth
     // of the image wide, whose boundary bias (floor 0.945, image means 0.95-0.97 in the merge of
     // issue 10) is a finding about the defaults at tiny sizes, not the estimator this judges.
-    const float diagonal = length(scene.bounds.diagonal());
-    ps.radius = 0.005f * diagonal;
-    ps.surfaceRadius = 0.02f * diagonal;
-    ps.radiusOffset = 1000;
+    ps = withSceneRelativeRadii(ps, scene);
     PassRenderer renderer(scene, ps);
     Accumulator acc(size, size);
     const uint64_t checkpoints[] = {4, 16, 64};

@@ -13,6 +13,7 @@
 
 #include "core/image_io.h"
 #include "cpu/progressive_render.h"
+#include "cpu/radius_defaults.h"
 #include "cpu/reference_tracer.h"
 #include "tests/scene/scene_test_util.h"
 
@@ -35,12 +36,7 @@ double renderMeanLuminance(const Scene& scene, int size, int passes, uint32_t ph
     rs.width = rs.height = size;
     rs.passes = uint64_t(passes);
     rs.photonsPerPass = photons;
-    if (sceneRelativeRadii) {
-        const float diagonal = length(scene.bounds.diagonal());
-        rs.radius = 0.005f * diagonal;
-        rs.surfaceRadius = 0.02f * diagonal;
-        rs.radiusOffset = 1000;
-    }
+    if (sceneRelativeRadii) rs = withSceneRelativeRadii(rs, scene);
     PassRenderer renderer(scene, rs);
     Accumulator acc(size, size);
     renderProgressive(renderer, acc, 0);
