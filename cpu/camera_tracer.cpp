@@ -219,8 +219,8 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                                                  : shadingCosineRatio(side, p.wi);
                                   });
                     // Direct light by a shadow ray (once per pass: with the emission), from its own
-                    // stream so the path's other draws do not move.
-                    if (m_direct && emission) {
+                    // stream so the path's other draws do not move; none toward a black surface.
+                    if (m_direct && emission && !sp.baseColor.isBlack()) {
                         Rng neeRng = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::DirectLight);
                         E += m_direct->diffuse(hit, side, medium, neeRng, false);
                     }
