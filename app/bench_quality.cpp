@@ -248,7 +248,18 @@ void runQualityBench(const CommonOptions& common, const QualityBenchOptions& o) 
                     o.seeds);
     std::printf("  %-16s %-18s %7s %8s %9s %9s %9s %8s\n", "scene", "radii", "passes", "CPU s", "rel RMSE",
                 "(-1% top)", "rel bias", "r_end/px");
-    for (const std::string& entry : o.scenes) {
+    std::vector<std::pair<std::string, bool>> entries;  // (FILE[:PASSES], from the library)
+    for (const std::string& entry : o.scenes) entries.push_back({entry, false});
+    if (!o.library.empty()) {
+        namespace fs = std::filesystem;
+        if (!fs::is_directory(o.library)) throw Error("--quality-library '" + o.library + "': not a folder");
+        std::vector<std::string> files;
+        for (const auto& e : fs::directory_iterator(o.library))
+            if (e.is_regular_file() && e.path().extension() == ".json") files.push_back(e.path().string());
+        std::sort(files.begin(), files.end());
+        for (const std::string& f : files) entries.push_back({f, true});
+    }
+    for (const auto& [entry, fromLibrary] : entries) {
         // FILE:PASSES; with a CPU budget the pass count is optional (it adds a row planned for it).
         size_t colon = entry.rfind(':');
         std::string file = entry;
@@ -262,6 +273,10 @@ void runQualityBench(const CommonOptions& common, const QualityBenchOptions& o) 
             throw Error("--quality-scene '" + entry + "': expected FILE:PASSES (a positive pass count; FILE alone "
                         "only with --quality-cpu-seconds)");
         SceneFile sf = loadSceneFile(file, {});
+        if (fromLibrary) {
+            sf.scene = withoutSpecularSurfaces(sf.scene);
+            sf.scene.name += "-no-specular";
+        }
         Scene& scene = sf.scene;
         RenderSettings base = common.settings;
         base.passes = passes > 0 ? passes : 1;

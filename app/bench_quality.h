@@ -20,6 +20,7 @@
 // `tyndall render --time` resolves them (the open-ended plan) and, given FILE:PASSES, the automatic
 // radii planned for that pass count. Plot: error against CPU seconds.
 // Both plots are log-log PNGs with the N^(-alpha/2) slope drawn.
+// With a library folder its scenes are added, made valid for the path tracer (withoutSpecularSurfaces).
 #include <string>
 #include <vector>
 
@@ -37,6 +38,10 @@ struct QualityBenchOptions {
     int seeds = 1;
     /// > 0: equal time, each render stops when its passes' process CPU time reaches this (seconds).
     double cpuSeconds = 0;
+    /// A folder of scene files (the scene library, scenes/): each *.json after the `scenes`, with
+    /// its mirror and glass surfaces made index-matched Interfaces (withoutSpecularSurfaces), where
+    /// the path tracer is valid; named <scene>-no-specular (also in the reference cache).
+    std::string library;
 };
 
 /// Runs the benchmark; `common` carries size, seed, threads and photons. Prints a table.

@@ -91,6 +91,10 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                     "with 2 threads on an idle 2-core machine); --quality-scene's :PASSES is then optional and adds "
                     "a row planned for it (default: 0, equal work)")
         ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--quality-library", o->qualityOptions.library,
+                    "With --quality and --quality-cpu-seconds: also every scene file in this folder (scenes/), its "
+                    "mirrors and glass made index-matched so that the path tracer is valid; replaces the default "
+                    "--quality-scene list unless one is given (default: none)");
     cmd->add_option("--plot", o->qualityOptions.plot,
                     "With --quality: write the error plot (PNG): against passes, or against CPU seconds with "
                     "--quality-cpu-seconds (default: none)");
@@ -98,6 +102,10 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
         if (o->quality) {
             if (o->common.command->get_option("--photons")->count() == 0) o->common.settings.photonsPerPass = 4000;
             if (o->common.command->get_option("--size")->count() == 0) o->common.size = "256x256";
+            if (!o->qualityOptions.library.empty() && o->common.command->get_option("--quality-scene")->count() == 0)
+                o->qualityOptions.scenes.clear();
+            if (!o->qualityOptions.library.empty() && !(o->qualityOptions.cpuSeconds > 0))
+                throw CLI::ValidationError("--quality-library", "needs --quality-cpu-seconds (library scenes have no pass count)");
             finishOptions(o->common);
             ThreadLimit threads(o->common.settings.threads);
             runQualityBench(o->common, o->qualityOptions);

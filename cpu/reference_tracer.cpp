@@ -333,4 +333,12 @@ Rgb ReferenceTracer::shadowTransmittance(const Vec3& origin, const DirectLightSa
     return Rgb(0.0f);
 }
 
+Scene withoutSpecularSurfaces(const Scene& scene) {
+    Scene s = scene;
+    for (Material& m : s.materials)
+        if (m.type == MaterialType::Mirror || m.type == MaterialType::Dielectric) m.type = MaterialType::Interface;
+    s.validate();
+    return s;
+}
+
 }  // namespace tyndall

@@ -84,17 +84,6 @@ double clippedMean(const std::vector<double>& v, double ceiling) {
     return sum / double(v.size());
 }
 
-/// `scene` with every mirror and glass surface made an index-matched Interface (media kept), so
-/// that no delta light reaches anything through a specular bounce: where the path tracer is
-/// valid (docs/reference.md, "What it cannot compute").
-Scene withoutSpecularSurfaces(const Scene& scene) {
-    Scene s = scene;
-    for (Material& m : s.materials)
-        if (m.type == MaterialType::Mirror || m.type == MaterialType::Dielectric) m.type = MaterialType::Interface;
-    s.validate();
-    return s;
-}
-
 std::vector<fs::path> filesWithExtension(const fs::path& dir, std::initializer_list<const char*> exts) {
     std::vector<fs::path> out;
     for (const auto& e : fs::recursive_directory_iterator(dir))
