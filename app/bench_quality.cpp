@@ -135,7 +135,9 @@ void drawLine(Image& img, double x0, double y0, double x1, double y1, const Rgb&
 void writePlot(const std::string& path, const std::vector<std::pair<std::string, std::vector<Curve>>>& panels,
                double alpha, const std::string& xLabel) {
     const int pw = 420, ph = 320, margin = 50;
-    Image img(pw * int(panels.size()), ph);
+    const int columns = std::min<int>(3, std::max<int>(1, int(panels.size())));
+    const int rows = (int(panels.size()) + columns - 1) / columns;
+    Image img(pw * columns, ph * std::max(1, rows));
     const Rgb white(50.0f), grey(0.6f), black(0.0f);
     for (Rgb& p : img.pixels) p = white;
     for (size_t k = 0; k < panels.size(); ++k) {
@@ -147,11 +149,12 @@ void writePlot(const std::string& path, const std::vector<std::pair<std::string,
         if (!(xmax > xmin) || !(ymax > 0)) continue;
         double lx0 = std::log10(xmin), lx1 = std::log10(xmax), ly0 = std::floor(std::log10(ymin) * 4) / 4,
                ly1 = std::ceil(std::log10(ymax) * 4) / 4;
-        int ox = int(k) * pw;
+        // Panels in rows of three; oy moves every y of this panel down to its row.
+        const int ox = int(k % size_t(columns)) * pw, oy = int(k / size_t(columns)) * ph;
         auto X = [&](double x) { return ox + margin + (std::log10(x) - lx0) / (lx1 - lx0) * (pw - margin - 15); };
-        auto Y = [&](double y) { return ph - margin - (std::log10(y) - ly0) / (ly1 - ly0) * (ph - margin - 40); };
-        drawLine(img, ox + margin, ph - margin, ox + pw - 15, ph - margin, black);
-        drawLine(img, ox + margin, ph - margin, ox + margin, 40, black);
+        auto Y = [&](double y) { return oy + ph - margin - (std::log10(y) - ly0) / (ly1 - ly0) * (ph - margin - 40); };
+        drawLine(img, ox + margin, oy + ph - margin, ox + pw - 15, oy + ph - margin, black);
+        drawLine(img, ox + margin, oy + ph - margin, ox + margin, oy + 40, black);
         // Decade and half-decade ticks on the error axis, labelled in percent.
         for (double ly = std::ceil(ly0 * 2) / 2; ly <= ly1 + 1e-9; ly += 0.5) {
             double y = Y(std::pow(10.0, ly));
@@ -166,13 +169,15 @@ void writePlot(const std::string& path, const std::vector<std::pair<std::string,
             for (double m : {1.0, 2.0, 5.0}) {
                 if ((m != 1.0 && !fine) || std::log10(m) + lx < lx0 - 1e-9 || std::log10(m) + lx > lx1 + 1e-9) continue;
                 double x = X(m * std::pow(10.0, lx));
-                drawLine(img, x, ph - margin, x, ph - margin + 4, black);
+                drawLine(img, x, oy + ph - margin, x, oy + ph - margin + 4, black);
                 char t[32];
                 std::snprintf(t, sizeof(t), "%g", m * std::pow(10.0, lx));
-                drawLabel(img, int(x) - 8, ph - margin + 6, t, 1, black, white);
+                drawLabel(img, int(x) - 8, oy + ph - margin + 6, t, 1, black, white);
             }
-        drawLabel(img, ox + margin + 60, ph - 20, xLabel, 1, black, white);
-        drawLabel(img, ox + margin, 6, title + ": RELATIVE RMSE", 2, black, white);
+        drawLabel(img, ox + margin + 60, oy + ph - 20, xLabel, 1, black, white);
+        // Long scene names get the small font, so the title stays within its panel.
+        const std::string heading = title + ": RELATIVE RMSE";
+        drawLabel(img, ox + 8, oy + 6, heading, heading.size() > 24 ? 1 : 2, black, white);
         // The N^(-alpha/2) slope of a fixed schedule's noise, through the last point of the first curve.
         if (!curves.empty() && !curves[0].points.empty()) {
             auto [xe, ye] = curves[0].points.back();
@@ -180,9 +185,9 @@ void writePlot(const std::string& path, const std::vector<std::pair<std::string,
             drawLine(img, X(xs), Y(std::min(ys, std::pow(10.0, ly1))), X(xe), Y(ye), grey);
             char t[48];
             std::snprintf(t, sizeof(t), "GREY: SLOPE -%.2g", alpha / 2);
-            drawLabel(img, ox + pw - 200, 46, t, 1, Rgb(0.3f), white);
+            drawLabel(img, ox + pw - 200, oy + 46, t, 1, Rgb(0.3f), white);
         }
-        int legendY = 60;
+        int legendY = oy + 60;
         for (const Curve& c : curves) {
             for (size_t i = 1; i < c.points.size(); ++i)
                 drawLine(img, X(c.points[i - 1].first), Y(c.points[i - 1].second), X(c.points[i].first),
