@@ -29,8 +29,10 @@ constexpr uint32_t kLibrarySpp = 32;
 /// Per-pixel luminance of a few passes at size x size; fails the test on a non-finite pixel.
 /// `sceneRelativeRadii`: radii of 0.5% / 2% of the scene's diagonal instead of the automatic ones.
 std::vector<double> renderLuminance(const Scene& scene, int size, int passes, uint32_t photons,
-                                    const std::string& evidence, bool sceneRelativeRadii = false) {
+                                    const std::string& evidence, bool sceneRelativeRadii = false,
+                                    const std::string& directLight = "on") {
     RenderSettings rs;
+    rs.directLight = directLight;
     rs.width = rs.height = size;
     rs.passes = uint64_t(passes);
     rs.photonsPerPass = photons;
