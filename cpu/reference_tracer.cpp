@@ -290,36 +290,6 @@ Rgb ReferenceTracer::pointLightInScattering(const Ray& seg, MediumId medium, Rng
     return trCamera * med.sigmaSAt(x) * ls.incident * trLight * (phase / (pdfT * ls.pdf));
 }
 
-Rgb ReferenceTracer::shadowTransmittance(const Vec3& origin, const DirectLightSample& light, MediumId medium,
-                                         Rng& rng) const {
-    const Vec3 d = light.wi;
-    const bool finite = std::isfinite(light.distance);
-    // Stop just short of an emissive triangle so the shadow ray does not hit the light itself.
-    const Vec3 target = light.delta ? light.point : m_rt.offsetOrigin(light.point, light.normal, -d);
-    Ray ray{origin, d, 0.0f, finite ? dot(target - origin, d) : kInfinity};
-    Rgb tr(1.0f);
-    for (int crossing = 0; crossing <= kMaxInterfaceCrossings; ++crossing) {
-        if (!(ray.tMax > 0)) return tr;
-        SurfaceHit hit;
-        bool surface = m_rt.intersect(ray, &hit);
-        float tEnd = surface ? hit.t : ray.tMax;
-        if (medium != kVacuum) {
-            Ray seg;
-            if (m_rt.mediumSegment(ray.o, d, tEnd, &seg)) {
-                tr *= estimateTransmittance(m_scene.media[medium], seg, seg.tMax, rng);
-                if (tr.isBlack()) return tr;
-            }
-        }
-        if (!surface) return tr;
-        const TriangleMesh& mesh = m_scene.meshes[hit.mesh];
-        if (m_scene.materials[mesh.material].type != MaterialType::Interface) return Rgb(0.0f);
-        medium = dot(d, hit.ng) < 0 ? mesh.interiorMedium : mesh.exteriorMedium;
-        ray.o = m_rt.offsetOrigin(hit.p, hit.ng, d);
-        ray.tMax = finite ? dot(target - ray.o, d) : kInfinity;
-    }
-    return Rgb(0.0f);
-}
-
 Scene withoutSpecularSurfaces(const Scene& scene) {
     Scene s = scene;
     for (Material& m : s.materials)
