@@ -254,6 +254,7 @@ TEST(RadiusDefaults, SurfacePhotonsNearALightGetTheConesRadius) {
     in.height = 32;
     in.photonsPerPass = 2000;
     in.passes = 20;
+    in.directLight = "off";  // photons for the direct light too (with shadow rays none are stored)
     PassRenderer r(s, in);
     const double reach = r.radii().coneReach;
     ASSERT_GT(reach, 0.1) << "the cone is on and reaches the back wall";
