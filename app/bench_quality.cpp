@@ -114,7 +114,7 @@ ImageError measure(const Image& x, const Reference& ref) {
 
 struct Curve {
     std::string label;
-    std::vector<std::pair<double, double>> points;  // (passes, relative RMSE)
+    std::vector<std::pair<double, double>> points;  // (passes or CPU seconds, relative RMSE)
     Rgb color;
 };
 
@@ -129,11 +129,15 @@ void drawLine(Image& img, double x0, double y0, double x1, double y1, const Rgb&
     }
 }
 
-/// A log-log plot of relative RMSE against passes, one panel per scene, drawn into a PNG.
+/// A log-log plot of relative RMSE against `xLabel` (passes, or CPU seconds), one panel per scene,
+/// drawn into a PNG. Grey: the N^(-alpha/2) slope of a fixed schedule's noise (time is proportional
+/// to N, so the slope is the same against time) through the last point of the first curve.
 void writePlot(const std::string& path, const std::vector<std::pair<std::string, std::vector<Curve>>>& panels,
-               double alpha) {
+               double alpha, const std::string& xLabel) {
     const int pw = 420, ph = 320, margin = 50;
-    Image img(pw * int(panels.size()), ph);
+    const int columns = std::min<int>(3, std::max<int>(1, int(panels.size())));
+    const int rows = (int(panels.size()) + columns - 1) / columns;
+    Image img(pw * columns, ph * std::max(1, rows));
     const Rgb white(50.0f), grey(0.6f), black(0.0f);
     for (Rgb& p : img.pixels) p = white;
     for (size_t k = 0; k < panels.size(); ++k) {
@@ -145,11 +149,12 @@ void writePlot(const std::string& path, const std::vector<std::pair<std::string,
         if (!(xmax > xmin) || !(ymax > 0)) continue;
         double lx0 = std::log10(xmin), lx1 = std::log10(xmax), ly0 = std::floor(std::log10(ymin) * 4) / 4,
                ly1 = std::ceil(std::log10(ymax) * 4) / 4;
-        int ox = int(k) * pw;
+        // Panels in rows of three; oy moves every y of this panel down to its row.
+        const int ox = int(k % size_t(columns)) * pw, oy = int(k / size_t(columns)) * ph;
         auto X = [&](double x) { return ox + margin + (std::log10(x) - lx0) / (lx1 - lx0) * (pw - margin - 15); };
-        auto Y = [&](double y) { return ph - margin - (std::log10(y) - ly0) / (ly1 - ly0) * (ph - margin - 40); };
-        drawLine(img, ox + margin, ph - margin, ox + pw - 15, ph - margin, black);
-        drawLine(img, ox + margin, ph - margin, ox + margin, 40, black);
+        auto Y = [&](double y) { return oy + ph - margin - (std::log10(y) - ly0) / (ly1 - ly0) * (ph - margin - 40); };
+        drawLine(img, ox + margin, oy + ph - margin, ox + pw - 15, oy + ph - margin, black);
+        drawLine(img, ox + margin, oy + ph - margin, ox + margin, oy + 40, black);
         // Decade and half-decade ticks on the error axis, labelled in percent.
         for (double ly = std::ceil(ly0 * 2) / 2; ly <= ly1 + 1e-9; ly += 0.5) {
             double y = Y(std::pow(10.0, ly));
@@ -158,15 +163,21 @@ void writePlot(const std::string& path, const std::vector<std::pair<std::string,
             std::snprintf(t, sizeof(t), "%.3g%%", 100 * std::pow(10.0, ly));
             drawLabel(img, ox + 2, int(y) - 5, t, 1, black, white);
         }
-        for (double lx = std::ceil(lx0); lx <= lx1 + 1e-9; lx += 1) {
-            double x = X(std::pow(10.0, lx));
-            drawLine(img, x, ph - margin, x, ph - margin + 4, black);
-            char t[32];
-            std::snprintf(t, sizeof(t), "%.0f", std::pow(10.0, lx));
-            drawLabel(img, int(x) - 8, ph - margin + 6, t, 1, black, white);
-        }
-        drawLabel(img, ox + margin + 100, ph - 20, "PASSES (EQUAL WORK)", 1, black, white);
-        drawLabel(img, ox + margin, 6, title + ": RELATIVE RMSE", 2, black, white);
+        // Ticks at 1, 2 and 5 per decade when the axis spans less than two decades.
+        const bool fine = lx1 - lx0 < 2;
+        for (double lx = std::floor(lx0); lx <= lx1 + 1e-9; lx += 1)
+            for (double m : {1.0, 2.0, 5.0}) {
+                if ((m != 1.0 && !fine) || std::log10(m) + lx < lx0 - 1e-9 || std::log10(m) + lx > lx1 + 1e-9) continue;
+                double x = X(m * std::pow(10.0, lx));
+                drawLine(img, x, oy + ph - margin, x, oy + ph - margin + 4, black);
+                char t[32];
+                std::snprintf(t, sizeof(t), "%g", m * std::pow(10.0, lx));
+                drawLabel(img, int(x) - 8, oy + ph - margin + 6, t, 1, black, white);
+            }
+        drawLabel(img, ox + margin + 60, oy + ph - 20, xLabel, 1, black, white);
+        // Long scene names get the small font, so the title stays within its panel.
+        const std::string heading = title + ": RELATIVE RMSE";
+        drawLabel(img, ox + 8, oy + 6, heading, heading.size() > 24 ? 1 : 2, black, white);
         // The N^(-alpha/2) slope of a fixed schedule's noise, through the last point of the first curve.
         if (!curves.empty() && !curves[0].points.empty()) {
             auto [xe, ye] = curves[0].points.back();
@@ -174,9 +185,9 @@ void writePlot(const std::string& path, const std::vector<std::pair<std::string,
             drawLine(img, X(xs), Y(std::min(ys, std::pow(10.0, ly1))), X(xe), Y(ye), grey);
             char t[48];
             std::snprintf(t, sizeof(t), "GREY: SLOPE -%.2g", alpha / 2);
-            drawLabel(img, ox + pw - 200, 46, t, 1, Rgb(0.3f), white);
+            drawLabel(img, ox + pw - 200, oy + 46, t, 1, Rgb(0.3f), white);
         }
-        int legendY = 60;
+        int legendY = oy + 60;
         for (const Curve& c : curves) {
             for (size_t i = 1; i < c.points.size(); ++i)
                 drawLine(img, X(c.points[i - 1].first), Y(c.points[i - 1].second), X(c.points[i].first),
@@ -190,21 +201,90 @@ void writePlot(const std::string& path, const std::vector<std::pair<std::string,
 }
 }  // namespace
 
+namespace {
+/// One render of one setting and seed: the error at doubling pass counts and at its end.
+struct Run {
+    std::vector<double> passes, cpu, relRmse;  ///< at n = 1, 2, 4, ... and the last pass
+    ImageError end;
+    uint64_t passesDone = 0;
+    double cpuSeconds = 0;  ///< process CPU time of the passes (the error measurements excluded)
+    std::unique_ptr<PassRenderer> renderer;
+};
+
+/// Renders passes 0, 1, ... of `s` until `passes` are done, or, with a CPU budget (> 0), until the
+/// passes' CPU time reaches it (at least one pass). The image is the running mean either way, so it
+/// stays a pure function of the pass count; the budget only decides where it stops.
+Run renderRun(const Scene& scene, const RenderSettings& s, const Reference& ref, uint64_t passes, double cpuBudget) {
+    Run run;
+    run.renderer = std::make_unique<PassRenderer>(scene, s);
+    Accumulator acc(s.width, s.height);
+    for (uint64_t i = 0;; ++i) {
+        const double t0 = processCpuSeconds();
+        acc.addPass(run.renderer->renderPass(i));
+        run.cpuSeconds += processCpuSeconds() - t0;
+        const uint64_t n = i + 1;
+        const bool last = cpuBudget > 0 ? run.cpuSeconds >= cpuBudget : n == passes;
+        if ((n & (n - 1)) == 0 || last) {
+            ImageError e = measure(acc.mean(), ref);
+            run.passes.push_back(double(n));
+            run.cpu.push_back(run.cpuSeconds);
+            run.relRmse.push_back(e.relRmse);
+            if (last) run.end = e;
+        }
+        if (last) {
+            run.passesDone = n;
+            return run;
+        }
+    }
+}
+}  // namespace
+
 void runQualityBench(const CommonOptions& common, const QualityBenchOptions& o) {
     std::vector<std::pair<std::string, std::vector<Curve>>> panels;
-    std::printf("quality at equal work: %dx%d, %u photon paths/pass, reference %u spp (its noise removed), %d seed(s)\n",
-                common.settings.width, common.settings.height, common.settings.photonsPerPass, o.referenceSpp, o.seeds);
+    const bool equalTime = o.cpuSeconds > 0;
+    if (equalTime)
+        std::printf("quality at equal time: %.1f CPU s per render (the passes' process CPU time), %dx%d, %u photon "
+                    "paths/pass, reference %u spp (its noise removed), %d seed(s)\n",
+                    o.cpuSeconds, common.settings.width, common.settings.height, common.settings.photonsPerPass,
+                    o.referenceSpp, o.seeds);
+    else
+        std::printf("quality at equal work: %dx%d, %u photon paths/pass, reference %u spp (its noise removed), %d seed(s)\n",
+                    common.settings.width, common.settings.height, common.settings.photonsPerPass, o.referenceSpp,
+                    o.seeds);
     std::printf("  %-16s %-18s %7s %8s %9s %9s %9s %8s\n", "scene", "radii", "passes", "CPU s", "rel RMSE",
                 "(-1% top)", "rel bias", "r_end/px");
-    for (const std::string& entry : o.scenes) {
+    std::vector<std::pair<std::string, bool>> entries;  // (FILE[:PASSES], from the library)
+    for (const std::string& entry : o.scenes) entries.push_back({entry, false});
+    if (!o.library.empty()) {
+        namespace fs = std::filesystem;
+        if (!fs::is_directory(o.library)) throw Error("--quality-library '" + o.library + "': not a folder");
+        std::vector<std::string> files;
+        for (const auto& e : fs::directory_iterator(o.library))
+            if (e.is_regular_file() && e.path().extension() == ".json") files.push_back(e.path().string());
+        std::sort(files.begin(), files.end());
+        for (const std::string& f : files) entries.push_back({f, true});
+    }
+    for (const auto& [entry, fromLibrary] : entries) {
+        // FILE:PASSES; with a CPU budget the pass count is optional (it adds a row planned for it).
         size_t colon = entry.rfind(':');
-        if (colon == std::string::npos) throw Error("--quality-scene '" + entry + "': expected FILE:PASSES");
-        std::string file = entry.substr(0, colon);
-        uint64_t passes = std::stoull(entry.substr(colon + 1));
+        std::string file = entry;
+        uint64_t passes = 0;
+        if (colon != std::string::npos && colon + 1 < entry.size() &&
+            entry.find_first_not_of("0123456789", colon + 1) == std::string::npos) {
+            file = entry.substr(0, colon);
+            passes = std::stoull(entry.substr(colon + 1));
+        }
+        if (passes == 0 && !equalTime)
+            throw Error("--quality-scene '" + entry + "': expected FILE:PASSES (a positive pass count; FILE alone "
+                        "only with --quality-cpu-seconds)");
         SceneFile sf = loadSceneFile(file, {});
+        if (fromLibrary) {
+            sf.scene = withoutSpecularSurfaces(sf.scene);
+            sf.scene.name += "-no-specular";
+        }
         Scene& scene = sf.scene;
         RenderSettings base = common.settings;
-        base.passes = passes;
+        base.passes = passes > 0 ? passes : 1;
         base.timeBudget = 0;
         Reference ref = loadOrRenderReference(scene, scene.name, base, o);
 
@@ -215,60 +295,68 @@ void runQualityBench(const CommonOptions& common, const QualityBenchOptions& o) 
         };
         std::vector<Variant> variants;
         variants.push_back({"LEGACY", withSceneRelativeRadii(base, scene), Rgb(40.0f, 0.0f, 0.0f)});
-        RenderSettings planned = base;
-        variants.push_back({"AUTO, PLANNED", planned, Rgb(0.0f, 0.0f, 40.0f)});
-        RenderSettings noCone = base;
-        noCone.photonAngle = 0;
-        variants.push_back({"AUTO, NO CONE", noCone, Rgb(20.0f, 0.0f, 20.0f)});
         RenderSettings open = base;
         open.plannedPaths = RadiusDefaults::kOpenEndedPathsPerPixel * uint64_t(base.width) * uint64_t(base.height);
-        variants.push_back({"AUTO, OPEN-ENDED", open, Rgb(0.0f, 8.0f, 0.0f)});
+        if (equalTime) {
+            // What `tyndall render --time S` resolves (the open-ended plan), then, given a pass
+            // count, the same planned for it (`--planned-paths`).
+            variants.push_back({"DEFAULTS (--TIME)", open, Rgb(0.0f, 0.0f, 40.0f)});
+            if (passes > 0) {
+                RenderSettings planned = base;
+                planned.plannedPaths = passes * uint64_t(base.photonsPerPass);
+                variants.push_back({"AUTO, PLANNED", planned, Rgb(0.0f, 8.0f, 0.0f)});
+            }
+        } else {
+            variants.push_back({"AUTO, PLANNED", base, Rgb(0.0f, 0.0f, 40.0f)});
+            RenderSettings noCone = base;
+            noCone.photonAngle = 0;
+            variants.push_back({"AUTO, NO CONE", noCone, Rgb(20.0f, 0.0f, 20.0f)});
+            variants.push_back({"AUTO, OPEN-ENDED", open, Rgb(0.0f, 8.0f, 0.0f)});
+        }
 
         std::vector<Curve> curves;
         for (const Variant& v : variants) {
-            Curve curve{v.label, {}, v.color};
-            ImageError e;  // squared errors summed over the seeds, then their root mean square
-            double cpu = 0;
-            std::vector<double> curveSquares;
-            std::unique_ptr<PassRenderer> last;
+            std::vector<Run> runs;
             for (int k = 0; k < o.seeds; ++k) {
                 RenderSettings sk = v.s;
                 sk.seed = base.seed + uint64_t(k);
-                auto renderer = std::make_unique<PassRenderer>(scene, sk);
-                Accumulator acc(base.width, base.height);
-                double t0 = processCpuSeconds();
-                size_t point = 0;
-                for (uint64_t i = 0; i < passes; ++i) {
-                    acc.addPass(renderer->renderPass(i));
-                    uint64_t n = i + 1;
-                    if ((n & (n - 1)) == 0 || n == passes) {
-                        ImageError ek = measure(acc.mean(), ref);
-                        if (point == curveSquares.size()) curveSquares.push_back(0), curve.points.push_back({double(n), 0});
-                        curveSquares[point++] += ek.relRmse * ek.relRmse;
-                        if (n == passes) {
-                            e.relRmse += ek.relRmse * ek.relRmse;
-                            e.relRmse99 += ek.relRmse99 * ek.relRmse99;
-                            e.relBias += ek.relBias;
-                        }
-                    }
-                }
-                cpu += processCpuSeconds() - t0;
-                last = std::move(renderer);
+                runs.push_back(renderRun(scene, sk, ref, passes, o.cpuSeconds));
             }
-            for (size_t i = 0; i < curveSquares.size(); ++i) curve.points[i].second = std::sqrt(curveSquares[i] / o.seeds);
-            e.relRmse = std::sqrt(e.relRmse / o.seeds);
-            e.relRmse99 = std::sqrt(e.relRmse99 / o.seeds);
-            e.relBias /= o.seeds;
-            cpu /= o.seeds;
-            const PassRenderer& renderer = *last;
+            // Over the seeds: errors as root mean squares, bias, CPU time and passes as means. The
+            // curve's points are the doubling pass counts every seed reached (at their mean CPU time),
+            // then the ends.
+            Curve curve{v.label, {}, v.color};
+            size_t shared = runs[0].passes.size() - 1;
+            for (const Run& r : runs) shared = std::min(shared, r.passes.size() - 1);
+            ImageError e;
+            double cpu = 0, passesDone = 0;
+            for (size_t i = 0; i <= shared; ++i) {
+                double x = 0, y = 0;
+                for (const Run& r : runs) {
+                    size_t j = i < shared ? i : r.passes.size() - 1;
+                    x += (equalTime ? r.cpu[j] : r.passes[j]) / o.seeds;
+                    y += r.relRmse[j] * r.relRmse[j] / o.seeds;
+                }
+                if (curve.points.empty() || x > curve.points.back().first) curve.points.push_back({x, std::sqrt(y)});
+            }
+            for (const Run& r : runs) {
+                e.relRmse += r.end.relRmse * r.end.relRmse / o.seeds;
+                e.relRmse99 += r.end.relRmse99 * r.end.relRmse99 / o.seeds;
+                e.relBias += r.end.relBias / o.seeds;
+                cpu += r.cpuSeconds / o.seeds;
+                passesDone += double(r.passesDone) / o.seeds;
+            }
+            e.relRmse = std::sqrt(e.relRmse);
+            e.relRmse99 = std::sqrt(e.relRmse99);
+            const PassRenderer& renderer = *runs.back().renderer;
             const RenderSettings& r = renderer.settings();
             // The beam radius at the end, in pixel footprints where the media are.
             PixelFootprint fp = measurePixelFootprint(renderer.rayTracer(), scene.camera, base.width, base.height);
-            double rEnd = renderer.radii().beamRadiusOf(passes * r.photonsPerPass);
-            std::printf("  %-16s %-18s %7llu %8.1f %8.2f%% %8.2f%% %+8.2f%% %8.2f   (radius %.4g, surface %.4g, offset %llu, "
+            double rEnd = renderer.radii().beamRadiusOf(runs.back().passesDone * r.photonsPerPass);
+            std::printf("  %-16s %-18s %7.0f %8.1f %8.2f%% %8.2f%% %+8.2f%% %8.2f   (radius %.4g, surface %.4g, offset %llu, "
                         "photon angle %.3g)\n",
-                        scene.name.c_str(), v.label.c_str(), (unsigned long long)passes, cpu, 100 * e.relRmse,
-                        100 * e.relRmse99, 100 * e.relBias, rEnd / fp.beam(1.0), r.radius, r.surfaceRadius,
+                        scene.name.c_str(), v.label.c_str(), passesDone, cpu, 100 * e.relRmse, 100 * e.relRmse99,
+                        100 * e.relBias, rEnd / fp.beam(1.0), r.radius, r.surfaceRadius,
                         (unsigned long long)r.radiusOffset, r.photonAngle);
             std::fflush(stdout);
             curves.push_back(std::move(curve));
@@ -276,7 +364,7 @@ void runQualityBench(const CommonOptions& common, const QualityBenchOptions& o) 
         panels.push_back({scene.name, std::move(curves)});
     }
     if (!o.plot.empty()) {
-        writePlot(o.plot, panels, common.settings.alpha);
+        writePlot(o.plot, panels, common.settings.alpha, equalTime ? "CPU SECONDS (EQUAL TIME)" : "PASSES (EQUAL WORK)");
         std::printf("plot -> %s\n", o.plot.c_str());
     }
 }

@@ -1,14 +1,26 @@
 #pragma once
 // `tyndall bench --quality`: image error against a long reference of the in-tree path tracer,
-// for several radius settings at equal work (the same photon paths and passes), in one run.
+// for several radius settings in one run, at equal work (the same passes) or at equal time.
 // Per scene: the reference (cached as <dir>/<scene>-<W>x<H>-<spp>spp.exr, rendered when absent,
 // with its own noise recorded so the figures can remove it), then for each setting a progressive
-// render with the relative RMSE and bias taken at doubling pass counts, and the process CPU time
-// each took (so equal work can be checked against equal time). The settings: today's explicit
-// "legacy" radii (0.5% / 2% of the diagonal, offset 1000), the automatic radii planned for the
+// render with the relative RMSE and bias taken at doubling pass counts and at its end, and the
+// process CPU time its passes took (error measurements excluded).
+//
+// Equal work (FILE:PASSES, no CPU budget): every setting renders the same passes. The settings:
+// the scene-relative "legacy" radii (withSceneRelativeRadii), the automatic radii planned for the
 // pass count, the same without the photon cone (cpu/beam_cone.h), and the automatic radii of an
-// open-ended render. Writes an error-vs-passes log-log
-// plot (PNG) with the N^(-alpha/2) slope drawn.
+// open-ended render. Plot: error against passes.
+//
+// Equal time (cpuSeconds > 0): every render goes on until its passes' process CPU time reaches the
+// budget, so a setting that costs more per pass gets fewer passes. CPU time stands in for wall time
+// on a machine shared with other work (its wall clock measures the neighbours); on an idle machine
+// with T threads busy the two differ by about T (docs/performance.md). The image is still a pure
+// function of the pass count: the budget only decides where the render stops, so a row is
+// reproduced by rendering its printed pass count. The settings: legacy, the defaults of the day as
+// `tyndall render --time` resolves them (the open-ended plan) and, given FILE:PASSES, the automatic
+// radii planned for that pass count. Plot: error against CPU seconds.
+// Both plots are log-log PNGs with the N^(-alpha/2) slope drawn.
+// With a library folder its scenes are added, made valid for the path tracer (withoutSpecularSurfaces).
 #include <string>
 #include <vector>
 
@@ -24,6 +36,12 @@ struct QualityBenchOptions {
     /// Seeds each setting is rendered with (seed, seed + 1, ...): errors are the root mean square
     /// over them, bias the mean (a visible light's central pixel is heavy-tailed: one seed misleads).
     int seeds = 1;
+    /// > 0: equal time, each render stops when its passes' process CPU time reaches this (seconds).
+    double cpuSeconds = 0;
+    /// A folder of scene files (the scene library, scenes/): each *.json after the `scenes`, with
+    /// its mirror and glass surfaces made index-matched Interfaces (withoutSpecularSurfaces), where
+    /// the path tracer is valid; named <scene>-no-specular (also in the reference cache).
+    std::string library;
 };
 
 /// Runs the benchmark; `common` carries size, seed, threads and photons. Prints a table.

@@ -74,7 +74,7 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
     o->qualityOptions.scenes = {"bench/scenes/fog-box.json:1584", "bench/scenes/walls-fog-box.json:421",
                                 "bench/scenes/fog-lamp-box.json:1584"};
     cmd->add_option("--quality-scene", o->qualityOptions.scenes,
-                    "With --quality: FILE:PASSES, repeatable (default: bench/scenes' fog box and fog box with a lamp "
+                    "With --quality: FILE:PASSES (or FILE with --quality-cpu-seconds), repeatable (default: bench/scenes' fog box and fog box with a lamp "
                     "in view at 1584 passes and the box with walls at 421: 60 s at 256x256 on an idle 2-core machine)");
     cmd->add_option("--reference-dir", o->qualityOptions.referenceDir, "With --quality: the reference cache")
         ->capture_default_str();
@@ -86,11 +86,27 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                     "With --quality: render each setting with this many seeds; errors are their root mean square")
         ->check(positiveInteger())
         ->capture_default_str();
-    cmd->add_option("--plot", o->qualityOptions.plot, "With --quality: write the error-vs-passes plot (PNG) (default: none)");
+    cmd->add_option("--quality-cpu-seconds", o->qualityOptions.cpuSeconds,
+                    "With --quality: equal time instead of equal work: every render stops when its passes' process "
+                    "CPU time reaches this many seconds (CPU time for wall time on a shared machine; 117 = 60 s wall "
+                    "with 2 threads on an idle 2-core machine); --quality-scene's :PASSES is then optional and adds "
+                    "a row planned for it (default: 0, equal work)")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--quality-library", o->qualityOptions.library,
+                    "With --quality and --quality-cpu-seconds: also every scene file in this folder (scenes/), its "
+                    "mirrors and glass made index-matched so that the path tracer is valid; replaces the default "
+                    "--quality-scene list unless one is given (default: none)");
+    cmd->add_option("--plot", o->qualityOptions.plot,
+                    "With --quality: write the error plot (PNG): against passes, or against CPU seconds with "
+                    "--quality-cpu-seconds (default: none)");
     cmd->callback([o, &exitCode]() {
         if (o->quality) {
             if (o->common.command->get_option("--photons")->count() == 0) o->common.settings.photonsPerPass = 4000;
             if (o->common.command->get_option("--size")->count() == 0) o->common.size = "256x256";
+            if (!o->qualityOptions.library.empty() && o->common.command->get_option("--quality-scene")->count() == 0)
+                o->qualityOptions.scenes.clear();
+            if (!o->qualityOptions.library.empty() && !(o->qualityOptions.cpuSeconds > 0))
+                throw CLI::ValidationError("--quality-library", "needs --quality-cpu-seconds (library scenes have no pass count)");
             finishOptions(o->common);
             ThreadLimit threads(o->common.settings.threads);
             runQualityBench(o->common, o->qualityOptions);

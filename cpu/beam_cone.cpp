@@ -19,6 +19,12 @@ int pieceOf(double s, double reach) {
 }
 }  // namespace
 
+double surfaceConeScale(double s, double reach) {
+    if (!(reach > 0) || !(s < reach)) return 1.0;
+    static const double floor = std::pow(kConeRatio, 0.5 - kConePieces);
+    return std::max(floor, s / reach);
+}
+
 void appendConeBeam(const PhotonBeam& beam, double s0, double reach, const Medium& medium, const float* freeFlights,
                     int n, std::vector<PhotonBeam>& beams, std::vector<float>& outFreeFlights) {
     auto appendFreeFlights = [&](float shift) {

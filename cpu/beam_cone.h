@@ -19,6 +19,15 @@
 // Path distance only grows along a path, so a path gains at most kConePieces extra beams.
 // Area lights start their paths at the emitter's equivalent radius sqrt(area / 4 pi); directional
 // lights at infinity (no cone).
+//
+// Surface photons get the same cone (surfaceConeScale): a photon stored at path distance s carries
+// the radius r_s,j x min(1, s / reach), floored at the innermost beam piece's 1/8. The irradiance of
+// a point light on a surface at distance s falls as 1/s^2, and the photons' spacing there grows as
+// s, so a radius proportional to s keeps both the kernel's relative bias (~ (r/s)^2) and the photon
+// count within it independent of s. Without it a small surface next to a light (the end cap of a
+// flashlight's handle, 1 cm from the lamp) has its photons spread over a kernel many times its own
+// size, where no camera ray sees them: their light is lost (docs/algorithm.md, "The photon cone").
+// A photon sits at one path distance, so the scale is continuous, not stepped.
 #include <vector>
 
 #include "core/medium.h"
@@ -29,6 +38,10 @@ namespace tyndall {
 /// Pieces inside the reach, and the ratio of their path-distance intervals.
 constexpr int kConePieces = 2;
 constexpr double kConeRatio = 4.0;
+
+/// The factor on a surface photon's radius at path distance `s` from its light: s / reach clamped to
+/// [kConeRatio^(1/2 - kConePieces), 1] (the innermost beam piece's radius factor); 1 when reach <= 0.
+double surfaceConeScale(double s, double reach);
 
 /// Appends `beam` to `beams`, split at the cone's dyadic path distances when its start lies
 /// within `reach` (beam.radius is the full radius R_j); its path distance at t = 0 is `s0`.

@@ -214,7 +214,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
             const Vec3 nf = dot(d, ng) < 0 ? ng : -ng;  // hitSide(hit, d).nf
             SurfacePhoton& sp = out.surfacePhotons.emplace_back();
             sp.position = p;
-            sp.radius = surfaceRadius;
+            sp.radius = surfaceRadius * float(surfaceConeScale(travelled, m_radii.coneReach));
             sp.wi = -d;
             sp.normal = nf;
             sp.power = power;
@@ -247,7 +247,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
             if (deltaDirect && !partly) {  // partly transmissive: already stored for the diffuse base
                 SurfacePhoton& sp = out.surfacePhotons.emplace_back();
                 sp.position = p;
-                sp.radius = surfaceRadius;
+                sp.radius = surfaceRadius * float(surfaceConeScale(travelled, m_radii.coneReach));
                 sp.wi = -d;
                 sp.normal = dot(d, ng) < 0 ? ng : -ng;
                 sp.power = power;

@@ -53,7 +53,8 @@ RenderSettings resolveRadiusDefaults(const RenderSettings& in, const EmbreeScene
     double diagonal = scene.bounds.empty() ? 1.0 : double(length(scene.bounds.diagonal()));
     PixelFootprint fp = measurePixelFootprint(rt, scene.camera, s.width, s.height);
     const double beamEnd = kb * fp.beam(0.005 * diagonal / (k * kb));
-    const double surfaceEnd = ks * fp.surfaces(0.02 * diagonal / (std::sqrt(k) * ks));
+    const double surfaceEnd = std::min(ks * fp.surfaces(0.02 * diagonal / (std::sqrt(k) * ks)),
+                                       RadiusDefaults::kSurfaceEndMaxDiagonal * diagonal);
 
     double endFactor = 1.0 / k;  // beam factor at the end of the plan
     if (s.radiusOffset == RenderSettings::kAutoRadiusOffset) {

@@ -6,7 +6,8 @@
 // sits") and docs/performance.md ("Equal-work quality").
 //
 //   beam radius at the end of the plan    = kBeamEndFootprints    x media footprint
-//   surface radius at the end of the plan = kSurfaceEndFootprints x surface footprint
+//   surface radius at the end of the plan = kSurfaceEndFootprints x surface footprint, at most
+//                                           kSurfaceEndMaxDiagonal x the scene's diagonal
 //   first beam radius                     = kStartOverEnd x the end radius (auto radius)
 //   offset                                = the one whose schedule shrinks the first radius to the
 //                                           end radius over the planned paths (auto offset)
@@ -25,6 +26,12 @@ struct RadiusDefaults {
     static constexpr double kBeamEndFootprints = 1.0;
     static constexpr double kSurfaceEndFootprints = 3.0;
     static constexpr double kStartOverEnd = 4.0;
+    /// The surface radius's ceiling at the end of a plan, as a fraction of the scene's diagonal
+    /// (so it starts at most at twice the 2% of the scene-relative defaults). A kernel loses the light of
+    /// photons near a surface's edges, a loss set by the radius against the scene's objects, not the
+    /// pixel: in coarse images (tens of pixels) 3 footprints are several percent of the scene and
+    /// lose that much of the lit surfaces' light (docs/algorithm.md, "Where the radius sits").
+    static constexpr double kSurfaceEndMaxDiagonal = 0.02;
     /// Horizon of an open-ended render (no pass count, time not yet measured): photon paths per
     /// image pixel, about a minute of a 2-core machine at 256x256 (docs/performance.md).
     static constexpr uint64_t kOpenEndedPathsPerPixel = 100;

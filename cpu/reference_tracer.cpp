@@ -290,4 +290,12 @@ Rgb ReferenceTracer::pointLightInScattering(const Ray& seg, MediumId medium, Rng
     return trCamera * med.sigmaSAt(x) * ls.incident * trLight * (phase / (pdfT * ls.pdf));
 }
 
+Scene withoutSpecularSurfaces(const Scene& scene) {
+    Scene s = scene;
+    for (Material& m : s.materials)
+        if (m.type == MaterialType::Mirror || m.type == MaterialType::Dielectric) m.type = MaterialType::Interface;
+    s.validate();
+    return s;
+}
+
 }  // namespace tyndall

@@ -3,10 +3,12 @@
 // that explicit settings keep their meaning. Quick: no rendering beyond a few tiny passes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "core/radius_schedule.h"
+#include "cpu/beam_cone.h"
 #include "cpu/pass_renderer.h"
 #include "cpu/photon_tracer.h"
 #include "cpu/pixel_footprint.h"
@@ -236,6 +238,69 @@ TEST(RadiusDefaults, ThePhotonConeIsOnForALightInViewAndShapesTheBeams) {
     RenderSettings explicitAngle = explicitRadius;
     explicitAngle.photonAngle = 0.3f;
     EXPECT_EQ(PassRenderer(s, explicitAngle).settings().photonAngle, 0.3f);
+}
+
+TEST(RadiusDefaults, SurfacePhotonsNearALightGetTheConesRadius) {
+    // The light 5 cm in front of the tunnel's back wall, in view: direct photons land within the
+    // cone's reach. A direct photon (it arrives radially from the light) at distance d has at most
+    // the pass's first surface radius x max(1/8, d / reach); every photon at least the pass's last
+    // radius x max(1/8, d / reach) (its path distance is at least d).
+    // Planted bug (run): storing every photon with the full radius fails the first check.
+    Scene s = fogTunnel(4.0f);
+    s.lights[0].position = Vec3(0.0f, 0.0f, -3.95f);
+    s.finalize();
+    RenderSettings in;
+    in.width = 48;
+    in.height = 32;
+    in.photonsPerPass = 2000;
+    in.passes = 20;
+    in.directLight = "off";  // photons for the direct light too (with shadow rays none are stored)
+    PassRenderer r(s, in);
+    const double reach = r.radii().coneReach;
+    ASSERT_GT(reach, 0.1) << "the cone is on and reaches the back wall";
+    const uint64_t pass = 3;
+    const double first = r.radii().surfaceRadiusOf(pass * in.photonsPerPass);
+    const double last = r.radii().surfaceRadiusOf((pass + 1) * in.photonsPerPass - 1);
+    PhotonMap map = r.photonTracer().trace(pass);
+    const Vec3 light = s.lights[0].position;
+    int direct = 0, narrowed = 0;
+    for (const SurfacePhoton& p : map.surfacePhotons) {
+        const double d = length(p.position - light);
+        const double scale = std::clamp(d / reach, 1.0 / 8.0, 1.0);
+        EXPECT_GE(p.radius, last * scale * (1 - 1e-5)) << "at " << d;
+        if (dot(p.wi, (light - p.position) / float(d)) < 1 - 1e-5f) continue;  // not direct
+        ++direct;
+        EXPECT_LE(p.radius, first * scale * (1 + 1e-5)) << "direct photon at " << d;
+        narrowed += scale < 0.5;
+    }
+    EXPECT_GT(narrowed, 100) << "direct photons within half the reach (of " << direct << " direct)";
+    EXPECT_EQ(surfaceConeScale(0.0, 0.0), 1.0) << "no cone: no scale";
+}
+
+TEST(RadiusDefaults, TheSurfaceRadiusIsCappedByTheSceneInCoarseImages) {
+    // 3 footprints of a 12 x 8 image are 6% of the tunnel's diagonal: the cap (2%) binds there (a
+    // kernel that wide loses the light near surfaces' edges); at 256 x 170 (0.3%) it does not.
+    Scene s = fogTunnel(4.0f);
+    const double diagonal = length(s.bounds.diagonal());
+    EmbreeScene rt(s);
+    for (int width : {12, 64, 256}) {
+        RenderSettings in;
+        in.width = width;
+        in.height = width * 2 / 3;
+        in.photonsPerPass = 1000;
+        in.passes = 10;
+        PassRenderer r(s, in);
+        const double end = r.radii().surfaceRadiusOf(r.settings().plannedPaths);
+        const double footprints = RadiusDefaults::kSurfaceEndFootprints *
+                                  measurePixelFootprint(rt, s.camera, in.width, in.height).surface;
+        const double cap = RadiusDefaults::kSurfaceEndMaxDiagonal * diagonal;
+        EXPECT_NEAR(end, std::min(footprints, cap), 1e-3 * end) << width << " pixels wide";
+        if (width == 12) {
+            EXPECT_GT(footprints, 2 * cap) << "the coarse image is one the cap binds in";
+        } else if (width == 256) {
+            EXPECT_LT(footprints, cap) << "the fine image is one it does not";
+        }
+    }
 }
 
 TEST(RadiusSchedule, OffsetForRatioInvertsTheSchedule) {

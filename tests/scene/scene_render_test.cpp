@@ -26,12 +26,11 @@ constexpr int kLibraryPasses = 4;
 constexpr uint32_t kLibraryPhotons = 4000;
 constexpr uint32_t kLibrarySpp = 32;
 
-/// Mean luminance of a few passes at size x size; fails the test on a non-finite pixel.
-/// `sceneRelativeRadii`: radii of 0.5% / 2% of the scene's diagonal instead of the automatic ones
-/// (which end at 1 / 3 pixel footprints: at 24 x 24 a surface kernel an eighth of the image wide,
-/// whose boundary bias is not what an energy check is about).
-double renderMeanLuminance(const Scene& scene, int size, int passes, uint32_t photons, const std::string& evidence,
-                           bool sceneRelativeRadii = false, const std::string& directLight = "on") {
+/// Per-pixel luminance of a few passes at size x size; fails the test on a non-finite pixel.
+/// `sceneRelativeRadii`: radii of 0.5% / 2% of the scene's diagonal instead of the automatic ones.
+std::vector<double> renderLuminance(const Scene& scene, int size, int passes, uint32_t photons,
+                                    const std::string& evidence, bool sceneRelativeRadii = false,
+                                    const std::string& directLight = "on") {
     RenderSettings rs;
     rs.directLight = directLight;
     rs.width = rs.height = size;
@@ -42,41 +41,49 @@ double renderMeanLuminance(const Scene& scene, int size, int passes, uint32_t ph
     Accumulator acc(size, size);
     renderProgressive(renderer, acc, 0);
     Image img = acc.mean();
-    double sum = 0;
+    std::vector<double> lum;
     bool finite = true;
     for (const Rgb& p : img.pixels) {
         finite &= isFinite(p);
-        sum += p.luminance();
+        lum.push_back(p.luminance());
     }
-    double mean = sum / double(img.pixels.size());
-    if (!finite || !(mean > 0)) writeImage(test::outputDir() + "/" + evidence + ".exr", img);
+    double sum = 0;
+    for (double l : lum) sum += l;
+    if (!finite || !(sum > 0)) writeImage(test::outputDir() + "/" + evidence + ".exr", img);
     EXPECT_TRUE(finite) << scene.source << ": non-finite pixels (image in test-output/" << evidence << ".exr)";
-    return mean;
+    return lum;
 }
 
-/// Mean luminance of a size x size path-traced image (`spp` samples per pixel).
-double pathTracedMeanLuminance(const Scene& scene, int size, uint32_t spp, const std::string& evidence) {
+double mean(const std::vector<double>& v) {
+    double sum = 0;
+    for (double x : v) sum += x;
+    return sum / double(v.size());
+}
+
+/// Mean luminance of a few passes at size x size; fails the test on a non-finite pixel.
+double renderMeanLuminance(const Scene& scene, int size, int passes, uint32_t photons, const std::string& evidence) {
+    return mean(renderLuminance(scene, size, passes, photons, evidence));
+}
+
+/// Per-pixel luminance of a size x size path-traced image (`spp` samples per pixel).
+std::vector<double> pathTracedLuminance(const Scene& scene, int size, uint32_t spp, const std::string& evidence) {
     ReferenceSettings rs;
     rs.width = rs.height = size;
     rs.samplesPerPixel = spp;
     rs.seed = 5;
     EmbreeScene rt(scene);
     Image img = ReferenceTracer(rt, rs).render().mean;
-    double sum = 0;
-    for (const Rgb& p : img.pixels) sum += p.luminance();
+    std::vector<double> lum;
+    for (const Rgb& p : img.pixels) lum.push_back(p.luminance());
     if (::testing::Test::HasFailure()) writeImage(test::outputDir() + "/" + evidence + ".exr", img);
-    return sum / double(img.pixels.size());
+    return lum;
 }
 
-/// `scene` with every mirror and glass surface made an index-matched Interface (media kept), so
-/// that no delta light reaches anything through a specular bounce: where the path tracer is
-/// valid (docs/reference.md, "What it cannot compute").
-Scene withoutSpecularSurfaces(const Scene& scene) {
-    Scene s = scene;
-    for (Material& m : s.materials)
-        if (m.type == MaterialType::Mirror || m.type == MaterialType::Dielectric) m.type = MaterialType::Interface;
-    s.validate();
-    return s;
+/// Mean of `v` with every value clipped at `ceiling`.
+double clippedMean(const std::vector<double>& v, double ceiling) {
+    double sum = 0;
+    for (double x : v) sum += std::min(x, ceiling);
+    return sum / double(v.size());
 }
 
 std::vector<fs::path> filesWithExtension(const fs::path& dir, std::initializer_list<const char*> exts) {
@@ -151,10 +158,16 @@ TEST(SceneLibrary, EveryScenesFileLoadsAndRenders) {
 }
 
 TEST(SceneLibrary, EveryScenesMeanAgreesWithThePathTracer) {
-    // 24 x 24: PPB kPasses x kPhotons against kSpp path-traced samples per pixel. Both image means
-    // are within a few percent of their limits here (measured per scene below); 20% leaves room
-    // for PPB's kernel bias at this coarse size while a lost light, medium or emitter, a factor
-    // of pi or a wrong unit in either renderer is far outside.
+    // 24 x 24: PPB kPasses x kPhotons (the default radii) against kSpp path-traced samples per
+    // pixel. Both image means are within a few percent of their limits here (measured per scene
+    // below); 20% leaves room for PPB's kernel bias at this coarse size while a lost light, medium
+    // or emitter, a factor of pi or a wrong unit in either renderer is far outside.
+    // Pixels are clipped at kClip x the path tracer's median luminance in both images: a sub-pixel
+    // surface next to a point light (the flashlight's handle cap, 1 cm from its lamp, holds half
+    // the image's light in two pixels: path tracer 0.237 at 1024 and 4096 spp) is heavy-tailed in
+    // both renderers at these budgets (PPB 0.17-0.51 over seeds 1-5, the path tracer 0.18 at
+    // 32 spp), a lottery an energy check of the whole image should not depend on.
+    constexpr double kClip = 20;
     const int size = 24, passes = kLibraryPasses;
     std::vector<fs::path> files = filesWithExtension(fs::path(TYNDALL_SOURCE_DIR) / "scenes", {".json"});
     ASSERT_GE(files.size(), 1u);
@@ -163,23 +176,16 @@ TEST(SceneLibrary, EveryScenesMeanAgreesWithThePathTracer) {
         SceneFile sf = loadSceneFile(f.string());
         Scene scene = withoutSpecularSurfaces(sf.scene);
         std::string name = "library-vs-path-tracer-" + f.stem().string();
-        // Scene-relative radii: with the automatic ones the flashlight measured 0.70 here (its
-        // lamp's glow and spot on a wall, blurred by kernels of 1 and 3 footprints of a 24 x 24
-        // image); with these, 0.81.
-        // The flashlight's lamp sits 1.2 cm from the handle's end cap (irradiance ~2e4 W/m^2, ~1e4
-        // times the room's): with shadow rays the cap's pixel is as bright as the path tracer's, and
-        // at 24 x 24 and 4 passes the image mean is the luck of how often the jitter lands on it
-        // (measured: PPB / PT 1.40 at 4 passes / 32 spp, 1.24 at 32 / 256, the path tracer itself
-        // 0.177 -> 0.226). Photons alone blur that spot under the kernel (0.81, stable), which is
-        // what this energy check can judge at this size; direct light is tested in
-        // tests/cpu/direct_light_test.cpp and by every other scene here.
-        const std::string directLight = f.stem() == "flashlight" ? "off" : "on";
-        double ppb = renderMeanLuminance(scene, size, passes, kLibraryPhotons, name + "-ppb", true, directLight);
-        double pt = pathTracedMeanLuminance(scene, size, kLibrarySpp, name + "-reference");
-        std::printf("%s: mean luminance PPB %.5g, path tracer %.5g, ratio %.3f\n", f.filename().c_str(), ppb, pt,
-                    ppb / pt);
-        ASSERT_GT(pt, 0.0) << "the path tracer sees nothing: the comparison would be empty";
-        EXPECT_NEAR(ppb / pt, 1.0, 0.2);
+        std::vector<double> ppb = renderLuminance(scene, size, passes, kLibraryPhotons, name + "-ppb");
+        std::vector<double> pt = pathTracedLuminance(scene, size, kLibrarySpp, name + "-reference");
+        std::vector<double> sorted = pt;
+        std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+        const double ceiling = kClip * sorted[sorted.size() / 2];
+        const double ppbMean = clippedMean(ppb, ceiling), ptMean = clippedMean(pt, ceiling);
+        std::printf("%s: mean luminance PPB %.5g, path tracer %.5g, ratio %.3f (unclipped %.5g / %.5g = %.3f)\n",
+                    f.filename().c_str(), ppbMean, ptMean, ppbMean / ptMean, mean(ppb), mean(pt), mean(ppb) / mean(pt));
+        ASSERT_GT(ptMean, 0.0) << "the path tracer sees nothing: the comparison would be empty";
+        EXPECT_NEAR(ppbMean / ptMean, 1.0, 0.2);
     }
 }
 
