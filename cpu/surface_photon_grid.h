@@ -42,7 +42,8 @@ public:
 
     /// Calls visit(photon, d2) once for every photon within its own radius of x (d2 = |x - x_p|^2
     /// < r_p^2) and near the plane through x with unit normal n (|(x_p - x).n| <= r_p / 4), in
-    /// an order fixed by the photons and x alone. The query density() and gather() share.
+    /// an order fixed by the photons and x alone (ascending photon order). The query density()
+    /// and gather() share. `visit` must not query this grid (it scans the thread's cached region).
     template <class Visit>
     void forEachNear(const Vec3& x, const Vec3& n, const Visit& visit) const;
     /// forEachNear without the per-thread cache (the definition the cache must reproduce).
