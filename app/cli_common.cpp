@@ -109,6 +109,14 @@ void addPpbOptions(CLI::App* cmd, CommonOptions& o) {
         ->check(nonNegativeInteger())
         ->capture_default_str();
     addSimdOption(cmd, o);
+    addDirectLightOption(cmd, o);
+}
+
+void addDirectLightOption(CLI::App* cmd, CommonOptions& o) {
+    cmd->add_option("--direct-light", o.settings.directLight,
+                    "on|off: direct light on diffuse surfaces by shadow rays; off = surface photons only "
+                    "(docs/algorithm.md)")
+        ->capture_default_str();
 }
 
 void addSimdOption(CLI::App* cmd, CommonOptions& o) {
@@ -144,7 +152,8 @@ nlohmann::json explicitSettings(const CommonOptions& o) {
                                                                       {"--threads", "threads"},
                                                                       {"--gpu", "gpu"},
                                                                       {"--memory", "memory"},
-                                                                      {"--simd", "simd"}};
+                                                                      {"--simd", "simd"},
+                                                                      {"--direct-light", "direct_light"}};
     nlohmann::json all = o.settings.toJson(), given = nlohmann::json::object();
     auto isGiven = [&](const char* name) {
         const CLI::Option* opt = o.command ? o.command->get_option_no_throw(name) : nullptr;

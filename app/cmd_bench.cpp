@@ -65,6 +65,7 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
         ->check(nonNegativeInteger())
         ->capture_default_str();
     addSimdOption(cmd, o->common);
+    addDirectLightOption(cmd, o->common);
     cmd->add_flag("--no-hybrid", o->noHybrid, "Skip the hybrid (GL splat) figures");
     cmd->add_flag("--quality", o->quality,
                   "Instead of throughput: image error against cached path-traced references, legacy against "

@@ -84,6 +84,8 @@ RenderRecord readRecord(const Checkpoint& c, const std::string& where) {
         r.camera = j.at("camera").get<std::string>();
         r.sceneHash = std::stoull(j.at("scene_hash").get<std::string>(), nullptr, 16);
         r.settings = RenderSettings::fromJson(j.at("settings"), where + ": settings");
+        // Checkpoints from before --direct-light rendered with surface photons alone.
+        if (!j.at("settings").contains("direct_light")) r.settings.directLight = "off";
         r.output = j.at("output").get<std::string>();
         r.exposure = j.at("exposure").get<float>();
         r.aov = j.at("aov").get<bool>();

@@ -23,6 +23,10 @@ struct PhotonBeam {
 };
 static_assert(sizeof(PhotonBeam) == 48, "PhotonBeam must stay three vec4 rows for the GL upload");
 
+/// SurfacePhoton::flags bits.
+inline constexpr uint8_t kPhotonDirect = 1;     ///< no scattering vertex (surface or medium) since the light
+inline constexpr uint8_t kPhotonDeltaPath = 2;  ///< emitted by a delta light and every vertex since was a delta interaction
+
 /// A photon stored on a diffuse surface. `wi` points from the surface toward where the photon came
 /// from; `power` as for beams.
 struct SurfacePhoton {
@@ -31,6 +35,9 @@ struct SurfacePhoton {
     Vec3 wi;
     Vec3 normal;  ///< geometric normal on the side the photon arrived from
     Rgb power;
+    /// kPhotonDirect | kPhotonDeltaPath, set by the photon tracer at every stored photon. Interface
+    /// crossings (index-matched medium boundaries) are not scattering vertices.
+    uint8_t flags = 0;
 };
 
 /// Everything photon tracing produced for one pass.

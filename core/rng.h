@@ -13,6 +13,7 @@ enum class StreamPurpose : uint32_t {
     PixelJitter = 3,
     ReferencePath = 4,
     Transmittance = 5,
+    DirectLight = 6,  ///< a camera path's shadow rays (--direct-light): drawn apart from its own stream
     Test = 99,
 };
 

@@ -26,6 +26,8 @@ void RenderSettings::validate() const {
         fail("--memory must be in 64..2^30 MiB (got " + std::to_string(memoryMiB) + ")");
     if (gpu != "auto" && gpu != "on" && gpu != "off") fail("--gpu must be auto, on or off (got '" + gpu + "')");
     if (simd != "on" && simd != "off") fail("--simd must be on or off (got '" + simd + "')");
+    if (directLight != "on" && directLight != "off")
+        fail("--direct-light must be on or off (got '" + directLight + "')");
 }
 
 nlohmann::json RenderSettings::toJson() const {
@@ -47,7 +49,8 @@ nlohmann::json RenderSettings::toJson() const {
             {"free_flights", freeFlightSamples},
             {"gpu", gpu},
             {"memory", memoryMiB},
-            {"simd", simd}};
+            {"simd", simd},
+            {"direct_light", directLight}};
 }
 
 namespace {
@@ -80,7 +83,8 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
     if (!j.is_object()) throw Error(where + ": expected an object of render settings");
     static const char* kKeys[] = {"width", "height", "passes", "time", "photons", "alpha", "radius",
                                   "surface_radius", "radius_offset", "planned_paths", "photon_angle", "seed", "threads",
-                                  "max_photon_bounces", "max_camera_bounces", "free_flights", "gpu", "memory", "simd"};
+                                  "max_photon_bounces", "max_camera_bounces", "free_flights", "gpu", "memory", "simd",
+                                  "direct_light"};
     for (auto it = j.begin(); it != j.end(); ++it) {
         bool known = false;
         for (const char* k : kKeys) known |= it.key() == k;
@@ -115,6 +119,7 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
     read(j, "gpu", s.gpu, where);
     read(j, "memory", s.memoryMiB, where);
     read(j, "simd", s.simd, where);
+    read(j, "direct_light", s.directLight, where);
     return s;
 }
 

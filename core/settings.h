@@ -47,6 +47,10 @@ struct RenderSettings {
     /// on | off: the CPU beam rasterizer's SIMD kernel (off = the scalar definition; the two agree
     /// to ~1e-7 relative per pixel, docs/performance.md)
     std::string simd = "on";
+    /// on | off: direct light on diffuse surfaces by shadow rays (next-event estimation,
+    /// cpu/direct_light.h) instead of the surface photons that arrive straight from a light, which
+    /// are then not stored (docs/algorithm.md, "Direct light by shadow rays"). off = photons only.
+    std::string directLight = "on";
 
     /// Throws Error naming the option when a value is out of range.
     void validate() const;

@@ -7,6 +7,7 @@
 
 #include "core/beam_estimator.h"
 #include "core/transmittance.h"
+#include "cpu/direct_light.h"
 #include "cpu/free_flight.h"
 #include "cpu/surface_scattering.h"
 
@@ -43,6 +44,13 @@ Rgb gatherBeams(const Scene& scene, const PhotonMap& photons, const std::vector<
 CameraTracer::CameraTracer(const EmbreeScene& rt, const RenderSettings& settings)
     : m_rt(rt), m_scene(rt.scene()), m_settings(settings) {
     for (const Medium& m : m_scene.media) m_anyHeterogeneous |= !m.homogeneous();
+    if (settings.directLight == "on") {
+        m_lights = std::make_unique<LightSampler>(m_scene);
+        m_direct = std::make_unique<DirectLight>(m_rt, *m_lights);
+        // Photons from glossy surfaces (kPhotonDirect ones among them) reach a diffuse gather only
+        // where the two surfaces meet in one plane; without glossy materials no stored photon is direct.
+        for (const Material& m : m_scene.materials) m_skipDirectPhotons |= m.isGlossy();
+    }
 }
 
 namespace {
@@ -209,11 +217,22 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                 if (diffuseBaseChosen(mat, sp, mat.isPartlyTransmissive() ? rng.uniform() : 0.0f)) {
                     // With a shading normal each photon is weighted by its light-side cosine ratio
                     // (surface_scattering.h, shadingCosineRatio); the same photons as density().
-                    Rgb E = !hasShadingNormal(hit)
+                    // With direct light, photons straight from a light are not counted (the photon
+                    // tracer stores none on diffuse surfaces; glossy ones hold some).
+                    const uint8_t skip = m_skipDirectPhotons ? kPhotonDirect : 0;
+                    Rgb E = !hasShadingNormal(hit) && skip == 0
                                 ? surfacePhotons.density(hit.p, side.nf)
                                 : surfacePhotons.gather(hit.p, side.nf, [&](const SurfacePhoton& p) {
-                                      return dot(p.normal, side.nf) < 0.7f ? 0.0f : shadingCosineRatio(side, p.wi);
+                                      return dot(p.normal, side.nf) < 0.7f || (p.flags & skip)
+                                                 ? 0.0f
+                                                 : shadingCosineRatio(side, p.wi);
                                   });
+                    // Direct light by a shadow ray (once per pass: with the emission), from its own
+                    // stream so the path's other draws do not move; none toward a black surface.
+                    if (m_direct && emission && !sp.baseColor.isBlack()) {
+                        Rng neeRng = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::DirectLight);
+                        E += m_direct->diffuse(hit, side, medium, neeRng, false);
+                    }
                     Rgb density = throughput * sp.baseColor * kInvPi * E;
                     L += density;
                     Lsurface += density;

@@ -8,13 +8,15 @@
 //                                           through mirrors and glass (Fresnel choice), every later
 //                                           segment inside a medium gathering the pass's beams
 //                                           through the BeamBvh, a diffuse hit ending the path with
-//                                           the surface-photon estimate
+//                                           the surface-photon estimate and, with --direct-light on,
+//                                           a shadow ray to a light (cpu/direct_light.h) for the
+//                                           light that arrives there without scattering
 // PassRenderer::traceCamera runs both. The camera is read from the scene at each tracePrimary call, so a camera
 // that moves between passes (the viewer's reset) is followed, the medium it sits in included.
 //
 // Deterministic: pixel p of pass i draws its film/lens jitter and its primary stored distances
-// from Rng::forKey(seed, i, p, PixelJitter) and the rest of its path from (seed, i, p, CameraPath),
-// so the split changes no bit of the image.
+// from Rng::forKey(seed, i, p, PixelJitter), the rest of its path from (seed, i, p, CameraPath) and
+// its shadow ray from (seed, i, p, DirectLight), so the split changes no bit of the image.
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -24,6 +26,7 @@
 #include "core/primary_segments.h"
 #include "core/settings.h"
 #include "cpu/beam_bvh.h"
+#include "cpu/direct_light.h"
 #include "cpu/embree_scene.h"
 #include "cpu/surface_photon_grid.h"
 
@@ -101,7 +104,8 @@ public:
     PrimaryPass tracePrimary(uint64_t pass) const;
     /// The pass's radiance except the primary segments' media; `stats.rays` counts this stage's.
     /// With `photons` one batch of the pass, the photon estimates of that batch; `emission` adds
-    /// what the paths see of emitters, which belongs to one batch only (the pass's first).
+    /// what the paths see of emitters and the direct light of their shadow rays, which belong to
+    /// one batch only (the pass's first).
     /// `layers`, when given, also receives that radiance split in two (it does not change it).
     Image traceSecondary(const PrimaryPass& primary, const PhotonMap& photons, const BeamBvh& beams,
                          const SurfacePhotonGrid& surface, CameraPassStats* stats,
@@ -119,6 +123,10 @@ private:
     const Scene& m_scene;
     RenderSettings m_settings;
     bool m_anyHeterogeneous = false;
+    /// --direct-light on: the light sampler and shadow rays of the diffuse ends; null when off.
+    std::unique_ptr<LightSampler> m_lights;
+    std::unique_ptr<DirectLight> m_direct;
+    bool m_skipDirectPhotons = false;  ///< the diffuse gather must test kPhotonDirect (glossy photons)
     std::shared_ptr<HitPool> m_hitPool = std::make_shared<HitPool>();
     std::shared_ptr<PrimarySegmentPool> m_segmentPool = std::make_shared<PrimarySegmentPool>();
 };

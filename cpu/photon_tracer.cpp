@@ -32,6 +32,7 @@ PhotonTracer::PhotonTracer(const EmbreeScene& rt, const RenderSettings& settings
     for (const Light& l : m_scene.lights)
         m_lightMedium.push_back(l.type == LightType::Directional ? m_scene.globalMedium : m_rt.mediumAt(l.position));
     for (const Medium& m : m_scene.media) m_anyHeterogeneous |= !m.homogeneous();
+    m_directLight = settings.directLight == "on";
     // The photon cone of an area light starts at its equivalent radius sqrt(area / 4 pi).
     for (const TriangleMesh& mesh : m_scene.meshes) {
         double area = 0;
@@ -123,6 +124,9 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
     // From a point, spot or directional light through delta interactions only: what glossy surfaces
     // store (docs/algorithm.md, "Glossy vertices").
     bool deltaDirect = e.light >= 0;
+    // No scattering vertex since the light (Interface crossings are none): with --direct-light on,
+    // shadow rays carry this light to diffuse surfaces, so such photons are not stored there.
+    bool direct = true;
     // Path distance from the light at o (the photon cone, cpu/beam_cone.h).
     double travelled = e.light < 0                                                ? m_emitterStart[e.emitterMesh]
                        : m_scene.lights[e.light].type == LightType::Directional ? kInfinity
@@ -179,6 +183,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
                 travelled += double(t0) + double(ff.t);
                 o = x;
                 deltaDirect = false;
+                direct = false;
                 continue;
             }
         }
@@ -205,7 +210,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
         const bool partly = mat.isPartlyTransmissive();
         SurfacePoint at;
         if (partly) at = evalSurface(m_scene, mesh, rh.hit.primID, rh.hit.u, rh.hit.v, surfaceRadius);
-        if (mat.type == MaterialType::Diffuse || (partly && at.transmission < 1.0f)) {
+        if ((mat.type == MaterialType::Diffuse || (partly && at.transmission < 1.0f)) && !(direct && m_directLight)) {
             const Vec3 nf = dot(d, ng) < 0 ? ng : -ng;  // hitSide(hit, d).nf
             SurfacePhoton& sp = out.surfacePhotons.emplace_back();
             sp.position = p;
@@ -213,6 +218,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
             sp.wi = -d;
             sp.normal = nf;
             sp.power = power;
+            sp.flags = uint8_t((direct ? kPhotonDirect : 0) | (deltaDirect ? kPhotonDeltaPath : 0));
             // alphaMode BLEND stops a photon with probability alpha (the filter): the stored photons
             // stand for the irradiance on the covered part, so they carry 1/alpha (the camera path
             // stops with probability alpha too, and must not apply the coverage twice).
@@ -233,6 +239,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
             d = Frame(side.nf).toWorld(sampleCosineHemisphere(rng.uniform(), rng.uniform()));
             o = m_rt.offsetOrigin(p, tHit, side.nf, d);
             deltaDirect = false;
+            direct = false;
             continue;
         }
         SpecularEvent ev;
@@ -244,6 +251,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
                 sp.wi = -d;
                 sp.normal = dot(d, ng) < 0 ? ng : -ng;
                 sp.power = power;
+                sp.flags = uint8_t((direct ? kPhotonDirect : 0) | kPhotonDeltaPath);
             }
             const SurfacePoint at = evalSurface(m_scene, mesh, rh.hit.primID, rh.hit.u, rh.hit.v, surfaceRadius);
             const GlossyBsdf bsdf = glossyBsdf(mat, at, hit, d);
@@ -261,6 +269,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
             if (!sampleSpecular(mat, tint, mesh, hit, d, medium, rng.uniform(), TransportMode::Importance, &ev))
                 return;
         }
+        direct = direct && mat.type == MaterialType::Interface;  // a glossy, mirror or glass vertex scatters
         if (hasShadingNormal(hit)) ev.weight *= shadingNormalAdjoint(hit, -d, ev.d);
         power *= ev.weight;
         if (power.isBlack()) return;

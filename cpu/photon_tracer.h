@@ -2,7 +2,9 @@
 // Photon tracing (PPB step 1): emits the pass's photon paths from the lights and follows them
 // through specular and diffuse surfaces and through media, storing a photon beam for every
 // medium segment (long beams: each reaches the next surface, with analytic or stored-distance
-// transmittance) and a surface photon at every diffuse hit. Radii follow the per-path schedule.
+// transmittance) and a surface photon at every diffuse hit (with --direct-light on, none for a path
+// that has not scattered since its light: shadow rays carry that light; every stored photon carries
+// the kPhotonDirect / kPhotonDeltaPath flags). Radii follow the per-path schedule.
 //
 // Deterministic: path k of pass i draws from Rng::forKey(seed, i, k, PhotonPath) and the output
 // is in path order, whatever the thread count.
@@ -74,6 +76,9 @@ private:
     std::vector<MediumId> m_lightMedium;  // per Scene::lights entry
     std::vector<double> m_emitterStart;   // per mesh: path distance an area light's photons start at
     bool m_anyHeterogeneous = false;
+    /// --direct-light on: photons that reach a diffuse surface straight from a light (kPhotonDirect)
+    /// are not stored there; shadow rays carry that light (cpu/direct_light.h).
+    bool m_directLight = false;
 };
 
 }  // namespace tyndall

@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/phase.h"
 #include "core/sampling.h"
+#include "cpu/direct_light.h"
 #include "cpu/free_flight.h"
 #include "cpu/surface_scattering.h"
 
@@ -18,11 +19,6 @@ namespace tyndall {
 namespace {
 // Interface crossings neither scatter nor count as depth; this only stops pathological loops.
 constexpr int kMaxInterfaceCrossings = 256;
-
-float powerHeuristic(float pdfA, float pdfB) {
-    float a = pdfA * pdfA, b = pdfB * pdfB;
-    return a + b > 0 ? a / (a + b) : 0.0f;
-}
 }  // namespace
 
 void ReferenceSettings::validate() const {
@@ -50,6 +46,7 @@ ReferenceTracer::ReferenceTracer(const EmbreeScene& rt, const ReferenceSettings&
       m_scene(rt.scene()),
       m_settings(settings),
       m_lights(rt.scene()),
+      m_direct(rt, m_lights),
       m_cameraMedium(rt.mediumAt(rt.scene().camera.position)) {
     m_settings.validate();
 }
@@ -143,7 +140,7 @@ Rgb ReferenceTracer::radiance(Ray ray, MediumId medium, Rng& rng) const {
                         bool handled = equiangular && isPointLike(ls.source);  // by the segment estimate
                         if (!handled && ls.pdf > 0 && !ls.incident.isBlack()) {
                             float phase = hgPhase(dot(ray.d, ls.wi), med.g);
-                            Rgb tr = shadowTransmittance(x, ls, medium, rng);
+                            Rgb tr = m_direct.shadowTransmittance(x, ls, medium, rng);
                             float mis = ls.delta ? 1.0f : powerHeuristic(ls.pdf, phase);
                             L += beta * ls.incident * tr * (phase * mis / ls.pdf);
                         }
@@ -190,17 +187,7 @@ Rgb ReferenceTracer::radiance(Ray ray, MediumId medium, Rng& rng) const {
             // max(0, wi . nsf) for wi above the geometric surface; cosine sampling about nsf, and
             // a sampled direction below the geometric surface ends the path.
             const bool shading = hasShadingNormal(hit);
-            if (nee) {
-                DirectLightSample ls = m_lights.sampleDirect(hit.p, rng);
-                float cosine = dot(ls.wi, side.nf);
-                if (shading && cosine > 0) cosine = std::max(0.0f, dot(ls.wi, side.nsf));
-                if (ls.pdf > 0 && cosine > 0 && !ls.incident.isBlack()) {
-                    Rgb tr = shadowTransmittance(m_rt.offsetOrigin(hit.p, side.nf, ls.wi), ls, medium, rng);
-                    float bsdfPdf = cosine * kInvPi;
-                    float mis = ls.delta ? 1.0f : powerHeuristic(ls.pdf, bsdfPdf);
-                    L += beta * sp.baseColor * ls.incident * tr * (kInvPi * cosine * mis / ls.pdf);
-                }
-            }
+            if (nee) L += beta * sp.baseColor * kInvPi * m_direct.diffuse(hit, side, medium, rng, true);
             const Vec3 n = shading ? side.nsf : side.nf;
             Vec3 d = Frame(n).toWorld(sampleCosineHemisphere(rng.uniform(), rng.uniform()));
             if (shading && !(dot(d, side.nf) > 0)) break;
@@ -223,7 +210,7 @@ Rgb ReferenceTracer::radiance(Ray ray, MediumId medium, Rng& rng) const {
                     bool crosses = dot(ls.wi, hit.ng) * dot(wo, hit.ng) < 0;
                     MediumId shadowMedium =
                         crosses ? (side.entering ? mesh.interiorMedium : mesh.exteriorMedium) : medium;
-                    Rgb tr = shadowTransmittance(m_rt.offsetOrigin(hit.p, hit.ng, ls.wi), ls, shadowMedium, rng);
+                    Rgb tr = m_direct.shadowTransmittance(m_rt.offsetOrigin(hit.p, hit.ng, ls.wi), ls, shadowMedium, rng);
                     float mis = ls.delta ? 1.0f : powerHeuristic(ls.pdf, bsdf.pdf(wo, ls.wi));
                     float cosine = std::abs(dot(ls.wi, bsdf.frame.n));
                     L += beta * f * ls.incident * tr * (cosine * mis / ls.pdf);
@@ -298,39 +285,9 @@ Rgb ReferenceTracer::pointLightInScattering(const Ray& seg, MediumId medium, Rng
 
     Rgb trCamera = estimateTransmittance(med, seg, t, rng);
     if (trCamera.isBlack()) return Rgb(0.0f);
-    Rgb trLight = shadowTransmittance(x, ls, medium, rng);
+    Rgb trLight = m_direct.shadowTransmittance(x, ls, medium, rng);
     float phase = hgPhase(dot(seg.d, ls.wi), med.g);
     return trCamera * med.sigmaSAt(x) * ls.incident * trLight * (phase / (pdfT * ls.pdf));
-}
-
-Rgb ReferenceTracer::shadowTransmittance(const Vec3& origin, const DirectLightSample& light, MediumId medium,
-                                         Rng& rng) const {
-    const Vec3 d = light.wi;
-    const bool finite = std::isfinite(light.distance);
-    // Stop just short of an emissive triangle so the shadow ray does not hit the light itself.
-    const Vec3 target = light.delta ? light.point : m_rt.offsetOrigin(light.point, light.normal, -d);
-    Ray ray{origin, d, 0.0f, finite ? dot(target - origin, d) : kInfinity};
-    Rgb tr(1.0f);
-    for (int crossing = 0; crossing <= kMaxInterfaceCrossings; ++crossing) {
-        if (!(ray.tMax > 0)) return tr;
-        SurfaceHit hit;
-        bool surface = m_rt.intersect(ray, &hit);
-        float tEnd = surface ? hit.t : ray.tMax;
-        if (medium != kVacuum) {
-            Ray seg;
-            if (m_rt.mediumSegment(ray.o, d, tEnd, &seg)) {
-                tr *= estimateTransmittance(m_scene.media[medium], seg, seg.tMax, rng);
-                if (tr.isBlack()) return tr;
-            }
-        }
-        if (!surface) return tr;
-        const TriangleMesh& mesh = m_scene.meshes[hit.mesh];
-        if (m_scene.materials[mesh.material].type != MaterialType::Interface) return Rgb(0.0f);
-        medium = dot(d, hit.ng) < 0 ? mesh.interiorMedium : mesh.exteriorMedium;
-        ray.o = m_rt.offsetOrigin(hit.p, hit.ng, d);
-        ray.tMax = finite ? dot(target - ray.o, d) : kInfinity;
-    }
-    return Rgb(0.0f);
 }
 
 }  // namespace tyndall

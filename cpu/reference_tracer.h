@@ -50,6 +50,7 @@
 
 #include "core/image.h"
 #include "core/light_sampler.h"
+#include "cpu/direct_light.h"
 #include "cpu/embree_scene.h"
 
 namespace tyndall {
@@ -102,9 +103,6 @@ public:
     const ReferenceSettings& settings() const { return m_settings; }
 
 private:
-    /// Light arriving at x along the NEE sample's direction through Interface surfaces only,
-    /// starting in `medium`: the product of the segments' transmittances, or 0 when blocked.
-    Rgb shadowTransmittance(const Vec3& origin, const DirectLightSample& light, MediumId medium, Rng& rng) const;
     /// Equiangular estimate of the light point/spot lights scatter toward seg.o along the medium
     /// segment `seg` (seg.d unit, length seg.tMax) inside `medium`, before the path throughput.
     Rgb pointLightInScattering(const Ray& seg, MediumId medium, Rng& rng) const;
@@ -115,6 +113,7 @@ private:
     const Scene& m_scene;
     ReferenceSettings m_settings;
     LightSampler m_lights;
+    DirectLight m_direct;  ///< light sampling and shadow rays (cpu/direct_light.h), shared with PPB
     MediumId m_cameraMedium;
 };
 

@@ -111,7 +111,7 @@ TEST(Cli, HelpListsEveryOptionWithDefaults) {
     const std::vector<std::string> output = {"--output", "--exposure"};
     const std::vector<std::string> ppb = {"--passes", "--time",           "--photons",       "--alpha",
                                           "--radius", "--surface-radius", "--radius-offset", "--planned-paths",
-                                          "--photon-angle", "--free-flights", "--memory", "--simd"};
+                                          "--photon-angle", "--free-flights", "--memory", "--simd", "--direct-light"};
     auto join = [](std::initializer_list<std::vector<std::string>> parts) {
         std::set<std::string> all = {"--help", "--help-all"};
         for (const auto& p : parts) all.insert(p.begin(), p.end());
@@ -124,7 +124,7 @@ TEST(Cli, HelpListsEveryOptionWithDefaults) {
         {"reference", join({scene, output, {"--spp", "--max-depth", "--no-nee"}})},
         {"bench", join({scene, {"--passes", "--photons", "--rays", "--queries", "--free-flights", "--no-hybrid", "--quality",
                             "--quality-scene", "--quality-seeds", "--reference-dir", "--reference-spp", "--plot", "--radius",
-                            "--radius-offset", "--simd"}})},
+                            "--radius-offset", "--simd", "--direct-light"}})},
         {"compare", join({scene, output, ppb, {"--gpu", "--density"}})}};
     for (const auto& [command, names] : expected) {
         CliRun r = runTyndall(command + " --help");
@@ -184,6 +184,7 @@ TEST(Cli, BadValuesGiveOneLineNamingTheOption) {
                                            {"bench --free-flights 0", "--free-flights"},
                                            {"bench --free-flights -7", "--free-flights"},
                                            {"bench --rays many", "--rays"},
+                                           {"render --direct-light maybe -o " + out, "--direct-light"},
                                            {"render --frobnicate", "--frobnicate"}}) {
         CliRun r = runTyndall(c.args);
         EXPECT_NE(r.exitCode, 0) << c.args;
@@ -395,6 +396,27 @@ TEST(Cli, AutomaticRadiiAreRecordedAsPlainSettingsThatReproduceTheImage) {
     ASSERT_EQ(b.exitCode, 0) << b.output;
     EXPECT_TRUE(tyndall::test::identicalImages(tyndall::readImage(dir + "/cli_auto.exr"),
                                                tyndall::readImage(dir + "/cli_auto_replay.exr")));
+}
+
+TEST(Cli, DirectLightIsRecordedAndReplays) {
+    // --direct-light goes into the header; the recorded settings reproduce the image bit for bit,
+    // and the two modes differ (the default scene's walls get shadow rays with it on).
+    const std::string dir = tyndall::test::outputDir();
+    for (const std::string mode : {"on", "off"}) {
+        const std::string out = dir + "/cli_direct_" + mode + ".exr";
+        CliRun r = runTyndall("render --photons 300 --size 40x24 --seed 5 --gpu off --passes 3 --direct-light " + mode +
+                              " -o " + out);
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        nlohmann::json j = recordedSettings(out);
+        EXPECT_EQ(j.at("direct_light"), mode);
+        tyndall::RenderSettings s = tyndall::RenderSettings::fromJson(j, out);
+        tyndall::Scene scene = tyndall::makeDefaultScene();
+        scene.validate();
+        tyndall::PassRenderer renderer(scene, s);
+        EXPECT_TRUE(tyndall::test::identicalImages(tyndall::readImage(out), renderPasses(renderer, 0, s.passes))) << mode;
+    }
+    EXPECT_FALSE(tyndall::test::identicalImages(tyndall::readImage(dir + "/cli_direct_on.exr"),
+                                                tyndall::readImage(dir + "/cli_direct_off.exr")));
 }
 
 TEST(Cli, TimeBudgetRecordsItsPlanAndReplaysFromIt) {

@@ -247,7 +247,10 @@ inline void expectRegionAgrees(const Scene& scene, const std::vector<int>& meshO
     double se = std::hypot(sePpb, seRef);
     std::printf("region '%s' (%d pixels): PPB / reference %.4f +- %.4f (PPB %.4f, reference %.4f)\n", meshName, pixels,
                 mean, se, sePpb, seRef);
-    EXPECT_LT(se, 0.03) << meshName << ": too noisy to test";
+    // 0.04: with direct light by shadow rays (the default) the camera paths through the glass sphere
+    // end at diffuse surfaces with one shadow ray per pass, noise the photon kernel had smoothed:
+    // that region's standard error went from 0.028 (photons only) to 0.033 (measured, seed as here).
+    EXPECT_LT(se, 0.04) << meshName << ": too noisy to test";
     EXPECT_NEAR(mean, 1.0, 4.0 * se + bias) << "region seeing '" << meshName << "'";
 }
 

@@ -1,0 +1,55 @@
+#include "cpu/direct_light.h"
+
+#include <cmath>
+
+#include "cpu/free_flight.h"
+
+namespace tyndall {
+
+namespace {
+// Interface crossings on one shadow ray; this only stops pathological loops.
+constexpr int kMaxInterfaceCrossings = 256;
+}  // namespace
+
+Rgb DirectLight::shadowTransmittance(const Vec3& origin, const DirectLightSample& light, MediumId medium,
+                                     Rng& rng) const {
+    const Scene& scene = m_rt.scene();
+    const Vec3 d = light.wi;
+    const bool finite = std::isfinite(light.distance);
+    // Stop just short of an emissive triangle so the shadow ray does not hit the light itself.
+    const Vec3 target = light.delta ? light.point : m_rt.offsetOrigin(light.point, light.normal, -d);
+    Ray ray{origin, d, 0.0f, finite ? dot(target - origin, d) : kInfinity};
+    Rgb tr(1.0f);
+    for (int crossing = 0; crossing <= kMaxInterfaceCrossings; ++crossing) {
+        if (!(ray.tMax > 0)) return tr;
+        SurfaceHit hit;
+        bool surface = m_rt.intersect(ray, &hit);
+        float tEnd = surface ? hit.t : ray.tMax;
+        if (medium != kVacuum) {
+            Ray seg;
+            if (m_rt.mediumSegment(ray.o, d, tEnd, &seg)) {
+                tr *= estimateTransmittance(scene.media[medium], seg, seg.tMax, rng);
+                if (tr.isBlack()) return tr;
+            }
+        }
+        if (!surface) return tr;
+        const TriangleMesh& mesh = scene.meshes[hit.mesh];
+        if (scene.materials[mesh.material].type != MaterialType::Interface) return Rgb(0.0f);
+        medium = dot(d, hit.ng) < 0 ? mesh.interiorMedium : mesh.exteriorMedium;
+        ray.o = m_rt.offsetOrigin(hit.p, hit.ng, d);
+        ray.tMax = finite ? dot(target - ray.o, d) : kInfinity;
+    }
+    return Rgb(0.0f);
+}
+
+Rgb DirectLight::diffuse(const SurfaceHit& hit, const HitSide& side, MediumId medium, Rng& rng,
+                         bool misWithCosineSampling) const {
+    const DirectLightSample ls = m_lights.sampleDirect(hit.p, rng);
+    const float cosine = diffuseCosine(side, ls.wi);
+    if (!(ls.pdf > 0) || !(cosine > 0) || ls.incident.isBlack()) return Rgb(0.0f);
+    const Rgb tr = shadowTransmittance(m_rt.offsetOrigin(hit.p, side.nf, ls.wi), ls, medium, rng);
+    const float mis = ls.delta || !misWithCosineSampling ? 1.0f : powerHeuristic(ls.pdf, cosine * kInvPi);
+    return ls.incident * tr * (cosine * mis / ls.pdf);
+}
+
+}  // namespace tyndall

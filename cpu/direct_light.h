@@ -1,0 +1,61 @@
+#pragma once
+// Next-event estimation (direct light by shadow rays), shared by the reference path tracer and
+// PPB's camera paths (the diffuse end of a camera path with `--direct-light on`,
+// docs/algorithm.md "Direct light by shadow rays"):
+//   - a light sample: LightSampler::sampleDirect's power-proportional source, then a point on it
+//     (point, spot, directional, or uniform over an emissive triangle);
+//   - a shadow ray toward it that passes through Interface surfaces (switching medium) and through
+//     alpha-masked or blended geometry as EmbreeScene's occlusion filter decides, and is blocked by
+//     every other surface;
+//   - the transmittance of every medium on the way: analytic in homogeneous media, ratio tracking
+//     (unbiased) in density-grid media (estimateTransmittance).
+// Randomness comes only from the caller's keyed stream.
+#include "core/light_sampler.h"
+#include "core/rng.h"
+#include "cpu/embree_scene.h"
+#include "cpu/surface_scattering.h"
+
+namespace tyndall {
+
+/// Multiple importance sampling, power heuristic (beta = 2) for strategy A against B.
+inline float powerHeuristic(float pdfA, float pdfB) {
+    float a = pdfA * pdfA, b = pdfB * pdfB;
+    return a + b > 0 ? a / (a + b) : 0.0f;
+}
+
+/// The diffuse base's cosine for light arriving along `wi` (docs/algorithm.md "Normal maps"):
+/// max(0, wi . nsf) for wi above the geometric surface (wi . nf > 0), else 0. It equals
+/// shadingCosineRatio(side, wi) x (wi . nf), the weight the surface-photon gather gives a photon.
+inline float diffuseCosine(const HitSide& side, const Vec3& wi) {
+    return dot(wi, side.nf) > 0 ? std::max(0.0f, dot(wi, side.nsf)) : 0.0f;
+}
+
+class DirectLight {
+public:
+    /// Keeps references to both: they must outlive this.
+    DirectLight(const EmbreeScene& rt, const LightSampler& lights) : m_rt(rt), m_lights(lights) {}
+
+    /// Light arriving at `origin` along the sample's direction, starting in `medium`: the product of
+    /// the transmittances of the medium segments on the way, or 0 when a surface other than an
+    /// Interface blocks it. Stops just short of an emissive triangle. Draws only in grid media.
+    Rgb shadowTransmittance(const Vec3& origin, const DirectLightSample& light, MediumId medium, Rng& rng) const;
+
+    /// One-sample estimate of the cosine-weighted light arriving at the diffuse point `hit` seen
+    /// from `side` (the path's side; `medium` the medium there):
+    ///   E = incident x Tr x diffuseCosine(side, wi) / pdf   (x the MIS weight, see below)
+    /// so the radiance the diffuse base sends back is baseColor / pi x E. Draws sampleDirect's three
+    /// uniforms from `rng`, then the shadow ray's (only when the sample can contribute).
+    /// `misWithCosineSampling`: area-light samples are weighted by the power heuristic against
+    /// cosine sampling of the direction (the reference tracer, which also reaches area lights by
+    /// hitting them); false: weight 1 (PPB's camera path ends at the diffuse vertex).
+    Rgb diffuse(const SurfaceHit& hit, const HitSide& side, MediumId medium, Rng& rng,
+                bool misWithCosineSampling) const;
+
+    const LightSampler& lights() const { return m_lights; }
+
+private:
+    const EmbreeScene& m_rt;
+    const LightSampler& m_lights;
+};
+
+}  // namespace tyndall
