@@ -1,6 +1,7 @@
 // tyndall: the command-line front end. Library code throws tyndall::Error; this is the only place
 // that turns errors into a one-line message and a non-zero exit.
 #include <CLI/CLI.hpp>
+#include <malloc.h>
 
 #include <cstdio>
 #include <exception>
@@ -13,7 +14,22 @@
 #include "app/cmd_view.h"
 #include "core/error.h"
 
+namespace {
+// A pass frees and allocates again blocks of a few MB to ~30 MB (pass images, photon batches,
+// BVH and grid arrays). glibc's dynamic mmap threshold makes whether they come from the heap or
+// from fresh mmaps (page-faulted anew every pass) depend on what was freed earlier: pooling the
+// largest buffers (camera_tracer.h) lowered it and tripled a 512x512 pass's page faults
+// (docs/performance.md). Fixed here instead: blocks up to glibc's 32 MiB maximum come from the
+// heap, and freed heap memory up to 256 MiB stays mapped for the next pass (the peak is what the
+// memory plan bounds; this only keeps it instead of returning and faulting it in again).
+void setAllocatorForPasses() {
+    mallopt(M_MMAP_THRESHOLD, 32 << 20);
+    mallopt(M_TRIM_THRESHOLD, 256 << 20);
+}
+}  // namespace
+
 int main(int argc, char** argv) {
+    setAllocatorForPasses();
     CLI::App app{"Tyndall: progressive photon beams for fog, smoke, water and glass", "tyndall"};
     app.require_subcommand(1);
     app.set_help_all_flag("--help-all", "Help for every command");

@@ -11,12 +11,16 @@ namespace {
 // radius (and so the default piece length) has shrunk by orders of magnitude.
 constexpr float kMaxPieces = 8.0f;
 
+// The margin the ribbons are widened by, in largest beam radii (BeamQueryCache).
+constexpr float kReach = 1.0f;
+
 // Extends Embree's context (first member) with what the callbacks need.
 struct GatherContext {
     RTCIntersectContext rtc;
     const std::vector<PhotonBeam>* beams;
     const std::vector<BeamBvh::Piece>* pieces;
-    std::vector<BeamHitRecord>* hits;
+    std::vector<BeamHitRecord>* hits;        // user geometry: exact hits
+    std::vector<uint32_t>* candidates;       // flat curves: beams whose widened ribbon the ray meets
     Vec3 o, d;
     float sMax;
 };
@@ -53,10 +57,22 @@ void beamIntersect(const RTCIntersectFunctionNArguments* args) {
 
 void beamOccluded(const RTCOccludedFunctionNArguments*) {}
 
+// Records the piece's beam as a candidate and rejects the hit so traversal goes on.
 void curveFilter(const RTCFilterFunctionNArguments* args) {
     if (!args->valid[0]) return;
-    recordIfHit(reinterpret_cast<GatherContext*>(args->context), RTCHitN_primID(args->hit, args->N, 0));
+    auto* ctx = reinterpret_cast<GatherContext*>(args->context);
+    const uint32_t beam = (*ctx->pieces)[RTCHitN_primID(args->hit, args->N, 0)].beam;
+    if (ctx->candidates->empty() || ctx->candidates->back() != beam) ctx->candidates->push_back(beam);
     args->valid[0] = 0;
+}
+
+// |p - segment [a, b]|^2.
+float distance2ToSegment(const Vec3& p, const Vec3& a, const Vec3& b) {
+    const Vec3 ab = b - a, ap = p - a;
+    const float len2 = dot(ab, ab);
+    const float t = len2 > 0.0f ? std::clamp(dot(ap, ab) / len2, 0.0f, 1.0f) : 0.0f;
+    const Vec3 q = ap - ab * t;
+    return dot(q, q);
 }
 
 }  // namespace
@@ -64,6 +80,7 @@ void curveFilter(const RTCFilterFunctionNArguments* args) {
 BeamBvh::BeamBvh(const EmbreeDevice& device, const std::vector<PhotonBeam>& beams, Kind kind, float pieceLength)
     : m_beams(beams), m_kind(kind) {
     for (const PhotonBeam& b : beams) m_maxRadius = std::max(m_maxRadius, b.radius);
+    if (kind == Kind::FlatCurves) m_reach = kReach * m_maxRadius;
     if (pieceLength <= 0) pieceLength = 16.0f * m_maxRadius;
     for (uint32_t i = 0; i < beams.size(); ++i) {
         const PhotonBeam& b = beams[i];
@@ -98,7 +115,9 @@ BeamBvh::BeamBvh(const EmbreeDevice& device, const std::vector<PhotonBeam>& beam
             const PhotonBeam& b = beams[m_pieces[i].beam];
             Vec3 s = b.origin + b.dir * m_pieces[i].t0, e = b.origin + b.dir * m_pieces[i].t1;
             float* p = v + 8 * i;
-            const float r = 1.1f * b.radius;  // the ribbon is approximate: over-cover, filter exactly
+            // The ribbon is approximate: over-cover, filter exactly; widened by the reach so that
+            // one traversal serves the segments near its own (BeamQueryCache).
+            const float r = 1.1f * b.radius + m_reach;
             p[0] = s.x, p[1] = s.y, p[2] = s.z, p[3] = r;
             p[4] = e.x, p[5] = e.y, p[6] = e.z, p[7] = r;
             idx[i] = unsigned(2 * i);
@@ -115,19 +134,54 @@ BeamBvh::BeamBvh(const EmbreeDevice& device, const std::vector<PhotonBeam>& beam
 BeamBvh::~BeamBvh() { rtcReleaseScene(m_scene); }
 
 void BeamBvh::query(const Vec3& o, const Vec3& d, float sMax, std::vector<BeamHitRecord>& hits) const {
+    BeamQueryCache cache;
+    query(o, d, sMax, hits, cache);
+}
+
+void BeamBvh::query(const Vec3& o, const Vec3& d, float sMax, std::vector<BeamHitRecord>& hits,
+                    BeamQueryCache& cache) const {
     hits.clear();
     if (m_beams.empty() || !(sMax > 0)) return;
-    GatherContext ctx;
-    rtcInitIntersectContext(&ctx.rtc);
-    ctx.beams = &m_beams;
-    ctx.pieces = &m_pieces;
-    ctx.hits = &hits;
-    ctx.o = o;
-    ctx.d = d;
-    ctx.sMax = sMax;
-    // Embree's curve intersector ignores hits within about a radius of the ray origin, so the
-    // traversal ray starts `back` earlier; the filter still tests the real segment [0, sMax].
-    const float back = m_kind == Kind::FlatCurves ? 4.0f * m_maxRadius : 0.0f;
+    if (m_kind == Kind::UserGeometry) {
+        traceUserGeometry(o, d, sMax, hits);
+        return;
+    }
+    const Vec3 e = o + d * sMax;
+    // Within 0.9 reach, not reach: room for the rounding of the distances and of Embree's test.
+    const float near2 = (0.9f * m_reach) * (0.9f * m_reach);
+    if (std::isfinite(sMax)) {
+        for (int i = 0; i < cache.m_used; ++i) {
+            const BeamQueryCache::Entry& c = cache.m_entries[i];
+            if (distance2ToSegment(o, c.a, c.b) <= near2 && distance2ToSegment(e, c.a, c.b) <= near2) {
+                exactHits(o, d, sMax, c.beams, hits);
+                cache.m_reused++;
+                return;
+            }
+        }
+    }
+    BeamQueryCache::Entry& c = cache.m_entries[cache.m_next];
+    cache.m_next = (cache.m_next + 1) % BeamQueryCache::kEntries;
+    cache.m_used = std::min(cache.m_used + 1, BeamQueryCache::kEntries);
+    candidates(o, d, sMax, c.beams);
+    exactHits(o, d, sMax, c.beams, hits);
+    if (std::isfinite(sMax)) {
+        c.a = o;
+        c.b = e;
+    } else {
+        c.a = c.b = Vec3(kInfinity);  // never reused
+    }
+}
+
+void BeamBvh::exactHits(const Vec3& o, const Vec3& d, float sMax, const std::vector<uint32_t>& beams,
+                        std::vector<BeamHitRecord>& hits) const {
+    for (uint32_t b : beams) {
+        BeamRayHit h;
+        if (intersectBeamRay(o, d, sMax, m_beams[b], &h)) hits.push_back({b, h});
+    }
+}
+
+namespace {
+RTCRayHit traversalRay(const Vec3& o, const Vec3& d, float sMax, float back, float margin) {
     RTCRayHit rh;
     rh.ray.org_x = o.x - d.x * back;
     rh.ray.org_y = o.y - d.y * back;
@@ -136,14 +190,49 @@ void BeamBvh::query(const Vec3& o, const Vec3& d, float sMax, std::vector<BeamHi
     rh.ray.dir_y = d.y;
     rh.ray.dir_z = d.z;
     rh.ray.tnear = 0.0f;
-    // Curves only report hits up to tfar; user primitives test s <= sMax themselves. Beams reach
-    // a little past the segment end through their radius, hence the margin.
-    rh.ray.tfar = std::isfinite(sMax) ? back + sMax * 1.0001f + 2.0f * m_maxRadius + 1e-6f : kInfinity;
+    rh.ray.tfar = std::isfinite(sMax) ? back + sMax * 1.0001f + margin + 1e-6f : kInfinity;
     rh.ray.mask = 0xFFFFFFFFu;
     rh.ray.flags = 0;
     rh.ray.time = 0;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    return rh;
+}
+}  // namespace
+
+void BeamBvh::candidates(const Vec3& o, const Vec3& d, float sMax, std::vector<uint32_t>& beams) const {
+    beams.clear();
+    GatherContext ctx;
+    rtcInitIntersectContext(&ctx.rtc);
+    ctx.beams = &m_beams;
+    ctx.pieces = &m_pieces;
+    ctx.hits = nullptr;
+    ctx.candidates = &beams;
+    ctx.o = o;
+    ctx.d = d;
+    ctx.sMax = sMax;
+    // Embree's curve intersector ignores hits within about a ribbon width of the ray origin, so
+    // the traversal ray starts `back` earlier; curves only report hits up to tfar, and beams reach
+    // a little past the segment end through their radius, hence the margin.
+    const float width = 1.1f * m_maxRadius + m_reach;
+    RTCRayHit rh = traversalRay(o, d, sMax, 4.0f * width, 2.0f * width);
+    rtcIntersect1(m_scene, &ctx.rtc, &rh);
+    std::sort(beams.begin(), beams.end());
+    beams.erase(std::unique(beams.begin(), beams.end()), beams.end());
+}
+
+void BeamBvh::traceUserGeometry(const Vec3& o, const Vec3& d, float sMax, std::vector<BeamHitRecord>& hits) const {
+    GatherContext ctx;
+    rtcInitIntersectContext(&ctx.rtc);
+    ctx.beams = &m_beams;
+    ctx.pieces = &m_pieces;
+    ctx.hits = &hits;
+    ctx.candidates = nullptr;
+    ctx.o = o;
+    ctx.d = d;
+    ctx.sMax = sMax;
+    // User primitives test s <= sMax themselves.
+    RTCRayHit rh = traversalRay(o, d, sMax, 0.0f, 2.0f * m_maxRadius);
     rtcIntersect1(m_scene, &ctx.rtc, &rh);
     std::sort(hits.begin(), hits.end(), [](const BeamHitRecord& a, const BeamHitRecord& b) { return a.beam < b.beam; });
     hits.erase(std::unique(hits.begin(), hits.end(),

@@ -11,6 +11,13 @@
 // at most 8 pieces no shorter than `pieceLength` (one BVH primitive each); a piece reports a beam
 // only when the closest point t_v falls inside the piece, so every beam is found once.
 // Thread-safe queries after construction.
+//
+// Neighbouring camera paths' secondary segments (a tile's pixels through a mirror) are nearly the
+// same segment, so the flat curves are widened by a margin `reach` (the largest beam radius): one
+// Embree traversal along a segment S0 finds every beam within its radius plus `reach` of S0 (the
+// candidates), and any segment whose two ends lie within `reach` of S0 (so all of it does) needs
+// only the exact beam x ray test against those candidates (BeamQueryCache). Every query, cached or
+// not, returns the exact test's beams among an Embree candidate set.
 #include <embree3/rtcore.h>
 
 #include <vector>
@@ -23,6 +30,32 @@ namespace tyndall {
 struct BeamHitRecord {
     uint32_t beam = 0;
     BeamRayHit hit;
+};
+
+/// The candidate lists of a thread's recent queries (BeamBvh::query). What a query returns may
+/// depend on the cache's content where Embree's ribbon approximation misses a beam by a hair, so
+/// a caller that wants results independent of the thread count resets it at fixed points (a
+/// camera tile's start). Belongs to one BeamBvh at a time (reset before use with another).
+class BeamQueryCache {
+public:
+    void reset() {
+        m_used = 0;
+        m_next = 0;
+    }
+    /// Queries answered from a cached candidate list since construction (a statistic).
+    uint64_t reused() const { return m_reused; }
+
+private:
+    friend class BeamBvh;
+    struct Entry {
+        Vec3 a, b;                     ///< the segment S0 the candidates were found along
+        std::vector<uint32_t> beams;   ///< beams within radius + reach of S0, ascending, once each
+    };
+    static constexpr int kEntries = 4;
+    Entry m_entries[kEntries];
+    int m_used = 0;  ///< entries filled since the reset
+    int m_next = 0;  ///< the one replaced next
+    uint64_t m_reused = 0;
 };
 
 class BeamBvh {
@@ -40,6 +73,12 @@ public:
     /// Appends every beam within its radius of segment o + s d, s in [0, sMax] (d unit), sorted by
     /// beam index (so sums over them are deterministic). `hits` is cleared first.
     void query(const Vec3& o, const Vec3& d, float sMax, std::vector<BeamHitRecord>& hits) const;
+    /// The same, reusing a cached candidate list when the segment lies within reach() of its
+    /// segment, else tracing one and caching it (flat curves only; user geometry ignores `cache`).
+    void query(const Vec3& o, const Vec3& d, float sMax, std::vector<BeamHitRecord>& hits,
+               BeamQueryCache& cache) const;
+    /// The margin the flat curves are widened by (the largest beam radius).
+    float reach() const { return m_reach; }
 
     Kind kind() const { return m_kind; }
 
@@ -52,10 +91,18 @@ public:
     const std::vector<PhotonBeam>& beams() const { return m_beams; }
 
 private:
+    /// The candidates along o + s d, s in [0, sMax] (flat curves): ascending, once each.
+    void candidates(const Vec3& o, const Vec3& d, float sMax, std::vector<uint32_t>& beams) const;
+    /// Appends the exact test's hits among `beams` (ascending) to `hits`.
+    void traceUserGeometry(const Vec3& o, const Vec3& d, float sMax, std::vector<BeamHitRecord>& hits) const;
+    void exactHits(const Vec3& o, const Vec3& d, float sMax, const std::vector<uint32_t>& beams,
+                   std::vector<BeamHitRecord>& hits) const;
+
     const std::vector<PhotonBeam>& m_beams;
     Kind m_kind;
     std::vector<Piece> m_pieces;
     float m_maxRadius = 0;
+    float m_reach = 0;
     RTCScene m_scene = nullptr;
 };
 

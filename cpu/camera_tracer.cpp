@@ -56,6 +56,7 @@ CameraTracer::CameraTracer(const EmbreeScene& rt, const RenderSettings& settings
 namespace {
 struct ThreadScratch {
     std::vector<BeamHitRecord> hits;
+    BeamQueryCache beamCache;  // reset at every tile's start: results independent of the thread count
     std::vector<float> freeFlights;
     CameraPassStats stats;
 };
@@ -180,10 +181,18 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
     if (layers) *layers = SecondaryLayers{Image(w, h), Image(w, h)};
     tbb::enumerable_thread_specific<ThreadScratch> scratch;
 
-    tbb::parallel_for(0, h, [&](int y) {
+    // Tiles of kTile x kTile pixels, row by row inside: neighbouring paths reuse each other's beam
+    // candidates (BeamQueryCache) and surface-photon cells.
+    constexpr int kTile = 8;
+    const int tilesX = (w + kTile - 1) / kTile, tilesY = (h + kTile - 1) / kTile;
+    tbb::parallel_for(0, tilesX * tilesY, [&](int tile) {
         ThreadScratch& tls = scratch.local();
         tls.freeFlights.resize(std::max(nff, 1));
-        for (int x = 0; x < w; ++x) {
+        tls.beamCache.reset();
+        const int tx = tile % tilesX, ty = tile / tilesX;
+        for (int i = 0; i < kTile * kTile; ++i) {
+            const int x = tx * kTile + i % kTile, y = ty * kTile + i / kTile;
+            if (x >= w || y >= h) continue;
             const uint64_t pixel = uint64_t(y) * w + x;
             const PrimaryHit& ph = (*primary.hits)[pixel];
             Rgb throughput = ph.throughput, L, Lmedia, Lsurface;
@@ -266,7 +275,7 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                     const Medium& med = m_scene.media[medium];
                     float* ff = tls.freeFlights.data();
                     if (!med.homogeneous()) sampleCollisionDistances(med, seg, seg.tMax, rng, nff, ff);
-                    beams.query(seg.o, seg.d, seg.tMax, tls.hits);
+                    beams.query(seg.o, seg.d, seg.tMax, tls.hits, tls.beamCache);
                     tls.stats.beamQueries++;
                     tls.stats.beamHits += tls.hits.size();
                     Rgb media = throughput * gatherBeams(m_scene, photons, tls.hits, medium, seg.o, seg.d, ff, nff);

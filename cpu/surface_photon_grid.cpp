@@ -66,7 +66,63 @@ int SurfacePhotonGrid::bucketsNear(const Vec3& x, const Vec3& n, uint32_t* bucke
                 if (std::find(buckets, buckets + count, h) != buckets + count) continue;  // a hash collision
                 buckets[count++] = h;
             }
+    std::sort(buckets, buckets + count);  // ascending photon order, like the cached regions
     return count;
+}
+
+const SurfacePhotonGrid::Region* SurfacePhotonGrid::regionFor(const Vec3& x) const {
+    RegionCache& cache = m_regions.local();
+    for (int i = 0; i < cache.used; ++i) {
+        const Region& r = cache.regions[i];
+        if (x.x >= r.lo.x && x.y >= r.lo.y && x.z >= r.lo.z && x.x <= r.hi.x && x.y <= r.hi.y && x.z <= r.hi.z)
+            return &r;
+    }
+    // Same bounds check as bucketsNear: nothing near, and no float-to-int overflow.
+    const Vec3 c = (x - m_origin) / m_cellSize;
+    if (!(c.x >= -1.0f && c.y >= -1.0f && c.z >= -1.0f && c.x <= m_extentCells.x + 1.0f &&
+          c.y <= m_extentCells.y + 1.0f && c.z <= m_extentCells.z + 1.0f))
+        return nullptr;
+    Region& r = cache.regions[cache.next];
+    cache.next = (cache.next + 1) % RegionCache::kRegions;
+    cache.used = std::min(cache.used + 1, RegionCache::kRegions);
+    const Vec3 half(0.5f * m_maxRadius);
+    r.lo = x - half;
+    r.hi = x + half;
+    fillRegion(r);
+    return &r;
+}
+
+void SurfacePhotonGrid::fillRegion(Region& r) const {
+    r.x.clear(), r.y.clear(), r.z.clear(), r.radius.clear(), r.index.clear();
+    // The cells (2 r_max wide) overlapping the box grown by r_max: every photon within its radius
+    // of the box lies in one of them.
+    const Vec3 lo = (r.lo - Vec3(m_maxRadius) - m_origin) / m_cellSize;
+    const Vec3 hi = (r.hi + Vec3(m_maxRadius) - m_origin) / m_cellSize;
+    const int x0 = int(std::floor(lo.x)), y0 = int(std::floor(lo.y)), z0 = int(std::floor(lo.z));
+    const int x1 = int(std::floor(hi.x)), y1 = int(std::floor(hi.y)), z1 = int(std::floor(hi.z));
+    uint32_t buckets[64];
+    int count = 0;
+    for (int z = z0; z <= z1; ++z)
+        for (int y = y0; y <= y1; ++y)
+            for (int x = x0; x <= x1; ++x) {
+                const uint32_t h = cellHash(x, y, z);
+                if (m_cellStart[h] == m_cellStart[h + 1]) continue;
+                if (std::find(buckets, buckets + count, h) != buckets + count) continue;
+                buckets[count++] = h;
+            }
+    std::sort(buckets, buckets + count);
+    for (int b = 0; b < count; ++b)
+        for (uint32_t k = m_cellStart[buckets[b]]; k < m_cellStart[buckets[b] + 1]; ++k) {
+            const Candidate& c = m_candidates[k];
+            const Vec3 out = vmax(vmax(r.lo - c.position, c.position - r.hi), Vec3(0.0f));
+            // A margin over the exact box distance: the scan applies the exact test.
+            if (dot(out, out) > 1.0001f * c.radius * c.radius) continue;
+            r.x.push_back(c.position.x);
+            r.y.push_back(c.position.y);
+            r.z.push_back(c.position.z);
+            r.radius.push_back(c.radius);
+            r.index.push_back(k);
+        }
 }
 
 Rgb SurfacePhotonGrid::density(const Vec3& x, const Vec3& n) const {

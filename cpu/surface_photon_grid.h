@@ -8,6 +8,14 @@
 // (scheduled) radius.
 //
 // A lookup scans the 2x2x2 block of cells nearest to x (it covers the ball of radius r_max).
+//
+// Neighbouring camera paths look up nearly the same point, so each thread keeps the candidates of
+// its last few regions (a box r_max wide round a lookup point: the photons within their own radius
+// of the box, ascending) and a lookup inside such a box scans only those, without hashing. Both
+// ways visit the same photons in the same (ascending) order, so the sums are bit for bit the same
+// whatever the cache held.
+#include <tbb/enumerable_thread_specific.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -34,9 +42,13 @@ public:
 
     /// Calls visit(photon, d2) once for every photon within its own radius of x (d2 = |x - x_p|^2
     /// < r_p^2) and near the plane through x with unit normal n (|(x_p - x).n| <= r_p / 4), in
-    /// an order fixed by the photons and x alone. The query density() and gather() share.
+    /// an order fixed by the photons and x alone (ascending photon order). The query density()
+    /// and gather() share. `visit` must not query this grid (it scans the thread's cached region).
     template <class Visit>
     void forEachNear(const Vec3& x, const Vec3& n, const Visit& visit) const;
+    /// forEachNear without the per-thread cache (the definition the cache must reproduce).
+    template <class Visit>
+    void forEachNearUncached(const Vec3& x, const Vec3& n, const Visit& visit) const;
 
     static float kernel(float d2, float r) {
         float r2 = r * r;
@@ -44,6 +56,21 @@ public:
     }
 
 private:
+    // The candidates of one box [lo, hi], structure of arrays (the scan reads four floats each).
+    struct Region {
+        Vec3 lo, hi;
+        std::vector<float> x, y, z, radius;
+        std::vector<uint32_t> index;  // into m_sorted, ascending
+    };
+    struct RegionCache {
+        static constexpr int kRegions = 4;
+        Region regions[kRegions];
+        int used = 0, next = 0;
+    };
+    /// The cached region holding x, or a new one round x (nullptr when x is outside the grid).
+    const Region* regionFor(const Vec3& x) const;
+    void fillRegion(Region& r) const;
+
     uint32_t cellHash(int x, int y, int z) const;
     /// The distinct non-empty hash buckets of the cells that can hold a photon forEachNear(x, n)
     /// accepts; returns how many (<= 8).
@@ -66,10 +93,27 @@ private:
     Vec3 m_origin;
     Vec3 m_extentCells;  // the photons' bounds in cells, from m_origin
     uint32_t m_buckets = 1;
+    mutable tbb::enumerable_thread_specific<RegionCache> m_regions;
 };
 
 template <class Visit>
 void SurfacePhotonGrid::forEachNear(const Vec3& x, const Vec3& n, const Visit& visit) const {
+    if (m_photons.empty()) return;
+    const Region* r = regionFor(x);
+    if (!r) return;
+    const size_t count = r->index.size();
+    for (size_t i = 0; i < count; ++i) {
+        const Vec3 diff(r->x[i] - x.x, r->y[i] - x.y, r->z[i] - x.z);
+        const float d2 = dot(diff, diff);
+        const float radius = r->radius[i];
+        if (d2 >= radius * radius) continue;
+        if (std::abs(dot(diff, n)) > 0.25f * radius) continue;
+        visit(m_sorted[r->index[i]], d2);
+    }
+}
+
+template <class Visit>
+void SurfacePhotonGrid::forEachNearUncached(const Vec3& x, const Vec3& n, const Visit& visit) const {
     if (m_photons.empty()) return;
     uint32_t buckets[8];
     const int count = bucketsNear(x, n, buckets);

@@ -115,3 +115,39 @@ TEST(SurfacePhotonGrid, OnePhotonAndNone) {
     EXPECT_EQ(grid.density(Vec3(1, 2, 3), Vec3(0, -1, 0)).b, 0.0f);  // the other side
     EXPECT_EQ(grid.density(Vec3(kInfinity, 0, 0), Vec3(0, 1, 0)).b, 0.0f);
 }
+
+// Lookups along short walks (neighbouring pixels) are answered from the per-thread cached
+// regions: they must visit the same photons, in the same order, with the same d^2 bits, as the
+// uncached query, and the set brute force finds.
+TEST(SurfacePhotonGrid, CachedRegionsVisitExactlyWhatTheUncachedQueryVisits) {
+    const Vec3 centre(3.0f, -1.0f, 0.5f);
+    const std::vector<SurfacePhoton> photons = makePhotons(6000, 0.05f, centre, 5);
+    SurfacePhotonGrid grid(photons);
+    Rng rng(11, 9);
+    int nonEmpty = 0;
+    for (int walk = 0; walk < 200; ++walk) {
+        const SurfacePhoton& start = photons[std::min(photons.size() - 1, size_t(rng.uniform() * float(photons.size())))];
+        Vec3 x = start.position;
+        const Vec3 n = walk % 4 == 0 ? sampleUniformSphere(rng.uniform(), rng.uniform()) : start.normal;
+        const Vec3 step = sampleUniformSphere(rng.uniform(), rng.uniform()) * (0.004f * rng.uniform());
+        for (int i = 0; i < 40; ++i, x = x + step) {
+            std::vector<std::pair<const SurfacePhoton*, float>> cached, uncached;
+            grid.forEachNear(x, n, [&](const SurfacePhoton& p, float d2) { cached.push_back({&p, d2}); });
+            grid.forEachNearUncached(x, n, [&](const SurfacePhoton& p, float d2) { uncached.push_back({&p, d2}); });
+            ASSERT_EQ(cached.size(), uncached.size()) << "walk " << walk << " step " << i;
+            for (size_t k = 0; k < cached.size(); ++k) {
+                ASSERT_EQ(cached[k].first, uncached[k].first) << "walk " << walk << " step " << i;
+                ASSERT_EQ(cached[k].second, uncached[k].second);
+            }
+            size_t brute = 0;
+            for (const SurfacePhoton& p : photons) {
+                const Vec3 diff = p.position - x;
+                const float d2 = dot(diff, diff);
+                brute += d2 < p.radius * p.radius && std::abs(dot(diff, n)) <= 0.25f * p.radius;
+            }
+            ASSERT_EQ(cached.size(), brute) << "walk " << walk << " step " << i;
+            nonEmpty += !cached.empty();
+        }
+    }
+    EXPECT_GT(nonEmpty, 3000);
+}
