@@ -23,14 +23,21 @@ struct PhotonBeam {
 };
 static_assert(sizeof(PhotonBeam) == 48, "PhotonBeam must stay three vec4 rows for the GL upload");
 
-/// A photon stored on a diffuse surface. `wi` points from the surface toward where the photon came
-/// from; `power` as for beams.
+/// SurfacePhoton::flags bits.
+inline constexpr uint8_t kPhotonDirect = 1;     ///< no scattering vertex (surface or medium) since the light
+inline constexpr uint8_t kPhotonDeltaPath = 2;  ///< emitted by a delta light and every vertex since was a delta interaction
+
+/// A photon stored on a surface (diffuse, coated, partly transmissive; glossy ones keep only
+/// kPhotonDeltaPath photons). `wi` points from the surface toward where the photon came from;
+/// `power` as for beams. `flags` (kPhoton*) say which gathers use it: glossy and coat-specular
+/// gathers take only kPhotonDeltaPath photons (docs/algorithm.md "Glossy vertices").
 struct SurfacePhoton {
     Vec3 position;
     float radius = 0;
     Vec3 wi;
     Vec3 normal;  ///< geometric normal on the side the photon arrived from
     Rgb power;
+    uint8_t flags = 0;
 };
 
 /// Everything photon tracing produced for one pass.

@@ -213,7 +213,39 @@ Rgb ReferenceTracer::radiance(Ray ray, MediumId medium, Rng& rng) const {
             continue;
         }
 
-        if (mat.isGlossy()) {
+        const bool metal = metalChosen(mat, sp, mat.hasMetalMix() ? rng.uniform() : 0.0f);
+        if (mat.type == MaterialType::Plastic && !metal) {
+            // The coated diffuse: next-event estimation with the full f (both lobes), MIS against
+            // the mixture pdf; the smooth coat's mirror direction is a delta (no MIS, like glass).
+            const CoatedBsdf coat = coatedBsdf(mat, sp, hit, ray.d);
+            const Vec3 wo = -ray.d;
+            if (nee) {
+                DirectLightSample ls = m_lights.sampleDirect(hit.p, rng);
+                float cosine = dot(ls.wi, coat.frame.n);
+                Rgb f = ls.pdf > 0 && cosine > 0 && dot(ls.wi, side.nf) > 0 && !ls.incident.isBlack()
+                            ? coat.eval(wo, ls.wi)
+                            : Rgb();
+                if (!f.isBlack()) {
+                    Rgb tr = shadowTransmittance(m_rt.offsetOrigin(hit.p, side.nf, ls.wi), ls, medium, rng);
+                    float mis = ls.delta ? 1.0f : powerHeuristic(ls.pdf, coat.pdf(wo, ls.wi));
+                    L += beta * f * ls.incident * tr * (cosine * mis / ls.pdf);
+                }
+            }
+            SpecularEvent ev;
+            float pdf = 0;
+            bool delta = false;
+            float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+            if (!sampleCoated(coat, hit, ray.d, medium, u0, u1, u2, /*specularOnly=*/false, &ev, &pdf, &delta)) break;
+            beta *= ev.weight;
+            lastPdf = pdf;
+            lastVertex = hit.p;
+            afterSpecular = delta;
+            if (beta.isBlack() || !survives()) break;
+            ray = Ray{m_rt.offsetOrigin(hit.p, side.nf, ev.d), ev.d};
+            continue;
+        }
+
+        if (mat.isGlossy() || (metal && mat.isRough())) {
             const GlossyBsdf bsdf = glossyBsdf(mat, sp, hit, ray.d);
             const Vec3 wo = -ray.d;
             if (nee) {
@@ -307,8 +339,14 @@ Rgb ReferenceTracer::shadowTransmittance(const Vec3& origin, const DirectLightSa
                                          Rng& rng) const {
     const Vec3 d = light.wi;
     const bool finite = std::isfinite(light.distance);
-    // Stop just short of an emissive triangle so the shadow ray does not hit the light itself.
+    // Stop just short of an emissive triangle so the shadow ray does not hit the light itself; where
+    // float rounding of an oblique hit still finds that triangle first (it did at cos 0.6, 2.4 units
+    // away), reaching it is arriving.
     const Vec3 target = light.delta ? light.point : m_rt.offsetOrigin(light.point, light.normal, -d);
+    const EmissiveTriangle* emitter =
+        !light.delta && light.source >= int(m_scene.lights.size())
+            ? &m_scene.emitters[size_t(light.source) - m_scene.lights.size()]
+            : nullptr;
     Ray ray{origin, d, 0.0f, finite ? dot(target - origin, d) : kInfinity};
     Rgb tr(1.0f);
     for (int crossing = 0; crossing <= kMaxInterfaceCrossings; ++crossing) {
@@ -324,6 +362,7 @@ Rgb ReferenceTracer::shadowTransmittance(const Vec3& origin, const DirectLightSa
             }
         }
         if (!surface) return tr;
+        if (emitter && hit.mesh == emitter->mesh && hit.triangle == emitter->triangle) return tr;
         const TriangleMesh& mesh = m_scene.meshes[hit.mesh];
         if (m_scene.materials[mesh.material].type != MaterialType::Interface) return Rgb(0.0f);
         medium = dot(d, hit.ng) < 0 ? mesh.interiorMedium : mesh.exteriorMedium;
