@@ -3,7 +3,9 @@
 // paths deterministically or by a Fresnel choice when smooth, by sampling a GGX lobe when rough
 // (isGlossy(): docs/algorithm.md, "Glossy vertices"); diffuse ones store surface photons and end
 // camera paths with a photon density estimate; Interface is an invisible boundary that only
-// switches the medium (index-matched, e.g. the hull of a fog volume).
+// switches the medium (index-matched, e.g. the hull of a fog volume). Plastic is the dielectric
+// specular layer over diffuse (core/coated_diffuse.h; glTF's non-metals), optionally mixed with a
+// conductor (glTF metallic in (0, 1)): docs/algorithm.md "Coated (plastic) vertices".
 #include <string>
 
 #include "core/math.h"
@@ -11,7 +13,7 @@
 
 namespace tyndall {
 
-enum class MaterialType { Diffuse, Mirror, Dielectric, Interface };
+enum class MaterialType { Diffuse, Mirror, Dielectric, Interface, Plastic };
 
 /// glTF alphaMode: Mask cuts out where alpha < alphaCutoff; Blend lets a ray through with
 /// probability 1 - alpha (stochastic transparency). Both act in Embree's intersection filter
@@ -21,14 +23,20 @@ enum class AlphaMode { Opaque, Mask, Blend };
 struct Material {
     std::string name;
     MaterialType type = MaterialType::Diffuse;
-    Rgb albedo{0.8f};    ///< diffuse reflectance; mirror reflectance; dielectric transmission tint
-    float ior = 1.5f;    ///< dielectric: index inside the mesh relative to outside
+    /// diffuse reflectance; mirror reflectance; dielectric transmission tint; plastic: the base's
+    /// diffuse reflectance and the metal part's F0
+    Rgb albedo{0.8f};
+    float ior = 1.5f;    ///< dielectric: index inside the mesh relative to outside; plastic: the coat's index
     float alpha = 1.0f;      ///< glTF baseColorFactor alpha (coverage), x baseColorTexture alpha
     AlphaMode alphaMode = AlphaMode::Opaque;
     float alphaCutoff = 0.5f;  ///< Mask only
-    float metallic = 0.0f;   ///< glTF metallicFactor, [0, 1] (informational: the type decides)
-    /// Mirror and Dielectric: glTF roughnessFactor (perceptual; GGX alpha = roughness^2), [0, 1].
-    /// Up to kSmoothRoughness the surface is an exact delta lobe; above it a GGX lobe (isGlossy).
+    /// glTF metallicFactor, [0, 1]. Plastic: at each path vertex the conductor lobe (F0 = albedo)
+    /// is taken with probability metallic (x metallicRoughnessTexture B), the coated one otherwise.
+    /// Other types: informational (the type decides).
+    float metallic = 0.0f;
+    /// Mirror, Dielectric, Plastic: glTF roughnessFactor (perceptual; GGX alpha = roughness^2), [0, 1].
+    /// Up to kSmoothRoughness the surface (a plastic's coat and metal) is an exact delta lobe;
+    /// above it a GGX lobe (isRough).
     float roughness = 0.0f;
     Rgb emission{0.0f};  ///< emitted radiance (W m^-2 sr^-1) from the front face; makes an area light
     /// Dielectric only: KHR_materials_transmission's factor, (0, 1]. Where the transmission at a
@@ -63,7 +71,13 @@ struct Material {
     /// Mirror or dielectric, smooth (delta) or rough (glossy).
     bool isSpecular() const { return type == MaterialType::Mirror || type == MaterialType::Dielectric; }
     /// A rough mirror (GGX conductor) or rough dielectric (GGX transmission): sampled, not delta.
-    bool isGlossy() const { return isSpecular() && roughness > kSmoothRoughness; }
+    bool isGlossy() const { return isSpecular() && isRough(); }
+    /// GGX lobes rather than delta ones (mirror, dielectric, plastic).
+    bool isRough() const { return roughness > kSmoothRoughness; }
+    /// A plastic that is partly metal somewhere: each vertex chooses coat or conductor.
+    bool hasMetalMix() const { return type == MaterialType::Plastic && metallic > 0.0f; }
+    /// Shades with the mesh's interpolated normals (diffuse uses the geometric normal unless normal-mapped).
+    bool usesVertexNormals() const { return isSpecular() || type == MaterialType::Plastic; }
     /// Surfaces a path can cross, switching medium.
     bool isTransmissive() const { return type == MaterialType::Dielectric || type == MaterialType::Interface; }
     bool isEmissive() const { return !emission.isBlack(); }

@@ -27,8 +27,10 @@ static_assert(sizeof(PhotonBeam) == 48, "PhotonBeam must stay three vec4 rows fo
 inline constexpr uint8_t kPhotonDirect = 1;     ///< no scattering vertex (surface or medium) since the light
 inline constexpr uint8_t kPhotonDeltaPath = 2;  ///< emitted by a delta light and every vertex since was a delta interaction
 
-/// A photon stored on a diffuse surface. `wi` points from the surface toward where the photon came
-/// from; `power` as for beams.
+/// A photon stored on a surface (diffuse, coated, partly transmissive; glossy ones keep only
+/// kPhotonDeltaPath photons). `wi` points from the surface toward where the photon came from;
+/// `power` as for beams. `flags` (kPhoton*) say which gathers use it: glossy and coat-specular
+/// gathers take only kPhotonDeltaPath photons (docs/algorithm.md "Glossy vertices").
 struct SurfacePhoton {
     Vec3 position;
     float radius = 0;

@@ -47,9 +47,11 @@ CameraTracer::CameraTracer(const EmbreeScene& rt, const RenderSettings& settings
     if (settings.directLight == "on") {
         m_lights = std::make_unique<LightSampler>(m_scene);
         m_direct = std::make_unique<DirectLight>(m_rt, *m_lights);
-        // Photons from glossy surfaces (kPhotonDirect ones among them) reach a diffuse gather only
-        // where the two surfaces meet in one plane; without glossy materials no stored photon is direct.
-        for (const Material& m : m_scene.materials) m_skipDirectPhotons |= m.isGlossy();
+        // Photons from glossy and plastic surfaces (kPhotonDirect ones among them, for their
+        // specular gathers) reach a diffuse gather where such a surface is in the kernel; without
+        // those materials no stored photon is direct.
+        for (const Material& m : m_scene.materials)
+            m_skipDirectPhotons |= m.isGlossy() || m.type == MaterialType::Plastic;
     }
 }
 
@@ -239,21 +241,57 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                     break;
                 }
                 SpecularEvent ev;
-                if (mat.isGlossy()) {
-                    // docs/algorithm.md "Glossy vertices": photons stored here (from delta lights through
-                    // delta interactions only) with the BSDF evaluated, then continue by sampling it.
+                const bool metal = metalChosen(mat, sp, mat.hasMetalMix() ? rng.uniform() : 0.0f);
+                if (mat.type == MaterialType::Plastic && !metal) {
+                    // docs/algorithm.md "Coated (plastic) vertices". The diffuse part is this path's
+                    // end: the density estimate of the photons stored here, weighted by f_d, and with
+                    // --direct-light on a shadow ray for the light that arrives unscattered (whose
+                    // photons the diffuse part then skips), as at a diffuse end. The
+                    // specular part: the delta-path photons with f_s, then the path continues through
+                    // the specular lobe alone, with Russian roulette: kept with probability 4x its weight
+                    // (the weight is ~F, 0.04 at normal incidence: continuing every path would cost a ray
+                    // and a beam query per plastic hit for little; keeping only F of them, at weight 1,
+                    // made the reflections speckle at tens of passes).
+                    const CoatedBsdf coat = coatedBsdf(mat, sp, hit, dir);
+                    const Vec3 wo = -dir;
+                    const bool shading = hasShadingNormal(hit);
+                    const uint8_t directLit = m_direct ? kPhotonDirect : 0;
+                    Rgb coated =
+                        throughput * surfacePhotons.gather(hit.p, side.nf, [&](const SurfacePhoton& p) {
+                            if (dot(p.normal, side.nf) < 0.7f) return Rgb(0.0f);
+                            Rgb f = coat.photonWeight(wo, p.wi, (p.flags & kPhotonDeltaPath) != 0,
+                                                      (p.flags & directLit) != 0);
+                            return shading ? f * shadingOverGeometricCosine(hit, p.wi) : f;
+                        });
+                    if (m_direct && emission && !sp.baseColor.isBlack()) {
+                        Rng neeRng = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::DirectLight);
+                        coated += throughput * m_direct->reflected(hit, side, medium, neeRng, [&](const Vec3& wi) {
+                            return coat.evalDiffuse(wo, wi) * diffuseCosine(side, wi);
+                        });
+                    }
+                    L += coated;
+                    Lsurface += coated;
+                    float u1 = rng.uniform(), u2 = rng.uniform(), uRoulette = rng.uniform();
+                    if (!sampleCoated(coat, hit, dir, medium, 0.0f, u1, u2, /*specularOnly=*/true, &ev)) break;
+                    const float q = std::min(1.0f, 4.0f * ev.weight.maxComponent());
+                    if (!(uRoulette < q)) break;
+                    ev.weight *= 1.0f / q;
+                } else if (mat.isGlossy() || (metal && mat.isRough())) {
+                    // docs/algorithm.md "Glossy vertices": photons stored here from delta lights
+                    // through delta interactions only (kPhotonDeltaPath) with the BSDF evaluated,
+                    // then continue by sampling it. Surfaces that also store photons for a diffuse
+                    // part (partly transmissive, plastic) hold others too: the flag skips them.
                     const GlossyBsdf bsdf = glossyBsdf(mat, sp, hit, dir);
                     const Vec3 wo = -dir;
-                    // A partly transmissive surface stores all its photons for the diffuse base:
-                    // gathering them here would count the light the continuation finds twice.
-                    if (!mat.isPartlyTransmissive()) {
-                        const Rgb glossy =
-                            throughput * surfacePhotons.gather(hit.p, hit.ng, [&](const SurfacePhoton& p) {
-                                return bsdf.eval(wo, p.wi, TransportMode::Radiance);
-                            });
-                        L += glossy;
-                        Lsurface += glossy;
-                    }
+                    const bool shading = hasShadingNormal(hit);
+                    const Rgb glossy =
+                        throughput * surfacePhotons.gather(hit.p, hit.ng, [&](const SurfacePhoton& p) {
+                            if (!(p.flags & kPhotonDeltaPath)) return Rgb(0.0f);
+                            Rgb f = bsdf.eval(wo, p.wi, TransportMode::Radiance);
+                            return shading ? f * shadingOverGeometricCosine(hit, p.wi) : f;
+                        });
+                    L += glossy;
+                    Lsurface += glossy;
                     float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
                     if (!sampleGlossy(bsdf, mesh, hit, dir, medium, u0, u1, u2, TransportMode::Radiance, &ev)) break;
                 } else if (!sampleSpecular(mat, sp.baseColor, mesh, hit, dir, medium, rng.uniform(),

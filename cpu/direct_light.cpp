@@ -16,8 +16,13 @@ Rgb DirectLight::shadowTransmittance(const Vec3& origin, const DirectLightSample
     const Scene& scene = m_rt.scene();
     const Vec3 d = light.wi;
     const bool finite = std::isfinite(light.distance);
-    // Stop just short of an emissive triangle so the shadow ray does not hit the light itself.
+    // Stop just short of an emissive triangle so the shadow ray does not hit the light itself; where
+    // float rounding of an oblique hit still finds that triangle first (it did at cos 0.6, 2.4 units
+    // away), reaching it is arriving.
     const Vec3 target = light.delta ? light.point : m_rt.offsetOrigin(light.point, light.normal, -d);
+    const EmissiveTriangle* emitter = !light.delta && light.source >= int(scene.lights.size())
+                                          ? &scene.emitters[size_t(light.source) - scene.lights.size()]
+                                          : nullptr;
     Ray ray{origin, d, 0.0f, finite ? dot(target - origin, d) : kInfinity};
     Rgb tr(1.0f);
     for (int crossing = 0; crossing <= kMaxInterfaceCrossings; ++crossing) {
@@ -33,6 +38,7 @@ Rgb DirectLight::shadowTransmittance(const Vec3& origin, const DirectLightSample
             }
         }
         if (!surface) return tr;
+        if (emitter && hit.mesh == emitter->mesh && hit.triangle == emitter->triangle) return tr;
         const TriangleMesh& mesh = scene.meshes[hit.mesh];
         if (scene.materials[mesh.material].type != MaterialType::Interface) return Rgb(0.0f);
         medium = dot(d, hit.ng) < 0 ? mesh.interiorMedium : mesh.exteriorMedium;

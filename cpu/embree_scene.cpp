@@ -72,9 +72,9 @@ EmbreeScene::EmbreeScene(const Scene& scene, std::shared_ptr<EmbreeDevice> devic
     m_shadingNormals.resize(scene.meshes.size());
     for (size_t m = 0; m < scene.meshes.size(); ++m) {
         const TriangleMesh& mesh = scene.meshes[m];
-        // Shading normals only change specular directions (diffuse sampling uses ng).
+        // Shading normals only change specular, glossy and coated lobes (diffuse shading uses ng).
         if (mesh.normals.empty() || mesh.material < 0 || size_t(mesh.material) >= scene.materials.size() ||
-            !scene.materials[mesh.material].isSpecular())
+            !scene.materials[mesh.material].usesVertexNormals())
             continue;
         std::vector<TriangleNormals>& packed = m_shadingNormals[m];
         packed.resize(mesh.triangleCount());

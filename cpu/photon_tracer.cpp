@@ -121,11 +121,10 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
     Vec3 o = e.ray.o, d = e.ray.d;
     // Area-light photons start on their triangle: nudge them off it along the emitted direction.
     if (e.emitterMesh >= 0) o = m_rt.offsetOrigin(o, 0.0f, d, d);
-    // From a point, spot or directional light through delta interactions only: what glossy surfaces
-    // store (docs/algorithm.md, "Glossy vertices").
-    bool deltaDirect = e.light >= 0;
-    // No scattering vertex since the light (Interface crossings are none): with --direct-light on,
-    // shadow rays carry this light to diffuse surfaces, so such photons are not stored there.
+    // SurfacePhoton::flags (core/photon_beam.h). deltaPath: from a point, spot or directional light
+    // through delta interactions only, what glossy and coat-specular gathers use (docs/algorithm.md,
+    // "Glossy vertices"); direct: no scattering vertex yet (interface crossings are none).
+    bool deltaPath = e.light >= 0;
     bool direct = true;
     // Path distance from the light at o (the photon cone, cpu/beam_cone.h).
     double travelled = e.light < 0                                                ? m_emitterStart[e.emitterMesh]
@@ -182,8 +181,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
                 d = sampleHg(d, med.g, rng.uniform(), rng.uniform());
                 travelled += double(t0) + double(ff.t);
                 o = x;
-                deltaDirect = false;
-                direct = false;
+                deltaPath = direct = false;
                 continue;
             }
         }
@@ -203,14 +201,21 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
         hit.b2 = rh.hit.v;
         hit.p = p;
         hit.ng = ng;
-        hit.ns = mat.type == MaterialType::Diffuse
+        hit.ns = !mat.usesVertexNormals()
                      ? ng
                      : m_rt.shadingNormal(int(rh.hit.geomID), rh.hit.primID, rh.hit.u, rh.hit.v, ng);
         applyNormalMap(m_scene, &hit, surfaceRadius);
         const bool partly = mat.isPartlyTransmissive();
+        const bool plastic = mat.type == MaterialType::Plastic;
         SurfacePoint at;
-        if (partly) at = evalSurface(m_scene, mesh, rh.hit.primID, rh.hit.u, rh.hit.v, surfaceRadius);
-        if ((mat.type == MaterialType::Diffuse || (partly && at.transmission < 1.0f)) && !(direct && m_directLight)) {
+        if (partly || plastic) at = evalSurface(m_scene, mesh, rh.hit.primID, rh.hit.u, rh.hit.v, surfaceRadius);
+        // Stored: the irradiance of every surface with a diffuse part; on glossy ones only what
+        // their gather uses (kPhotonDeltaPath). With --direct-light on, shadow rays carry the light
+        // that arrives without scattering to the diffuse parts, so such photons are stored only where
+        // a glossy or coat-specular gather needs them (kPhotonDeltaPath).
+        const bool specularGather = deltaPath && (plastic || mat.isGlossy());
+        const bool diffusePart = mat.type == MaterialType::Diffuse || plastic || (partly && at.transmission < 1.0f);
+        if ((diffusePart && (!(direct && m_directLight) || specularGather)) || (mat.isGlossy() && deltaPath)) {
             const Vec3 nf = dot(d, ng) < 0 ? ng : -ng;  // hitSide(hit, d).nf
             SurfacePhoton& sp = out.surfacePhotons.emplace_back();
             sp.position = p;
@@ -218,7 +223,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
             sp.wi = -d;
             sp.normal = nf;
             sp.power = power;
-            sp.flags = uint8_t((direct ? kPhotonDirect : 0) | (deltaDirect ? kPhotonDeltaPath : 0));
+            sp.flags = uint8_t((direct ? kPhotonDirect : 0) | (deltaPath ? kPhotonDeltaPath : 0));
             // alphaMode BLEND stops a photon with probability alpha (the filter): the stored photons
             // stand for the irradiance on the covered part, so they carry 1/alpha (the camera path
             // stops with probability alpha too, and must not apply the coverage twice).
@@ -227,6 +232,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
                 if (a > 0) sp.power *= 1.0f / a;
             }
         }
+        if (mat.type != MaterialType::Interface) direct = false;
         if (diffuseBaseChosen(mat, at, partly ? rng.uniform() : 0.0f)) {
             const HitSide side = hitSide(hit, d);
             if (hasShadingNormal(hit)) power *= shadingCosineRatio(side, -d);  // Veach's adjoint
@@ -238,32 +244,34 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
             power *= 1.0f / q;
             d = Frame(side.nf).toWorld(sampleCosineHemisphere(rng.uniform(), rng.uniform()));
             o = m_rt.offsetOrigin(p, tHit, side.nf, d);
-            deltaDirect = false;
-            direct = false;
+            deltaPath = false;
             continue;
         }
         SpecularEvent ev;
-        if (mat.isGlossy()) {
-            if (deltaDirect && !partly) {  // partly transmissive: already stored for the diffuse base
-                SurfacePhoton& sp = out.surfacePhotons.emplace_back();
-                sp.position = p;
-                sp.radius = surfaceRadius * float(surfaceConeScale(travelled, m_radii.coneReach));
-                sp.wi = -d;
-                sp.normal = dot(d, ng) < 0 ? ng : -ng;
-                sp.power = power;
-                sp.flags = uint8_t((direct ? kPhotonDirect : 0) | kPhotonDeltaPath);
-            }
-            const SurfacePoint at = evalSurface(m_scene, mesh, rh.hit.primID, rh.hit.u, rh.hit.v, surfaceRadius);
+        const bool metal = metalChosen(mat, at, mat.hasMetalMix() ? rng.uniform() : 0.0f);
+        if (plastic && !metal) {
+            // The coated diffuse, both lobes by their mixture (docs/algorithm.md "Coated vertices").
+            const CoatedBsdf coat = coatedBsdf(mat, at, hit, d);
+            float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+            bool delta = false;
+            if (!sampleCoated(coat, hit, d, medium, u0, u1, u2, /*specularOnly=*/false, &ev, nullptr, &delta)) return;
+            deltaPath = deltaPath && delta;
+            float q = std::min(1.0f, (power * ev.weight).maxComponent() / startMax);
+            if (!(rng.uniform() < q)) return;
+            ev.weight *= 1.0f / q;
+        } else if (mat.isGlossy() || (metal && mat.isRough())) {
+            if (!(partly || plastic)) at = evalSurface(m_scene, mesh, rh.hit.primID, rh.hit.u, rh.hit.v, surfaceRadius);
             const GlossyBsdf bsdf = glossyBsdf(mat, at, hit, d);
             float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
             if (!sampleGlossy(bsdf, mesh, hit, d, medium, u0, u1, u2, TransportMode::Importance, &ev)) return;
-            deltaDirect = false;
+            deltaPath = false;
             float q = std::min(1.0f, (power * ev.weight).maxComponent() / startMax);
             if (!(rng.uniform() < q)) return;
             ev.weight *= 1.0f / q;
         } else {
             const Rgb tint =
-                mat.isTextured()
+                plastic ? at.baseColor
+                : mat.isTextured()
                     ? evalSurface(m_scene, mesh, rh.hit.primID, rh.hit.u, rh.hit.v, surfaceRadius).baseColor
                     : mat.albedo;
             if (!sampleSpecular(mat, tint, mesh, hit, d, medium, rng.uniform(), TransportMode::Importance, &ev))

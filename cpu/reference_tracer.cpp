@@ -200,7 +200,39 @@ Rgb ReferenceTracer::radiance(Ray ray, MediumId medium, Rng& rng) const {
             continue;
         }
 
-        if (mat.isGlossy()) {
+        const bool metal = metalChosen(mat, sp, mat.hasMetalMix() ? rng.uniform() : 0.0f);
+        if (mat.type == MaterialType::Plastic && !metal) {
+            // The coated diffuse: next-event estimation with the full f (both lobes), MIS against
+            // the mixture pdf; the smooth coat's mirror direction is a delta (no MIS, like glass).
+            const CoatedBsdf coat = coatedBsdf(mat, sp, hit, ray.d);
+            const Vec3 wo = -ray.d;
+            if (nee) {
+                DirectLightSample ls = m_lights.sampleDirect(hit.p, rng);
+                float cosine = dot(ls.wi, coat.frame.n);
+                Rgb f = ls.pdf > 0 && cosine > 0 && dot(ls.wi, side.nf) > 0 && !ls.incident.isBlack()
+                            ? coat.eval(wo, ls.wi)
+                            : Rgb();
+                if (!f.isBlack()) {
+                    Rgb tr = m_direct.shadowTransmittance(m_rt.offsetOrigin(hit.p, side.nf, ls.wi), ls, medium, rng);
+                    float mis = ls.delta ? 1.0f : powerHeuristic(ls.pdf, coat.pdf(wo, ls.wi));
+                    L += beta * f * ls.incident * tr * (cosine * mis / ls.pdf);
+                }
+            }
+            SpecularEvent ev;
+            float pdf = 0;
+            bool delta = false;
+            float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+            if (!sampleCoated(coat, hit, ray.d, medium, u0, u1, u2, /*specularOnly=*/false, &ev, &pdf, &delta)) break;
+            beta *= ev.weight;
+            lastPdf = pdf;
+            lastVertex = hit.p;
+            afterSpecular = delta;
+            if (beta.isBlack() || !survives()) break;
+            ray = Ray{m_rt.offsetOrigin(hit.p, side.nf, ev.d), ev.d};
+            continue;
+        }
+
+        if (mat.isGlossy() || (metal && mat.isRough())) {
             const GlossyBsdf bsdf = glossyBsdf(mat, sp, hit, ray.d);
             const Vec3 wo = -ray.d;
             if (nee) {

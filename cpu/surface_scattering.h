@@ -1,6 +1,7 @@
 #pragma once
 // What happens to a path at a surface, shared by photon paths, camera paths and the reference
 // path tracer: which way it leaves, the throughput factor, and the medium it ends up in.
+#include "core/coated_diffuse.h"
 #include "core/fresnel.h"
 #include "core/material.h"
 #include "core/material_eval.h"
@@ -84,8 +85,23 @@ inline bool diffuseBaseChosen(const Material& mat, const SurfacePoint& sp, float
     return mat.type == MaterialType::Diffuse || (mat.isPartlyTransmissive() && !(u < sp.transmission));
 }
 
+/// A plastic with a metal part (Material::hasMetalMix) is at each vertex the conductor (F0 =
+/// baseColor) with probability sp.metallic, else the coated diffuse: true = the conductor. `u` is
+/// drawn only for such materials.
+inline bool metalChosen(const Material& mat, const SurfacePoint& sp, float u) {
+    return mat.hasMetalMix() && u < sp.metallic;
+}
+
+/// |wi . ns| / |wi . ng|: a surface photon's power carries the geometric cosine of its arrival; a
+/// BSDF in the shading frame wants the shading one (1 when ns = ng).
+inline float shadingOverGeometricCosine(const SurfaceHit& hit, const Vec3& wi) {
+    float den = std::abs(dot(wi, hit.ng));
+    return den > 0 ? std::abs(dot(wi, hit.ns)) / den : 0.0f;
+}
+
 /// `tint`: the mirror reflectance / dielectric transmission tint at the hit (Material::albedo, times
-/// baseColorTexture where the material has one).
+/// baseColorTexture where the material has one). On a Plastic (only called when metalChosen and
+/// the material is smooth) the metal part: a mirror.
 inline bool sampleSpecular(const Material& mat, const Rgb& tint, const TriangleMesh& mesh, const SurfaceHit& hit,
                            const Vec3& dIn, MediumId currentMedium, float u, TransportMode mode, SpecularEvent* ev) {
     HitSide side = hitSide(hit, dIn);
@@ -94,6 +110,7 @@ inline bool sampleSpecular(const Material& mat, const Rgb& tint, const TriangleM
     ev->transmitted = false;
     switch (mat.type) {
         case MaterialType::Mirror:
+        case MaterialType::Plastic:
             ev->d = reflect(wo, side.nsf);
             ev->weight = tint;
             return dot(ev->d, side.nf) > 0;
@@ -159,10 +176,11 @@ struct GlossyBsdf {
 };
 
 /// `sp`: the material at the hit (roughness and tint from textures); `dIn`: the arriving direction.
+/// A Plastic gives its metal part (a conductor: call it only when metalChosen).
 inline GlossyBsdf glossyBsdf(const Material& mat, const SurfacePoint& sp, const SurfaceHit& hit, const Vec3& dIn) {
     GlossyBsdf b;
     Ggx ggx = Ggx::fromRoughness(std::max(sp.roughness, Material::kSmoothRoughness));
-    b.conductor = mat.type == MaterialType::Mirror;
+    b.conductor = mat.type == MaterialType::Mirror || mat.type == MaterialType::Plastic;
     if (b.conductor) {
         b.frame = Frame(hitSide(hit, dIn).nsf);
         b.metal = RoughConductor{ggx, sp.baseColor};
@@ -193,6 +211,66 @@ inline bool sampleGlossy(const GlossyBsdf& bsdf, const TriangleMesh& mesh, const
     ev->medium = s.transmitted ? (side.entering ? mesh.interiorMedium : mesh.exteriorMedium) : currentMedium;
     if (pdf) *pdf = s.pdf;
     return s.transmitted ? dot(ev->d, side.nf) < 0 : dot(ev->d, side.nf) > 0;
+}
+
+/// The coated diffuse of a Plastic at a hit (core/coated_diffuse.h), in the shading frame on the
+/// side the path arrives from (+z = hitSide(hit, dIn).nsf; the coat is opaque).
+struct CoatedBsdf {
+    Frame frame;
+    CoatedDiffuse coat;
+
+    /// f in world directions (reciprocal: the same for radiance and importance).
+    Rgb eval(const Vec3& woWorld, const Vec3& wiWorld) const {
+        return coat.eval(frame.toLocal(woWorld), frame.toLocal(wiWorld));
+    }
+    float pdf(const Vec3& woWorld, const Vec3& wiWorld) const {
+        return coat.pdf(frame.toLocal(woWorld), frame.toLocal(wiWorld));
+    }
+    /// What a surface photon arriving from `wiWorld` adds to a camera path leaving toward `woWorld`
+    /// per unit of its power x kernel, before the path throughput: the diffuse part unless
+    /// `directLit` (kPhotonDirect with --direct-light on: a shadow ray carries that light), plus the
+    /// specular part for `deltaPath` ones (kPhotonDeltaPath: light the continuation cannot find;
+    /// docs/algorithm.md "Coated (plastic) vertices"). Shading normal: times |wi . ns| / |wi . ng|
+    /// (the caller's shadingOverGeometricCosine).
+    Rgb photonWeight(const Vec3& woWorld, const Vec3& wiWorld, bool deltaPath, bool directLit = false) const {
+        Vec3 wo = frame.toLocal(woWorld), wi = frame.toLocal(wiWorld);
+        Rgb f = directLit ? Rgb(0.0f) : coat.evalDiffuse(wo, wi);
+        if (deltaPath) f += Rgb(coat.evalSpecular(wo, wi));
+        return f;
+    }
+    /// The diffuse part alone in world directions (direct light by shadow rays).
+    Rgb evalDiffuse(const Vec3& woWorld, const Vec3& wiWorld) const {
+        return coat.evalDiffuse(frame.toLocal(woWorld), frame.toLocal(wiWorld));
+    }
+};
+
+/// `sp`: the plastic at the hit (base colour, roughness from textures); `dIn`: the arriving direction.
+inline CoatedBsdf coatedBsdf(const Material& mat, const SurfacePoint& sp, const SurfaceHit& hit, const Vec3& dIn) {
+    CoatedBsdf b;
+    b.frame = Frame(hitSide(hit, dIn).nsf);
+    b.coat = CoatedDiffuse::make(std::max(sp.roughness, Material::kSmoothRoughness), !mat.isRough(), mat.ior,
+                                 sp.baseColor);
+    return b;
+}
+
+/// Samples the coated BSDF like sampleGlossy: the mixture of both lobes (`specularOnly` false:
+/// weight = f cos / mixture pdf), or the specular lobe alone (weight = f_s cos / pdf_s; PPB camera
+/// paths, whose diffuse part is the photon estimate). `*delta`: the smooth coat's mirror direction
+/// was taken (no pdf for MIS). False when the path must end (below the geometric surface).
+inline bool sampleCoated(const CoatedBsdf& bsdf, const SurfaceHit& hit, const Vec3& dIn, MediumId currentMedium,
+                         float u0, float u1, float u2, bool specularOnly, SpecularEvent* ev, float* pdf = nullptr,
+                         bool* delta = nullptr) {
+    HitSide side = hitSide(hit, dIn);
+    Vec3 wo = bsdf.frame.toLocal(-dIn);
+    CoatedSample s = specularOnly ? bsdf.coat.sampleSpecular(wo, u1, u2) : bsdf.coat.sample(wo, u0, u1, u2);
+    if (!s.valid) return false;
+    ev->d = normalize(bsdf.frame.toWorld(s.wi));
+    ev->weight = s.weight;
+    ev->transmitted = false;
+    ev->medium = currentMedium;
+    if (pdf) *pdf = s.pdf;
+    if (delta) *delta = s.delta;
+    return dot(ev->d, side.nf) > 0;
 }
 
 }  // namespace tyndall

@@ -487,6 +487,7 @@ int GltfImporter::material(int index, const std::string& primWhere) {
     in.alpha = pbr.baseColorFactor.size() == 4 ? float(pbr.baseColorFactor[3]) : 1.0f;
     in.metallic = float(pbr.metallicFactor);
     in.roughness = float(pbr.roughnessFactor);
+    in.metallicRoughnessTexture = pbr.metallicRoughnessTexture.index >= 0;
     in.emissive = rgbOf(gm.emissiveFactor, Rgb(0.0f), 3, in.where, "emissiveFactor");
     in.alphaMode = gm.alphaMode;
     in.alphaCutoff = float(gm.alphaCutoff);

@@ -54,17 +54,20 @@ GltfMaterialMapping mapGltfMaterial(const GltfMaterialInput& in) {
         m.albedo = in.baseColor;
         m.ior = in.ior;
         m.transmission = in.transmission;
-    } else if (in.metallic >= 0.5f) {
+    } else if (in.metallic >= 1.0f && !in.metallicRoughnessTexture) {
         m.type = MaterialType::Mirror;  // a GGX conductor when roughness > Material::kSmoothRoughness
         m.albedo = in.baseColor;
     } else {
-        m.type = MaterialType::Diffuse;
+        // glTF's non-metal: a dielectric coat at the material's ior over the diffuse base; with
+        // metallic > 0 (factor x texture B) mixed per point with the conductor (F0 = baseColor).
+        m.type = MaterialType::Plastic;
         m.albedo = in.baseColor;
+        m.ior = in.ior;
     }
     m.emission = in.emissive * in.emissiveStrength;
     m.alpha = in.alpha;
     m.metallic = in.metallic;
-    m.roughness = m.type == MaterialType::Diffuse ? 0.0f : in.roughness;
+    m.roughness = in.roughness;
 
     if (in.hasVolume) {
         if (m.type != MaterialType::Dielectric) {

@@ -6,10 +6,12 @@
 //                                                       transmission above Material::kSmoothRoughness);
 //                                                       transmission < 1 (or a transmissionTexture,
 //                                                       read by the loader) mixes in the diffuse base
-//   else metallic >= 0.5                              -> Mirror (GGX conductor when rough),
+//   else metallic = 1 without metallicRoughnessTexture -> Mirror (GGX conductor when rough),
 //                                                       F0 = baseColorFactor
-//   else                                              -> Diffuse, albedo = baseColorFactor (the
-//                                                       dielectric specular layer is not modelled)
+//   else                                              -> Plastic: the dielectric specular layer
+//                                                       (ior, roughness) over the diffuse base
+//                                                       baseColorFactor, mixed per point with the
+//                                                       conductor by metallic (x texture B)
 //   emissiveFactor * emissiveStrength                 -> emission (radiance, W m^-2 sr^-1)
 //   KHR_materials_volume on a Dielectric              -> absorbing medium inside the mesh:
 //        sigma_a = -ln(attenuationColor) / attenuationDistance, sigma_s = 0
@@ -37,6 +39,7 @@ struct GltfMaterialInput {
     float emissiveStrength = 1.0f;  ///< KHR_materials_emissive_strength
     float transmission = 0.0f;      ///< KHR_materials_transmission
     float ior = 1.5f;               ///< KHR_materials_ior
+    bool metallicRoughnessTexture = false;  ///< present: metallic varies per point (not a pure metal)
     bool hasVolume = false;         ///< KHR_materials_volume present
     float attenuationDistance = std::numeric_limits<float>::infinity();
     Rgb attenuationColor{1.0f};

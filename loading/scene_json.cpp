@@ -79,31 +79,40 @@ Material readMaterial(JsonObject& obj, const std::string& baseDir, const SceneLo
         m.type = MaterialType::Dielectric;
     else if (type == "interface")
         m.type = MaterialType::Interface;
+    else if (type == "plastic")
+        m.type = MaterialType::Plastic;
     else
-        typeValue->fail("expected one of diffuse, mirror, dielectric, interface, got " + typeValue->describe());
-    m.albedo = obj.rgb("albedo", Rgb(m.type == MaterialType::Diffuse ? 0.8f : 1.0f));
-    if (m.type == MaterialType::Diffuse || m.type == MaterialType::Mirror) {
+        typeValue->fail("expected one of diffuse, plastic, mirror, dielectric, interface, got " + typeValue->describe());
+    const bool plastic = m.type == MaterialType::Plastic;
+    m.albedo = obj.rgb("albedo", Rgb(m.type == MaterialType::Diffuse || plastic ? 0.8f : 1.0f));
+    if (m.type == MaterialType::Diffuse || m.type == MaterialType::Mirror || plastic) {
         auto a = obj.get("albedo");
         if (a && m.albedo.maxComponent() > 1.0f) a->fail("a reflectance above 1 creates energy");
     }
     if (auto ior = obj.get("ior")) {
-        if (m.type != MaterialType::Dielectric) ior->fail("ior applies to dielectric materials only");
-        m.ior = float(ior->number(1e-3, 100.0));
+        if (m.type != MaterialType::Dielectric && !plastic)
+            ior->fail("ior applies to dielectric and plastic materials only");
+        m.ior = float(ior->number(plastic ? 1.0 : 1e-3, 100.0));
     }
     m.emission = obj.rgb("emission", Rgb(0.0f));
     if (auto r = obj.get("roughness")) {
-        if (m.type != MaterialType::Mirror && m.type != MaterialType::Dielectric)
-            r->fail("roughness applies to mirror and dielectric materials only (diffuse is Lambertian)");
+        if (m.type != MaterialType::Mirror && m.type != MaterialType::Dielectric && !plastic)
+            r->fail("roughness applies to mirror, dielectric and plastic materials only (diffuse is Lambertian)");
         m.roughness = float(r->number(0.0, 1.0));
-        m.metallic = m.type == MaterialType::Mirror ? 1.0f : 0.0f;
+        if (!plastic) m.metallic = m.type == MaterialType::Mirror ? 1.0f : 0.0f;
+    }
+    if (auto mt = obj.get("metallic")) {
+        if (!plastic) mt->fail("metallic applies to plastic materials only (a mirror is all metal)");
+        m.metallic = float(mt->number(0.0, 1.0));
     }
     float scale = float(obj.number("texture_scale", 1.0, 1e-6, 1e6));
     m.baseColorTexture = readTexture(obj, "albedo_texture", TextureEncoding::Srgb, scale, baseDir, options, scene);
     m.emissiveTexture = readTexture(obj, "emission_texture", TextureEncoding::Srgb, scale, baseDir, options, scene);
     m.metallicRoughnessTexture =
         readTexture(obj, "roughness_texture", TextureEncoding::Linear, scale, baseDir, options, scene);
-    if (m.metallicRoughnessTexture.present() && !m.isSpecular())
-        obj.get("roughness_texture")->fail("roughness_texture applies to mirror and dielectric materials only");
+    if (m.metallicRoughnessTexture.present() && !m.isSpecular() && !plastic)
+        obj.get("roughness_texture")
+            ->fail("roughness_texture applies to mirror, dielectric and plastic materials only");
     m.normalTexture = readTexture(obj, "normal_texture", TextureEncoding::Linear, scale, baseDir, options, scene);
     if (auto ns = obj.get("normal_scale")) {
         if (!m.normalTexture.present()) ns->fail("normal_scale needs a normal_texture");

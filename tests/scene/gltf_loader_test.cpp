@@ -265,7 +265,7 @@ void expectTexturedCube(const SceneFile& f, const std::vector<std::string>& warn
     EXPECT_TRUE(m.isClosed());
     const Material& mat = s.materials[size_t(m.material)];
     EXPECT_EQ(mat.name, "red paint");
-    EXPECT_EQ(mat.type, MaterialType::Diffuse);
+    EXPECT_EQ(mat.type, MaterialType::Plastic);  // a non-metal: the coat over the diffuse base
     EXPECT_NEAR(mat.albedo.r, 0.8f, 1e-6f);
     EXPECT_NEAR(mat.albedo.g, 0.1f, 1e-6f);
     ASSERT_EQ(s.lights.size(), 1u);
@@ -366,17 +366,45 @@ TEST(GltfMaterialMapping, RoughTransmissionIsGgxGlass) {
     EXPECT_TRUE(m.notes.empty());
 }
 
-TEST(GltfMaterialMapping, DielectricPbrIsDiffuseWithBaseColourAndEmission) {
+TEST(GltfMaterialMapping, DielectricPbrIsPlasticWithBaseColourIorRoughnessAndEmission) {
     GltfMaterialInput in = input("paint");
     in.metallic = 0.0f;
+    in.roughness = 0.35f;
+    in.ior = 1.4f;
     in.baseColor = Rgb(0.2f, 0.4f, 0.6f);
     in.emissive = Rgb(1.0f, 0.5f, 0.0f);
     in.emissiveStrength = 3.0f;
     GltfMaterialMapping m = mapGltfMaterial(in);
-    EXPECT_EQ(m.material.type, MaterialType::Diffuse);
+    EXPECT_EQ(m.material.type, MaterialType::Plastic);
+    EXPECT_FALSE(m.material.hasMetalMix());
+    EXPECT_TRUE(m.material.isRough());
+    EXPECT_FLOAT_EQ(m.material.roughness, 0.35f);
+    EXPECT_FLOAT_EQ(m.material.ior, 1.4f);  // KHR_materials_ior: the coat's index
     EXPECT_FLOAT_EQ(m.material.albedo.g, 0.4f);
     EXPECT_FLOAT_EQ(m.material.emission.r, 3.0f);
     EXPECT_FLOAT_EQ(m.material.emission.g, 1.5f);
+    EXPECT_TRUE(m.notes.empty());
+}
+
+TEST(GltfMaterialMapping, MetallicBetweenZeroAndOneOrTexturedIsThePlasticMetalMix) {
+    GltfMaterialInput in = input("worn brass");
+    in.metallic = 0.6f;
+    in.roughness = 0.5f;
+    GltfMaterialMapping mix = mapGltfMaterial(in);
+    EXPECT_EQ(mix.material.type, MaterialType::Plastic);
+    EXPECT_TRUE(mix.material.hasMetalMix());
+    EXPECT_FLOAT_EQ(mix.material.metallic, 0.6f);
+    // metallic 1 is a pure conductor, unless a metallicRoughnessTexture's B makes it vary per point.
+    in.metallic = 1.0f;
+    EXPECT_EQ(mapGltfMaterial(in).material.type, MaterialType::Mirror);
+    in.metallicRoughnessTexture = true;
+    GltfMaterialMapping textured = mapGltfMaterial(in);
+    EXPECT_EQ(textured.material.type, MaterialType::Plastic);
+    EXPECT_FLOAT_EQ(textured.material.metallic, 1.0f);
+    // Formerly metallic >= 0.5 was a Mirror and below a Lambertian diffuse.
+    in.metallicRoughnessTexture = false;
+    in.metallic = 0.49f;
+    EXPECT_EQ(mapGltfMaterial(in).material.type, MaterialType::Plastic);
 }
 
 TEST(GltfMaterialMapping, ApproximationsAreNotedByKind) {

@@ -63,7 +63,7 @@ TEST(SceneErrors, UnknownKeys) {
     j = validScene();
     j["materials"][0]["albdo"] = 0.5;
     expectError("unknown-material-key.json", j.dump(), "/materials/0/albdo",
-                "expected one of: albedo, albedo_texture, emission, emission_texture, ior, name, normal_scale, "
+                "expected one of: albedo, albedo_texture, emission, emission_texture, ior, metallic, name, normal_scale, "
                 "normal_texture, roughness, roughness_texture, texture_scale, transmission, transmission_texture, type");
     j = validScene();
     j["shapes"][1]["radios"] = 1;

@@ -191,3 +191,45 @@ TEST(JsonReader, SyntaxErrorsGiveLineAndColumn) {
 
 }  // namespace
 }  // namespace tyndall
+
+namespace tyndall {
+namespace {
+
+// "plastic": the dielectric coat over diffuse (roughness, ior, metallic, roughness_texture); the
+// keys stay errors where they do not apply, and "diffuse" stays exactly Lambertian.
+TEST(SceneFile, PlasticMaterialKeys) {
+    auto scene = [](const std::string& material) {
+        return std::string(R"({"materials": [)") + material + R"(],
+          "shapes": [{"type": "quad", "material": 0, "corner": [-1, 0, 1], "edge1": [2, 0, 0], "edge2": [0, 0, -2]}],
+          "lights": [{"type": "point", "position": [0, 2, 0], "intensity": 1}],
+          "cameras": [{"position": [0, 1, 4], "target": [0, 0, 0]}]})";
+    };
+    Scene s = test::loadText(scene(R"({"name": "p", "type": "plastic", "albedo": [0.2, 0.3, 0.4], "roughness": 0.3,
+                                       "ior": 1.4, "metallic": 0.25})"),
+                             SceneFormat::Json)
+                  .scene;
+    const Material& p = s.materials[0];
+    EXPECT_EQ(p.type, MaterialType::Plastic);
+    EXPECT_FLOAT_EQ(p.roughness, 0.3f);
+    EXPECT_FLOAT_EQ(p.ior, 1.4f);
+    EXPECT_FLOAT_EQ(p.metallic, 0.25f);
+    EXPECT_TRUE(p.hasMetalMix());
+    Scene d = test::loadText(scene(R"({"name": "d", "type": "plastic"})"), SceneFormat::Json).scene;
+    EXPECT_FLOAT_EQ(d.materials[0].albedo.g, 0.8f);
+    EXPECT_FLOAT_EQ(d.materials[0].ior, 1.5f);
+    EXPECT_FALSE(d.materials[0].isRough());  // a smooth coat
+    EXPECT_FALSE(d.materials[0].hasMetalMix());
+    for (auto [material, says] : std::vector<std::pair<std::string, std::string>>{
+             {R"({"name": "d", "roughness": 0.3})", "roughness applies to mirror, dielectric and plastic"},
+             {R"({"name": "d", "ior": 1.3})", "ior applies to dielectric and plastic"},
+             {R"({"name": "m", "type": "mirror", "metallic": 0.5})", "metallic applies to plastic materials only"},
+             {R"({"name": "p", "type": "plastic", "ior": 0.8})", "/materials/0/ior"},
+             {R"({"name": "p", "type": "plastic", "albedo": 1.5})", "a reflectance above 1 creates energy"},
+             {R"({"name": "p", "type": "plastc"})", "expected one of diffuse, plastic, mirror"}}) {
+        std::string err = test::errorOf([&] { test::loadText(scene(material), SceneFormat::Json); });
+        EXPECT_NE(err.find(says), std::string::npos) << material << ": " << err;
+    }
+}
+
+}  // namespace
+}  // namespace tyndall
