@@ -265,8 +265,8 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                         });
                     if (m_direct && emission && !sp.baseColor.isBlack()) {
                         Rng neeRng = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::DirectLight);
-                        coated += throughput * m_direct->reflected(hit, side, medium, neeRng, [&](const Vec3& wi) {
-                            return coat.evalDiffuse(wo, wi) * diffuseCosine(side, wi);
+                        coated += throughput * m_direct->reflected(hit, side, medium, neeRng, [&](const DirectLightSample& ls) {
+                            return coat.evalDiffuse(wo, ls.wi) * diffuseCosine(side, ls.wi);
                         });
                     }
                     L += coated;

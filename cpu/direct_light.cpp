@@ -50,12 +50,11 @@ Rgb DirectLight::shadowTransmittance(const Vec3& origin, const DirectLightSample
 
 Rgb DirectLight::diffuse(const SurfaceHit& hit, const HitSide& side, MediumId medium, Rng& rng,
                          bool misWithCosineSampling) const {
-    const DirectLightSample ls = m_lights.sampleDirect(hit.p, rng);
-    const float cosine = diffuseCosine(side, ls.wi);
-    if (!(ls.pdf > 0) || !(cosine > 0) || ls.incident.isBlack()) return Rgb(0.0f);
-    const Rgb tr = shadowTransmittance(m_rt.offsetOrigin(hit.p, side.nf, ls.wi), ls, medium, rng);
-    const float mis = ls.delta || !misWithCosineSampling ? 1.0f : powerHeuristic(ls.pdf, cosine * kInvPi);
-    return ls.incident * tr * (cosine * mis / ls.pdf);
+    return reflected(hit, side, medium, rng, [&](const DirectLightSample& ls) {
+        const float cosine = diffuseCosine(side, ls.wi);
+        const float mis = ls.delta || !misWithCosineSampling ? 1.0f : powerHeuristic(ls.pdf, cosine * kInvPi);
+        return Rgb(cosine > 0 ? cosine * mis : 0.0f);
+    });
 }
 
 }  // namespace tyndall

@@ -51,14 +51,16 @@ public:
     Rgb diffuse(const SurfaceHit& hit, const HitSide& side, MediumId medium, Rng& rng,
                 bool misWithCosineSampling) const;
 
-    /// One-sample estimate of incident x Tr x weight(wi) / pdf at `hit` (no MIS: for a path that
-    /// ends there), `weight(wi)` the caller's BSDF x cosine (Rgb). Draws sampleDirect's three
-    /// uniforms from `rng`, then the shadow ray's only when the weight is not black.
+    /// One-sample estimate of incident x Tr x weight(sample) / pdf at `hit`, `weight` the caller's
+    /// BSDF x cosine (x a MIS weight where the path also reaches the light by sampling) for the
+    /// light sample (DirectLightSample: wi, pdf, delta). Draws sampleDirect's three uniforms from
+    /// `rng`, then the shadow ray's only when the weight is not black. `diffuse` is this with the
+    /// diffuse base's cosine.
     template <class Weight>
     Rgb reflected(const SurfaceHit& hit, const HitSide& side, MediumId medium, Rng& rng, Weight&& weight) const {
         const DirectLightSample ls = m_lights.sampleDirect(hit.p, rng);
         if (!(ls.pdf > 0) || ls.incident.isBlack()) return Rgb(0.0f);
-        const Rgb w = weight(ls.wi);
+        const Rgb w = weight(ls);
         if (w.isBlack()) return Rgb(0.0f);
         return ls.incident * w * shadowTransmittance(m_rt.offsetOrigin(hit.p, side.nf, ls.wi), ls, medium, rng) *
                (1.0f / ls.pdf);

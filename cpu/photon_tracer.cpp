@@ -209,13 +209,11 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
         const bool plastic = mat.type == MaterialType::Plastic;
         SurfacePoint at;
         if (partly || plastic) at = evalSurface(m_scene, mesh, rh.hit.primID, rh.hit.u, rh.hit.v, surfaceRadius);
-        // Stored: the irradiance of every surface with a diffuse part; on glossy ones only what
-        // their gather uses (kPhotonDeltaPath). With --direct-light on, shadow rays carry the light
-        // that arrives without scattering to the diffuse parts, so such photons are stored only where
-        // a glossy or coat-specular gather needs them (kPhotonDeltaPath).
-        const bool specularGather = deltaPath && (plastic || mat.isGlossy());
+        // Stored: what a gather here uses. A diffuse part gathers every photon except, with
+        // --direct-light on, those that arrive without scattering (shadow rays carry that light);
+        // glossy and coat-specular gathers use the kPhotonDeltaPath ones.
         const bool diffusePart = mat.type == MaterialType::Diffuse || plastic || (partly && at.transmission < 1.0f);
-        if ((diffusePart && (!(direct && m_directLight) || specularGather)) || (mat.isGlossy() && deltaPath)) {
+        if ((diffusePart && !(direct && m_directLight)) || (deltaPath && (plastic || mat.isGlossy()))) {
             const Vec3 nf = dot(d, ng) < 0 ? ng : -ng;  // hitSide(hit, d).nf
             SurfacePhoton& sp = out.surfacePhotons.emplace_back();
             sp.position = p;

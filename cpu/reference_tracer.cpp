@@ -207,16 +207,12 @@ Rgb ReferenceTracer::radiance(Ray ray, MediumId medium, Rng& rng) const {
             const CoatedBsdf coat = coatedBsdf(mat, sp, hit, ray.d);
             const Vec3 wo = -ray.d;
             if (nee) {
-                DirectLightSample ls = m_lights.sampleDirect(hit.p, rng);
-                float cosine = dot(ls.wi, coat.frame.n);
-                Rgb f = ls.pdf > 0 && cosine > 0 && dot(ls.wi, side.nf) > 0 && !ls.incident.isBlack()
-                            ? coat.eval(wo, ls.wi)
-                            : Rgb();
-                if (!f.isBlack()) {
-                    Rgb tr = m_direct.shadowTransmittance(m_rt.offsetOrigin(hit.p, side.nf, ls.wi), ls, medium, rng);
-                    float mis = ls.delta ? 1.0f : powerHeuristic(ls.pdf, coat.pdf(wo, ls.wi));
-                    L += beta * f * ls.incident * tr * (cosine * mis / ls.pdf);
-                }
+                L += beta * m_direct.reflected(hit, side, medium, rng, [&](const DirectLightSample& ls) {
+                    const float cosine = dot(ls.wi, coat.frame.n);
+                    if (!(cosine > 0) || !(dot(ls.wi, side.nf) > 0)) return Rgb(0.0f);
+                    const float mis = ls.delta ? 1.0f : powerHeuristic(ls.pdf, coat.pdf(wo, ls.wi));
+                    return coat.eval(wo, ls.wi) * (cosine * mis);
+                });
             }
             SpecularEvent ev;
             float pdf = 0;

@@ -144,7 +144,9 @@ TEST(CoatedRender, PlasticFloorInFogAgreesWithThePathTracer) {
         // With the smooth coat the "highlight" is the lamp's mirror image, a few pixels of emission
         // that 16 jittered paths per pixel (continuing with probability F ~ 0.1) sample too coarsely
         // to compare: PPB 1.17 of the reference there, the image mean 1.01.
-        if (roughness > 0) EXPECT_NEAR(p.highlight / r.highlight, 1.0, 0.06);
+        if (roughness > 0) {
+            EXPECT_NEAR(p.highlight / r.highlight, 1.0, 0.06);
+        }
         // The wall spot's reflection: 1.006 here (rough; 1.127 when the specular part gathers every
         // photon); other seeds gave 1.03, 1.04, 1.00 (rough) and 1.08, 1.06, 1.01 (smooth: its delta
         // reflection is what a few of the 16 paths per pixel continue to).

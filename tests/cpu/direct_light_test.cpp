@@ -119,7 +119,9 @@ TEST(DirectLight, SpotLightFollowsItsConeAndSmoothstepFalloff) {
         float falloff = degrees < 20 ? 1.0f : degrees > 40 ? 0.0f : t * t * (3 - 2 * t);
         float expected = 5.0f * falloff * cosine / (d * d) * std::exp(-kSigmaT * d);
         EXPECT_NEAR(directAt(s, x, 0), expected, 1e-4f * expected + 1e-7f) << degrees;
-        if (degrees == 30.0f) EXPECT_GT(falloff, 0.1f);
+        if (degrees == 30.0f) {
+            EXPECT_GT(falloff, 0.1f);
+        }
     }
 }
 
