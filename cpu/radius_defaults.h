@@ -48,6 +48,14 @@ double photonConeAngle(uint64_t plannedPaths);
 /// cone is turned on (elsewhere it would only split beams no camera ray passes close to the light).
 bool pointLightNearTheImage(const Scene& scene, int width, int height, double reach);
 
+/// True when a point or spot light is seen in a smooth mirror: a grid of camera rays (at most 64 x 64,
+/// pinhole), reflected by smooth mirrors up to 4 times (passing through index-matched Interfaces),
+/// passes after a reflection within `reach` of the light plus the grid's spacing at that path length
+/// (the light's reflection can fall between two rays; exact for flat mirrors, curved ones spread the
+/// rays and can hide a light between them). pointLightNearTheImage sees the light itself, not its
+/// mirror image; a light seen in a mirror has a glow in view all the same.
+bool pointLightSeenInAMirror(const EmbreeScene& rt, int width, int height, double reach);
+
 /// True when any radius setting (radii, offset, photon cone angle) is left automatic.
 bool hasAutomaticRadii(const RenderSettings& s);
 

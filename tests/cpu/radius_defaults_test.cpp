@@ -240,6 +240,41 @@ TEST(RadiusDefaults, ThePhotonConeIsOnForALightInViewAndShapesTheBeams) {
     EXPECT_EQ(PassRenderer(s, explicitAngle).settings().photonAngle, 0.3f);
 }
 
+TEST(RadiusDefaults, ThePhotonConeIsOnForALightSeenOnlyInAMirror) {
+    // The light behind the camera (out of the view and out of the cone's reach of the eye), a flat
+    // mirror 2 in front of the camera filling the view: the light's reflection sits 4.8 deep in the
+    // image, its glow in view. Planted bug (run): resolveRadiusDefaults without the mirror rule
+    // (pointLightNearTheImage alone) leaves the angle at 0 and fails the first check.
+    Scene s = fogTunnel(6.0f);
+    s.lights[0].position = Vec3(0.2f, 0.3f, 0.8f);
+    Material mirror;
+    mirror.name = "mirror";
+    mirror.type = MaterialType::Mirror;
+    mirror.albedo = Rgb(0.9f);
+    s.materials.push_back(mirror);
+    s.meshes.push_back(makeQuad("mirror", Vec3(-3, -3, -2), Vec3(6, 0, 0), Vec3(0, 6, 0), 1));
+    s.finalize();
+    RenderSettings in;
+    in.width = 48;
+    in.height = 32;
+    in.photonsPerPass = 300;
+    in.passes = 20;
+    const RenderSettings out = PassRenderer(s, in).settings();
+    EXPECT_GT(out.photonAngle, 0.0f) << "the light's reflection is in view";
+    const double reach = double(out.radius) / out.photonAngle;
+    EXPECT_FALSE(pointLightNearTheImage(s, in.width, in.height, reach)) << "the light itself is not";
+
+    Scene matte = s;
+    matte.materials[1].type = MaterialType::Diffuse;
+    matte.finalize();
+    EXPECT_EQ(PassRenderer(matte, in).settings().photonAngle, 0.0f) << "no mirror, no glow in view";
+    Scene aside = s;
+    aside.lights[0].position = Vec3(9.0f, 9.0f, 0.8f);  // reflected far outside the view
+    aside.finalize();
+    EXPECT_FALSE(pointLightSeenInAMirror(EmbreeScene(aside), in.width, in.height, reach));
+    EXPECT_TRUE(pointLightSeenInAMirror(EmbreeScene(s), in.width, in.height, reach));
+}
+
 TEST(RadiusDefaults, SurfacePhotonsNearALightGetTheConesRadius) {
     // The light 5 cm in front of the tunnel's back wall, in view: direct photons land within the
     // cone's reach. A direct photon (it arrives radially from the light) at distance d has at most
