@@ -22,7 +22,7 @@ uint64_t plannedPhotonPaths(const RenderSettings& s) {
     return RadiusDefaults::kOpenEndedPathsPerPixel * uint64_t(s.width) * uint64_t(s.height);
 }
 
-bool pointLightNearTheImage(const Scene& scene, int width, int height, double reach) {
+bool pointLightNearTheImage(const Scene& scene, int width, int height, double reach, double wider) {
     const Camera& c = scene.camera;
     const double pixelsPerUnitAtDepth1 = height / (2.0 * std::tan(0.5 * double(c.yFov)));
     for (const Light& l : scene.lights) {
@@ -30,13 +30,14 @@ bool pointLightNearTheImage(const Scene& scene, int width, int height, double re
         if (length(l.position - c.position) <= reach) return true;
         float x, y, depth;
         if (!c.project(l.position, width, height, &x, &y, &depth)) continue;
+        if (wider > 0 && !(wider * pixelsPerUnitAtDepth1 > double(depth))) continue;
         const double margin = reach * pixelsPerUnitAtDepth1 / std::max(double(depth), 1e-30);
         if (x >= -margin && x <= width + margin && y >= -margin && y <= height + margin) return true;
     }
     return false;
 }
 
-bool pointLightSeenInAMirror(const EmbreeScene& rt, int width, int height, double reach) {
+bool pointLightSeenInAMirror(const EmbreeScene& rt, int width, int height, double reach, double wider) {
     const Scene& scene = rt.scene();
     bool anyMirror = false, anyLight = false;
     for (const Material& m : scene.materials) anyMirror |= m.type == MaterialType::Mirror && !m.isRough();
@@ -63,7 +64,9 @@ bool pointLightSeenInAMirror(const EmbreeScene& rt, int width, int height, doubl
                         const Vec3 toLight = l.position - ray.o;
                         const double t = std::clamp(double(dot(toLight, ray.d)), 0.0, tEnd);
                         const double miss = length(toLight - ray.d * float(t));
-                        if (miss <= reach + halfCell * (travelled + t)) return true;
+                        const double footprint = (travelled + t) * 2.0 * std::tan(0.5 * double(pinhole.yFov)) / height;
+                        if (miss <= reach + halfCell * (travelled + t) && !(wider > 0 && wider <= footprint))
+                            return true;
                     }
                 if (!found) break;
                 const Material& m = scene.materials[size_t(scene.meshes[size_t(hit.mesh)].material)];
@@ -112,8 +115,10 @@ RenderSettings resolveRadiusDefaults(const RenderSettings& in, const EmbreeScene
         // The cone reaches the full radius at path distance beamEnd / angle from the light (the
         // same for every path); it only pays where camera rays pass that close to a light.
         const double angle = photonConeAngle(s.plannedPaths);
-        const bool inView = pointLightNearTheImage(scene, s.width, s.height, beamEnd / angle) ||
-                            pointLightSeenInAMirror(rt, s.width, s.height, beamEnd / angle);
+        // ... and where the kernel at the end of the plan is wider than the light's own pixel.
+        const double wider = beamEnd / RadiusDefaults::kConeMinLightFootprints;
+        const bool inView = pointLightNearTheImage(scene, s.width, s.height, beamEnd / angle, wider) ||
+                            pointLightSeenInAMirror(rt, s.width, s.height, beamEnd / angle, wider);
         s.photonAngle = inView ? float(angle / endFactor) : 0.0f;
     }
     return s;
