@@ -45,14 +45,20 @@ CameraTracer::CameraTracer(const EmbreeScene& rt, const RenderSettings& settings
     : m_rt(rt), m_scene(rt.scene()), m_settings(settings) {
     for (const Medium& m : m_scene.media) m_anyHeterogeneous |= !m.homogeneous();
     if (settings.directLight == "on") {
-        m_lights = std::make_unique<LightSampler>(m_scene);
-        m_direct = std::make_unique<DirectLight>(m_rt, *m_lights);
+        lightsChanged();
         // Photons from glossy and plastic surfaces (kPhotonDirect ones among them, for their
         // specular gathers) reach a diffuse gather where such a surface is in the kernel; without
         // those materials no stored photon is direct.
         for (const Material& m : m_scene.materials)
             m_skipDirectPhotons |= m.isGlossy() || m.type == MaterialType::Plastic;
     }
+}
+
+void CameraTracer::lightsChanged() {
+    if (m_settings.directLight != "on") return;
+    m_direct.reset();
+    m_lights = std::make_unique<LightSampler>(m_scene);
+    m_direct = std::make_unique<DirectLight>(m_rt, *m_lights);
 }
 
 namespace {
