@@ -8,6 +8,7 @@
 #include "app/bench_hybrid.h"
 #include "app/bench_media.h"
 #include "app/bench_quality.h"
+#include "app/bench_targets.h"
 #include "app/cli_common.h"
 #include "cpu/beam_splat_simd.h"
 #include "loading/default_smoke_scene.h"
@@ -164,7 +165,7 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
         double perPass = 1.0 / pr.passesPerSecond;
         double pixels = double(s.width) * s.height * pr.passes;
         printRate("passes", pr.passesPerSecond, "passes/s",
-                  pr.passesPerSecond >= 3.0 ? "(target >= 3: met)" : "(target >= 3: NOT met)");
+                  passRateVerdict(pr.passesPerSecond, s.width, s.height, s.photonsPerPass, hw));
         printRate("camera paths", pixels / pr.totals.cameraSeconds / 1e6, "M paths/s");
         printRate("secondary gather queries", pr.totals.beamQueries / pr.totals.cameraSeconds / 1e3, "k queries/s",
                   "(inside the camera pass)");
