@@ -122,9 +122,10 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
         unsigned hw = s.threads > 0 ? unsigned(s.threads) : std::thread::hardware_concurrency();
         std::printf("tyndall bench: scene '%s', %dx%d, %u photon paths/pass, %u threads\n", scene.name.c_str(), s.width,
                     s.height, s.photonsPerPass, hw);
-        std::printf("  first beam radius %.6g (%.3g%% of the scene diagonal), radius offset %llu\n",
+        const uint64_t offset = renderer.radii().schedule.offset();  // resolved: the automatic one too
+        std::printf("  first beam radius %.6g (%.3g%% of the scene diagonal), radius offset %llu%s\n",
                     renderer.radii().beamRadius, 100.0 * renderer.radii().beamRadius / length(scene.bounds.diagonal()),
-                    (unsigned long long)s.radiusOffset);
+                    (unsigned long long)offset, offset == s.radiusOffset ? "" : " (automatic)");
 
         double raw = measureRawRayRate(renderer.rayTracer(), o->rays);
         std::printf("baseline\n");
