@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/fresnel.h"
 #include "core/radius_schedule.h"
 #include "cpu/pixel_footprint.h"
 
@@ -21,7 +22,7 @@ uint64_t plannedPhotonPaths(const RenderSettings& s) {
     return RadiusDefaults::kOpenEndedPathsPerPixel * uint64_t(s.width) * uint64_t(s.height);
 }
 
-bool pointLightNearTheImage(const Scene& scene, int width, int height, double reach) {
+bool pointLightNearTheImage(const Scene& scene, int width, int height, double reach, double wider) {
     const Camera& c = scene.camera;
     const double pixelsPerUnitAtDepth1 = height / (2.0 * std::tan(0.5 * double(c.yFov)));
     for (const Light& l : scene.lights) {
@@ -29,9 +30,55 @@ bool pointLightNearTheImage(const Scene& scene, int width, int height, double re
         if (length(l.position - c.position) <= reach) return true;
         float x, y, depth;
         if (!c.project(l.position, width, height, &x, &y, &depth)) continue;
+        if (wider > 0 && !(wider * pixelsPerUnitAtDepth1 > double(depth))) continue;
         const double margin = reach * pixelsPerUnitAtDepth1 / std::max(double(depth), 1e-30);
         if (x >= -margin && x <= width + margin && y >= -margin && y <= height + margin) return true;
     }
+    return false;
+}
+
+bool pointLightSeenInAMirror(const EmbreeScene& rt, int width, int height, double reach, double wider) {
+    const Scene& scene = rt.scene();
+    bool anyMirror = false, anyLight = false;
+    for (const Material& m : scene.materials) anyMirror |= m.type == MaterialType::Mirror && !m.isRough();
+    for (const Light& l : scene.lights) anyLight |= l.type != LightType::Directional;
+    if (!anyMirror || !anyLight || width <= 0 || height <= 0) return false;
+    Camera pinhole = scene.camera;
+    pinhole.lensRadius = 0;
+    const int nx = std::min(64, width), ny = std::min(64, height);
+    // Radians between neighbouring grid rays, and half the cell's diagonal in them.
+    const double cell = 2.0 * std::tan(0.5 * double(pinhole.yFov)) / height * std::max(double(width) / nx, double(height) / ny);
+    const double halfCell = 0.75 * cell;
+    for (int y = 0; y < ny; ++y)
+        for (int x = 0; x < nx; ++x) {
+            Ray ray = pinhole.generateRay((x + 0.5f) * width / nx, (y + 0.5f) * height / ny, width, height, {0.5f, 0.5f});
+            double travelled = 0;
+            int reflections = 0;
+            for (int guard = 0; guard < 16; ++guard) {
+                SurfaceHit hit;
+                const bool found = rt.intersect(ray, &hit);
+                const double tEnd = found ? double(length(hit.p - ray.o)) : 1e30;
+                if (reflections > 0)
+                    for (const Light& l : scene.lights) {
+                        if (l.type == LightType::Directional) continue;
+                        const Vec3 toLight = l.position - ray.o;
+                        const double t = std::clamp(double(dot(toLight, ray.d)), 0.0, tEnd);
+                        const double miss = length(toLight - ray.d * float(t));
+                        const double footprint = (travelled + t) * 2.0 * std::tan(0.5 * double(pinhole.yFov)) / height;
+                        if (miss <= reach + halfCell * (travelled + t) && !(wider > 0 && wider <= footprint))
+                            return true;
+                    }
+                if (!found) break;
+                const Material& m = scene.materials[size_t(scene.meshes[size_t(hit.mesh)].material)];
+                const bool mirror = m.type == MaterialType::Mirror && !m.isRough();
+                if (!mirror && m.type != MaterialType::Interface) break;
+                travelled += tEnd;
+                const Vec3 d = mirror ? reflect(-ray.d, dot(ray.d, hit.ns) < 0 ? hit.ns : -hit.ns) : ray.d;
+                reflections += mirror;
+                if (reflections > 4) break;
+                ray = Ray{rt.offsetOrigin(hit.p, hit.ng, d), d, 0.0f, kInfinity};
+            }
+        }
     return false;
 }
 
@@ -68,7 +115,10 @@ RenderSettings resolveRadiusDefaults(const RenderSettings& in, const EmbreeScene
         // The cone reaches the full radius at path distance beamEnd / angle from the light (the
         // same for every path); it only pays where camera rays pass that close to a light.
         const double angle = photonConeAngle(s.plannedPaths);
-        const bool inView = pointLightNearTheImage(scene, s.width, s.height, beamEnd / angle);
+        // ... and where the kernel at the end of the plan is wider than the light's own pixel.
+        const double wider = beamEnd / RadiusDefaults::kConeMinLightFootprints;
+        const bool inView = pointLightNearTheImage(scene, s.width, s.height, beamEnd / angle, wider) ||
+                            pointLightSeenInAMirror(rt, s.width, s.height, beamEnd / angle, wider);
         s.photonAngle = inView ? float(angle / endFactor) : 0.0f;
     }
     return s;

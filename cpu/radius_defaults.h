@@ -23,7 +23,7 @@
 namespace tyndall {
 
 struct RadiusDefaults {
-    static constexpr double kBeamEndFootprints = 1.0;
+    static constexpr double kBeamEndFootprints = 0.5;
     static constexpr double kSurfaceEndFootprints = 3.0;
     static constexpr double kStartOverEnd = 4.0;
     /// The surface radius's ceiling at the end of a plan, as a fraction of the scene's diagonal
@@ -38,6 +38,10 @@ struct RadiusDefaults {
     /// Photon cone angle at the end of a plan of P paths: kConeAngleScale x P^(-1/5) radians
     /// (photonConeAngle; the model in docs/algorithm.md, "The photon cone").
     static constexpr double kConeAngleScale = 3.3;
+    /// The automatic cone is on only where the beam radius at the end of the plan exceeds this many
+    /// pixel footprints at the light's depth (pointLightNearTheImage's `wider`; docs/performance.md,
+    /// "The library at equal time").
+    static constexpr double kConeMinLightFootprints = 1.0;
 };
 
 /// The photon cone's angle (radians) at the end of a plan of `plannedPaths` photon paths.
@@ -46,7 +50,18 @@ double photonConeAngle(uint64_t plannedPaths);
 /// True when a point or spot light lies in the camera's image or within `reach` (scene units) of
 /// the frustum's sides at its depth, or within `reach` of the eye: where the automatic photon
 /// cone is turned on (elsewhere it would only split beams no camera ray passes close to the light).
-bool pointLightNearTheImage(const Scene& scene, int width, int height, double reach);
+/// With `wider` > 0 a light counts only where `wider` exceeds the pixel footprint at the light's
+/// depth (its path length, for pointLightSeenInAMirror): a kernel no wider than the light's own pixel
+/// blurs its glow no more than the pixel does, and the cone would only add beams and variance.
+bool pointLightNearTheImage(const Scene& scene, int width, int height, double reach, double wider = 0);
+
+/// True when a point or spot light is seen in a smooth mirror: a grid of camera rays (at most 64 x 64,
+/// pinhole), reflected by smooth mirrors up to 4 times (passing through index-matched Interfaces),
+/// passes after a reflection within `reach` of the light plus the grid's spacing at that path length
+/// (the light's reflection can fall between two rays; exact for flat mirrors, curved ones spread the
+/// rays and can hide a light between them). pointLightNearTheImage sees the light itself, not its
+/// mirror image; a light seen in a mirror has a glow in view all the same.
+bool pointLightSeenInAMirror(const EmbreeScene& rt, int width, int height, double reach, double wider = 0);
 
 /// True when any radius setting (radii, offset, photon cone angle) is left automatic.
 bool hasAutomaticRadii(const RenderSettings& s);

@@ -187,7 +187,11 @@ TEST(RadiusDefaults, ResolvedSettingsReproduceTheImageBitForBit) {
 }
 
 TEST(RadiusDefaults, ThePhotonConeIsOnForALightInViewAndShapesTheBeams) {
-    Scene s = fogTunnel(4.0f);  // its point light is in view
+    // The point light in view at depth 0.5, the fog's median depth 2: the kernel at the end of the
+    // plan is wider than the light's own pixel (kConeMinLightFootprints), so the cone is on.
+    Scene s = fogTunnel(4.0f);
+    s.lights[0].position = Vec3(0.1f, 0.15f, -0.5f);
+    s.finalize();
     RenderSettings in;
     in.width = 48;
     in.height = 32;
@@ -227,7 +231,10 @@ TEST(RadiusDefaults, ThePhotonConeIsOnForALightInViewAndShapesTheBeams) {
     EXPECT_GT(inside, 100) << "first segments split near the light";
     EXPECT_GT(beyond, 100);
 
-    // Off where no point light is near the image, and with an explicit radius.
+    // Off where the light's own pixel is as wide as the kernel (the light at the fog's median
+    // depth: the cone would only add beams and variance), where no point light is near the image,
+    // and with an explicit radius. Planted bug (run): no footprint condition fails the first check.
+    EXPECT_EQ(PassRenderer(fogTunnel(4.0f), in).settings().photonAngle, 0.0f) << "light at the fog's median depth";
     Scene away = fogTunnel(4.0f);
     away.lights[0].position = Vec3(0.0f, 0.0f, 0.9f);  // behind the camera, out of its reach
     away.finalize();
@@ -238,6 +245,42 @@ TEST(RadiusDefaults, ThePhotonConeIsOnForALightInViewAndShapesTheBeams) {
     RenderSettings explicitAngle = explicitRadius;
     explicitAngle.photonAngle = 0.3f;
     EXPECT_EQ(PassRenderer(s, explicitAngle).settings().photonAngle, 0.3f);
+}
+
+TEST(RadiusDefaults, ThePhotonConeIsOnForALightSeenOnlyInAMirror) {
+    // The light behind the camera (out of the view and out of the cone's reach of the eye), a small
+    // flat mirror 0.5 in front of the camera: the light's reflection sits 1.3 deep in the image,
+    // nearer than the fog's median depth (3), its glow in view. Planted bug (run):
+    // resolveRadiusDefaults without the mirror rule (pointLightNearTheImage alone) leaves the angle
+    // at 0 and fails the first check.
+    Scene s = fogTunnel(6.0f);
+    s.lights[0].position = Vec3(0.02f, 0.03f, 0.3f);
+    Material mirror;
+    mirror.name = "mirror";
+    mirror.type = MaterialType::Mirror;
+    mirror.albedo = Rgb(0.9f);
+    s.materials.push_back(mirror);
+    s.meshes.push_back(makeQuad("mirror", Vec3(-0.15f, -0.15f, -0.5f), Vec3(0.3f, 0, 0), Vec3(0, 0.3f, 0), 1));
+    s.finalize();
+    RenderSettings in;
+    in.width = 48;
+    in.height = 32;
+    in.photonsPerPass = 300;
+    in.passes = 20;
+    const RenderSettings out = PassRenderer(s, in).settings();
+    EXPECT_GT(out.photonAngle, 0.0f) << "the light's reflection is in view";
+    const double reach = double(out.radius) / out.photonAngle;
+    EXPECT_FALSE(pointLightNearTheImage(s, in.width, in.height, reach)) << "the light itself is not";
+
+    Scene matte = s;
+    matte.materials[1].type = MaterialType::Diffuse;
+    matte.finalize();
+    EXPECT_EQ(PassRenderer(matte, in).settings().photonAngle, 0.0f) << "no mirror, no glow in view";
+    Scene aside = s;
+    aside.lights[0].position = Vec3(3.0f, 3.0f, 0.3f);  // its reflection misses the mirror
+    aside.finalize();
+    EXPECT_FALSE(pointLightSeenInAMirror(EmbreeScene(aside), in.width, in.height, reach));
+    EXPECT_TRUE(pointLightSeenInAMirror(EmbreeScene(s), in.width, in.height, reach));
 }
 
 TEST(RadiusDefaults, SurfacePhotonsNearALightGetTheConesRadius) {
@@ -255,6 +298,9 @@ TEST(RadiusDefaults, SurfacePhotonsNearALightGetTheConesRadius) {
     in.photonsPerPass = 2000;
     in.passes = 20;
     in.directLight = "off";  // photons for the direct light too (with shadow rays none are stored)
+    // The light sits deeper than the fog's median depth, where the automatic cone stays off
+    // (kConeMinLightFootprints): the angle is given, the radii automatic.
+    in.photonAngle = 0.5f;
     PassRenderer r(s, in);
     const double reach = r.radii().coneReach;
     ASSERT_GT(reach, 0.1) << "the cone is on and reaches the back wall";
