@@ -28,6 +28,7 @@
 #include "cpu/beam_bvh.h"
 #include "cpu/direct_light.h"
 #include "cpu/embree_scene.h"
+#include "cpu/surface_boundary.h"
 #include "cpu/surface_photon_grid.h"
 
 namespace tyndall {
@@ -126,6 +127,8 @@ private:
     /// --direct-light on: the light sampler and shadow rays of the diffuse ends; null when off.
     std::unique_ptr<LightSampler> m_lights;
     std::unique_ptr<DirectLight> m_direct;
+    /// --surface-boundary on: the surface kernel's coverage at edges (cpu/surface_boundary.h).
+    std::unique_ptr<SurfaceBoundary> m_boundary;
     bool m_skipDirectPhotons = false;  ///< the diffuse gather must test kPhotonDirect (glossy photons)
     std::shared_ptr<HitPool> m_hitPool = std::make_shared<HitPool>();
     std::shared_ptr<PrimarySegmentPool> m_segmentPool = std::make_shared<PrimarySegmentPool>();
