@@ -8,7 +8,9 @@
 //                                           through mirrors and glass (Fresnel choice), every later
 //                                           segment inside a medium gathering the pass's beams
 //                                           through the BeamBvh, a diffuse hit ending the path with
-//                                           the surface-photon estimate and, with --direct-light on,
+//                                           the surface-photon estimate (with --surface-boundary on
+//                                           divided by its kernel's coverage, cpu/surface_boundary.h)
+//                                           and, with --direct-light on,
 //                                           a shadow ray to a light (cpu/direct_light.h) for the
 //                                           light that arrives there without scattering
 // PassRenderer::traceCamera runs both. The camera is read from the scene at each tracePrimary call, so a camera
