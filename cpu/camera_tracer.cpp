@@ -47,14 +47,20 @@ CameraTracer::CameraTracer(const EmbreeScene& rt, const RenderSettings& settings
     for (const Medium& m : m_scene.media) m_anyHeterogeneous |= !m.homogeneous();
     if (settings.surfaceBoundary == "on") m_boundary = std::make_unique<SurfaceBoundary>(m_scene, m_rt.device()->get());
     if (settings.directLight == "on") {
-        m_lights = std::make_unique<LightSampler>(m_scene);
-        m_direct = std::make_unique<DirectLight>(m_rt, *m_lights);
+        lightsChanged();
         // Photons from glossy and plastic surfaces (kPhotonDirect ones among them, for their
         // specular gathers) reach a diffuse gather where such a surface is in the kernel; without
         // those materials no stored photon is direct.
         for (const Material& m : m_scene.materials)
             m_skipDirectPhotons |= m.isGlossy() || m.type == MaterialType::Plastic;
     }
+}
+
+void CameraTracer::lightsChanged() {
+    if (m_settings.directLight != "on") return;
+    m_direct.reset();
+    m_lights = std::make_unique<LightSampler>(m_scene);
+    m_direct = std::make_unique<DirectLight>(m_rt, *m_lights);
 }
 
 namespace {
@@ -202,6 +208,10 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
             Rgb throughput = ph.throughput, L, Lmedia, Lsurface;
             if (!ph.surface || throughput.isBlack()) continue;
             Rng rng = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::CameraPath);
+            // Shadow rays draw from their own stream, so the path's other draws do not move; one
+            // stream per path, so a path's shadow-ray vertices (a plastic, then the diffuse end)
+            // draw different light samples.
+            Rng neeRng = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::DirectLight);
             MediumId medium = ph.medium;
             SurfaceHit hit = ph.hit;
             Vec3 dir = primary.segments.rays[pixel].dir;
@@ -250,10 +260,9 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                                                  : shadingCosineRatio(side, p.wi);
                                   });
                     }
-                    // Direct light by a shadow ray (once per pass: with the emission), from its own
-                    // stream so the path's other draws do not move; none toward a black surface.
+                    // Direct light by a shadow ray (once per pass: with the emission); none toward
+                    // a black surface.
                     if (m_direct && emission && !sp.baseColor.isBlack()) {
-                        Rng neeRng = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::DirectLight);
                         E += m_direct->diffuse(hit, side, medium, neeRng, false);
                     }
                     Rgb density = throughput * sp.baseColor * kInvPi * E;
@@ -285,7 +294,6 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                             return shading ? f * shadingOverGeometricCosine(hit, p.wi) : f;
                         });
                     if (m_direct && emission && !sp.baseColor.isBlack()) {
-                        Rng neeRng = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::DirectLight);
                         coated += throughput * m_direct->reflected(hit, side, medium, neeRng, [&](const DirectLightSample& ls) {
                             return coat.evalDiffuse(wo, ls.wi) * diffuseCosine(side, ls.wi);
                         });

@@ -103,6 +103,10 @@ struct CameraPassResult {
 class CameraTracer {
 public:
     CameraTracer(const EmbreeScene& rt, const RenderSettings& settings);
+    /// The scene's lights changed (powers, positions; not their number): rebuilds the shadow
+    /// rays' light sampler, whose source choice follows the powers it was built with. Call
+    /// between passes (PassRenderer::sceneChanged).
+    void lightsChanged();
 
     PrimaryPass tracePrimary(uint64_t pass) const;
     /// The pass's radiance except the primary segments' media; `stats.rays` counts this stage's.

@@ -125,6 +125,7 @@ Image PassRenderer::splatPrimary(const PrimarySegments& primary, const PhotonMap
 
 void PassRenderer::sceneChanged() {
     m_photons = std::make_unique<PhotonTracer>(*m_rt, m_settings, m_radii);
+    m_camera->lightsChanged();
 }
 
 Image PassRenderer::renderPass(uint64_t pass, PassStats* stats) const {
