@@ -51,7 +51,7 @@ private:
         Vec3 a, b;                     ///< the segment S0 the candidates were found along
         std::vector<uint32_t> beams;   ///< beams within radius + reach of S0, ascending, once each
     };
-    static constexpr int kEntries = 4;
+    static constexpr int kEntries = 8;
     Entry m_entries[kEntries];
     int m_used = 0;  ///< entries filled since the reset
     int m_next = 0;  ///< the one replaced next

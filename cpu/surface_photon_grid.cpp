@@ -70,10 +70,10 @@ int SurfacePhotonGrid::bucketsNear(const Vec3& x, const Vec3& n, uint32_t* bucke
     return count;
 }
 
-const SurfacePhotonGrid::Region* SurfacePhotonGrid::regionFor(const Vec3& x) const {
+SurfacePhotonGrid::Region* SurfacePhotonGrid::regionFor(const Vec3& x) const {
     RegionCache& cache = m_regions.local();
     for (int i = 0; i < cache.used; ++i) {
-        const Region& r = cache.regions[i];
+        Region& r = cache.regions[i];
         if (x.x >= r.lo.x && x.y >= r.lo.y && x.z >= r.lo.z && x.x <= r.hi.x && x.y <= r.hi.y && x.z <= r.hi.z)
             return &r;
     }
@@ -123,6 +123,10 @@ void SurfacePhotonGrid::fillRegion(Region& r) const {
             r.radius.push_back(c.radius);
             r.index.push_back(k);
         }
+    // Padding the SIMD scan may read (never counted: the scan masks lanes past index.size()).
+    for (std::vector<float>* v : {&r.x, &r.y, &r.z, &r.radius}) v->resize(r.index.size() + kPhotonScanPadding, 0.0f);
+    r.accepted.resize(r.index.size() + kPhotonScanPadding);
+    r.acceptedD2.resize(r.index.size() + kPhotonScanPadding);
 }
 
 Rgb SurfacePhotonGrid::density(const Vec3& x, const Vec3& n) const {

@@ -11,9 +11,10 @@
 //
 // Neighbouring camera paths look up nearly the same point, so each thread keeps the candidates of
 // its last few regions (a box r_max wide round a lookup point: the photons within their own radius
-// of the box, ascending) and a lookup inside such a box scans only those, without hashing. Both
-// ways visit the same photons in the same (ascending) order, so the sums are bit for bit the same
-// whatever the cache held.
+// of the box, ascending) and a lookup inside such a box scans only those, without hashing, with
+// Highway (cpu/surface_photon_scan.h: the scalar test's operations, 4-16 candidates at a time).
+// Both ways visit the same photons in the same (ascending) order, so the sums are bit for bit the
+// same whatever the cache held.
 #include <tbb/enumerable_thread_specific.h>
 
 #include <algorithm>
@@ -22,6 +23,7 @@
 #include <vector>
 
 #include "core/photon_beam.h"
+#include "cpu/surface_photon_scan.h"
 
 namespace tyndall {
 
@@ -56,11 +58,14 @@ public:
     }
 
 private:
-    // The candidates of one box [lo, hi], structure of arrays (the scan reads four floats each).
+    // The candidates of one box [lo, hi], structure of arrays (the scan reads four floats each),
+    // padded by kPhotonScanPadding for the SIMD scan, and where the scan writes what it accepts.
     struct Region {
         Vec3 lo, hi;
         std::vector<float> x, y, z, radius;
-        std::vector<uint32_t> index;  // into m_sorted, ascending
+        std::vector<uint32_t> index;  // into m_sorted, ascending; its size is the candidate count
+        std::vector<uint32_t> accepted;  // positions in the arrays above (scan output)
+        std::vector<float> acceptedD2;
     };
     struct RegionCache {
         static constexpr int kRegions = 4;
@@ -68,7 +73,7 @@ private:
         int used = 0, next = 0;
     };
     /// The cached region holding x, or a new one round x (nullptr when x is outside the grid).
-    const Region* regionFor(const Vec3& x) const;
+    Region* regionFor(const Vec3& x) const;
     void fillRegion(Region& r) const;
 
     uint32_t cellHash(int x, int y, int z) const;
@@ -99,17 +104,11 @@ private:
 template <class Visit>
 void SurfacePhotonGrid::forEachNear(const Vec3& x, const Vec3& n, const Visit& visit) const {
     if (m_photons.empty()) return;
-    const Region* r = regionFor(x);
+    Region* r = regionFor(x);
     if (!r) return;
-    const size_t count = r->index.size();
-    for (size_t i = 0; i < count; ++i) {
-        const Vec3 diff(r->x[i] - x.x, r->y[i] - x.y, r->z[i] - x.z);
-        const float d2 = dot(diff, diff);
-        const float radius = r->radius[i];
-        if (d2 >= radius * radius) continue;
-        if (std::abs(dot(diff, n)) > 0.25f * radius) continue;
-        visit(m_sorted[r->index[i]], d2);
-    }
+    const size_t found = scanPhotonCandidates(r->x.data(), r->y.data(), r->z.data(), r->radius.data(),
+                                              r->index.size(), x, n, r->accepted.data(), r->acceptedD2.data());
+    for (size_t k = 0; k < found; ++k) visit(m_sorted[r->index[r->accepted[k]]], r->acceptedD2[k]);
 }
 
 template <class Visit>

@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstring>
 
 #include "core/rng.h"
 #include "core/sampling.h"
@@ -150,4 +152,68 @@ TEST(SurfacePhotonGrid, CachedRegionsVisitExactlyWhatTheUncachedQueryVisits) {
         }
     }
     EXPECT_GT(nonEmpty, 3000);
+}
+
+static uint32_t floatBits(float f) {
+    uint32_t u;
+    std::memcpy(&u, &f, sizeof u);
+    return u;
+}
+
+// The Highway candidate scan the cached lookups use must accept exactly what the scalar test
+// accepts, in the same order, with the same d2 bits: random candidates round random points and
+// normals (every count from 0 to 70, so every tail length of 4-, 8- and 16-lane vectors), plus the
+// boundaries (d2 == r^2 rejected, plane distance == r/4 accepted, one float past it rejected) and
+// a NaN position (accepted by the scalar test's `continue`s).
+TEST(SurfacePhotonScan, SimdAcceptsExactlyWhatTheScalarTestAccepts) {
+    Rng rng = Rng::forKey(31, 0, 0, StreamPurpose::Test);
+    size_t acceptedTotal = 0, candidatesTotal = 0;
+    for (int round = 0; round < 400; ++round) {
+        const size_t count = size_t(round % 71);
+        const Vec3 p(rng.uniform() * 4 - 2, rng.uniform() * 4 - 2, rng.uniform() * 4 - 2);
+        const Vec3 n = sampleUniformSphere(rng.uniform(), rng.uniform());
+        std::vector<float> x(count + kPhotonScanPadding), y(x.size()), z(x.size()), r(x.size());
+        for (size_t i = 0; i < count; ++i) {
+            // Mostly near the plane through p, some off it; radii 0.05-0.3, offsets up to 0.4.
+            const Vec3 off = sampleUniformSphere(rng.uniform(), rng.uniform()) * (0.4f * rng.uniform());
+            const Vec3 c = p + off - n * (i % 3 == 0 ? 0.0f : dot(off, n) * 0.9f);
+            x[i] = c.x, y[i] = c.y, z[i] = c.z, r[i] = 0.05f + 0.25f * rng.uniform();
+        }
+        std::vector<uint32_t> aScalar(count + kPhotonScanPadding), aSimd(aScalar.size());
+        std::vector<float> dScalar(count + kPhotonScanPadding), dSimd(dScalar.size());
+        const size_t nScalar = scanPhotonCandidatesScalar(x.data(), y.data(), z.data(), r.data(), count, p, n,
+                                                          aScalar.data(), dScalar.data());
+        const size_t nSimd =
+            scanPhotonCandidates(x.data(), y.data(), z.data(), r.data(), count, p, n, aSimd.data(), dSimd.data());
+        ASSERT_EQ(nSimd, nScalar) << "round " << round;
+        for (size_t k = 0; k < nScalar; ++k) {
+            ASSERT_EQ(aSimd[k], aScalar[k]) << "round " << round << " k " << k;
+            ASSERT_EQ(floatBits(dSimd[k]), floatBits(dScalar[k])) << "round " << round;
+        }
+        acceptedTotal += nScalar;
+        candidatesTotal += count;
+    }
+    // Not blind: both outcomes occur often.
+    EXPECT_GT(acceptedTotal, candidatesTotal / 10);
+    EXPECT_LT(acceptedTotal, candidatesTotal * 9 / 10);
+
+    // Boundaries, exact in float: p = 0, n = +z, r = 0.5.
+    const float past = std::nextafter(0.125f, 1.0f);
+    //                     inside  d2==r2  on plane edge  past the plane edge  NaN
+    std::vector<float> x = {0.1f, 0.5f, 0.0f, 0.0f, std::nanf("")}, y = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f},
+                       z = {0.0f, 0.0f, 0.125f, past, 0.0f}, r = {0.5f, 0.5f, 0.5f, 0.5f, 0.5f};
+    for (std::vector<float>* v : {&x, &y, &z, &r}) v->resize(v->size() + kPhotonScanPadding, 0.0f);
+    std::vector<uint32_t> accepted(5 + kPhotonScanPadding);
+    std::vector<float> d2(accepted.size());
+    for (bool simd : {false, true}) {
+        auto scan = simd ? scanPhotonCandidates : scanPhotonCandidatesScalar;
+        const size_t found = scan(x.data(), y.data(), z.data(), r.data(), 5, Vec3(0.0f), Vec3(0, 0, 1),
+                                  accepted.data(), d2.data());
+        ASSERT_EQ(found, 3u) << (simd ? "SIMD" : "scalar");
+        EXPECT_EQ(accepted[0], 0u);
+        EXPECT_EQ(accepted[1], 2u);
+        EXPECT_EQ(accepted[2], 4u);
+        EXPECT_EQ(d2[1], 0.125f * 0.125f);
+        EXPECT_TRUE(std::isnan(d2[2]));
+    }
 }
