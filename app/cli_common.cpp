@@ -117,6 +117,10 @@ void addDirectLightOption(CLI::App* cmd, CommonOptions& o) {
                     "on|off: direct light on diffuse surfaces by shadow rays; off = surface photons only "
                     "(docs/algorithm.md)")
         ->capture_default_str();
+    cmd->add_option("--surface-boundary", o.settings.surfaceBoundary,
+                    "on|off: divide the surface photon kernel by the part of its disc that lies on the "
+                    "surface, so edges and corners are not darkened; off = the plain kernel (docs/algorithm.md)")
+        ->capture_default_str();
 }
 
 void addSimdOption(CLI::App* cmd, CommonOptions& o) {
@@ -153,7 +157,8 @@ nlohmann::json explicitSettings(const CommonOptions& o) {
                                                                       {"--gpu", "gpu"},
                                                                       {"--memory", "memory"},
                                                                       {"--simd", "simd"},
-                                                                      {"--direct-light", "direct_light"}};
+                                                                      {"--direct-light", "direct_light"},
+                                                                      {"--surface-boundary", "surface_boundary"}};
     nlohmann::json all = o.settings.toJson(), given = nlohmann::json::object();
     auto isGiven = [&](const char* name) {
         const CLI::Option* opt = o.command ? o.command->get_option_no_throw(name) : nullptr;

@@ -36,7 +36,7 @@ void addPpbOptions(CLI::App* cmd, CommonOptions& o);
 
 /// Adds --simd on|off (RenderSettings::simd); part of addPpbOptions.
 void addSimdOption(CLI::App* cmd, CommonOptions& o);
-/// --direct-light on|off (part of addPpbOptions; bench adds it alone).
+/// --direct-light on|off and --surface-boundary on|off (part of addPpbOptions; bench adds them alone).
 void addDirectLightOption(CLI::App* cmd, CommonOptions& o);
 
 /// Parses --size into the settings and validates them; throws Error naming the bad option.

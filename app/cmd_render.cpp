@@ -64,7 +64,7 @@ void rejectWithResume(const CLI::App* cmd) {
     static const char* kFixed[] = {"scene",           "--camera",        "--size",         "--seed",
                                    "--photons",       "--alpha",         "--radius",       "--surface-radius",
                                    "--radius-offset", "--free-flights",  "--exposure",     "--aov",
-                                   "--photon-angle",  "--planned-paths", "--direct-light"};
+                                   "--photon-angle",  "--planned-paths", "--direct-light", "--surface-boundary"};
     for (const char* name : kFixed)
         if (given(cmd, name))
             throw Error(std::string("--resume: ") + (name[0] == '-' ? name : "the scene file") +

@@ -86,6 +86,8 @@ RenderRecord readRecord(const Checkpoint& c, const std::string& where) {
         r.settings = RenderSettings::fromJson(j.at("settings"), where + ": settings");
         // Checkpoints from before --direct-light rendered with surface photons alone.
         if (!j.at("settings").contains("direct_light")) r.settings.directLight = "off";
+        // ... and from before --surface-boundary with the plain kernel.
+        if (!j.at("settings").contains("surface_boundary")) r.settings.surfaceBoundary = "off";
         r.output = j.at("output").get<std::string>();
         r.exposure = j.at("exposure").get<float>();
         r.aov = j.at("aov").get<bool>();

@@ -28,6 +28,8 @@ void RenderSettings::validate() const {
     if (simd != "on" && simd != "off") fail("--simd must be on or off (got '" + simd + "')");
     if (directLight != "on" && directLight != "off")
         fail("--direct-light must be on or off (got '" + directLight + "')");
+    if (surfaceBoundary != "on" && surfaceBoundary != "off")
+        fail("--surface-boundary must be on or off (got '" + surfaceBoundary + "')");
 }
 
 nlohmann::json RenderSettings::toJson() const {
@@ -50,7 +52,8 @@ nlohmann::json RenderSettings::toJson() const {
             {"gpu", gpu},
             {"memory", memoryMiB},
             {"simd", simd},
-            {"direct_light", directLight}};
+            {"direct_light", directLight},
+            {"surface_boundary", surfaceBoundary}};
 }
 
 namespace {
@@ -84,7 +87,7 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
     static const char* kKeys[] = {"width", "height", "passes", "time", "photons", "alpha", "radius",
                                   "surface_radius", "radius_offset", "planned_paths", "photon_angle", "seed", "threads",
                                   "max_photon_bounces", "max_camera_bounces", "free_flights", "gpu", "memory", "simd",
-                                  "direct_light"};
+                                  "direct_light", "surface_boundary"};
     for (auto it = j.begin(); it != j.end(); ++it) {
         bool known = false;
         for (const char* k : kKeys) known |= it.key() == k;
@@ -120,6 +123,7 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
     read(j, "memory", s.memoryMiB, where);
     read(j, "simd", s.simd, where);
     read(j, "direct_light", s.directLight, where);
+    read(j, "surface_boundary", s.surfaceBoundary, where);
     return s;
 }
 

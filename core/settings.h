@@ -51,6 +51,11 @@ struct RenderSettings {
     /// cpu/direct_light.h) instead of the surface photons that arrive straight from a light, which
     /// are then not stored (docs/algorithm.md, "Direct light by shadow rays"). off = photons only.
     std::string directLight = "on";
+    /// on | off: the surface photon kernel divided by the part of its disc that lies on surface
+    /// that can hold those photons (cpu/surface_boundary.h), which removes the estimate's loss at
+    /// the edges and corners of surfaces (docs/algorithm.md, "The surface kernel at edges").
+    /// off = the plain kernel.
+    std::string surfaceBoundary = "on";
 
     /// Throws Error naming the option when a value is out of range.
     void validate() const;

@@ -8,6 +8,7 @@
 #include "core/beam_estimator.h"
 #include "core/transmittance.h"
 #include "cpu/direct_light.h"
+#include "cpu/surface_boundary.h"
 #include "cpu/free_flight.h"
 #include "cpu/surface_scattering.h"
 
@@ -44,6 +45,7 @@ Rgb gatherBeams(const Scene& scene, const PhotonMap& photons, const std::vector<
 CameraTracer::CameraTracer(const EmbreeScene& rt, const RenderSettings& settings)
     : m_rt(rt), m_scene(rt.scene()), m_settings(settings) {
     for (const Medium& m : m_scene.media) m_anyHeterogeneous |= !m.homogeneous();
+    if (settings.surfaceBoundary == "on") m_boundary = std::make_unique<SurfaceBoundary>(m_scene, m_rt.device()->get());
     if (settings.directLight == "on") {
         lightsChanged();
         // Photons from glossy and plastic surfaces (kPhotonDirect ones among them, for their
@@ -232,13 +234,32 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                     // With direct light, photons straight from a light are not counted (the photon
                     // tracer stores none on diffuse surfaces; glossy ones hold some).
                     const uint8_t skip = m_skipDirectPhotons ? kPhotonDirect : 0;
-                    Rgb E = !hasShadingNormal(hit) && skip == 0
+                    Rgb E;
+                    if (m_boundary) {
+                        // --surface-boundary on: the kernel over the part of its disc on this
+                        // surface (cpu/surface_boundary.h), at the photons' kernel-weighted radius.
+                        // Nothing to gather for a black surface.
+                        const bool shading = hasShadingNormal(hit);
+                        float kSum = 0, krSum = 0;
+                        if (!sp.baseColor.isBlack()) {
+                            surfacePhotons.forEachNear(hit.p, side.nf, [&](const SurfacePhoton& p, float d2) {
+                                if (dot(p.normal, side.nf) < SurfaceBoundary::kNormalAgreement || (p.flags & skip)) return;
+                                const float k = SurfacePhotonGrid::kernel(d2, p.radius);
+                                E += (shading ? shadingCosineRatio(side, p.wi) : 1.0f) * p.power * k;
+                                kSum += k;
+                                krSum += k * p.radius;
+                            });
+                        }
+                        if (kSum > 0) E *= 1.0f / m_boundary->coverage(hit.p, hit.ng, krSum / kSum);
+                    } else {
+                        E = !hasShadingNormal(hit) && skip == 0
                                 ? surfacePhotons.density(hit.p, side.nf)
                                 : surfacePhotons.gather(hit.p, side.nf, [&](const SurfacePhoton& p) {
                                       return dot(p.normal, side.nf) < 0.7f || (p.flags & skip)
                                                  ? 0.0f
                                                  : shadingCosineRatio(side, p.wi);
                                   });
+                    }
                     // Direct light by a shadow ray (once per pass: with the emission); none toward
                     // a black surface.
                     if (m_direct && emission && !sp.baseColor.isBlack()) {

@@ -8,7 +8,9 @@
 //                                           through mirrors and glass (Fresnel choice), every later
 //                                           segment inside a medium gathering the pass's beams
 //                                           through the BeamBvh, a diffuse hit ending the path with
-//                                           the surface-photon estimate and, with --direct-light on,
+//                                           the surface-photon estimate (with --surface-boundary on
+//                                           divided by its kernel's coverage, cpu/surface_boundary.h)
+//                                           and, with --direct-light on,
 //                                           a shadow ray to a light (cpu/direct_light.h) for the
 //                                           light that arrives there without scattering
 // PassRenderer::traceCamera runs both. The camera is read from the scene at each tracePrimary call, so a camera
@@ -28,6 +30,7 @@
 #include "cpu/beam_bvh.h"
 #include "cpu/direct_light.h"
 #include "cpu/embree_scene.h"
+#include "cpu/surface_boundary.h"
 #include "cpu/surface_photon_grid.h"
 
 namespace tyndall {
@@ -130,6 +133,8 @@ private:
     /// --direct-light on: the light sampler and shadow rays of the diffuse ends; null when off.
     std::unique_ptr<LightSampler> m_lights;
     std::unique_ptr<DirectLight> m_direct;
+    /// --surface-boundary on: the surface kernel's coverage at edges (cpu/surface_boundary.h).
+    std::unique_ptr<SurfaceBoundary> m_boundary;
     bool m_skipDirectPhotons = false;  ///< the diffuse gather must test kPhotonDirect (glossy photons)
     std::shared_ptr<HitPool> m_hitPool = std::make_shared<HitPool>();
     std::shared_ptr<PrimarySegmentPool> m_segmentPool = std::make_shared<PrimarySegmentPool>();

@@ -111,7 +111,8 @@ TEST(Cli, HelpListsEveryOptionWithDefaults) {
     const std::vector<std::string> output = {"--output", "--exposure"};
     const std::vector<std::string> ppb = {"--passes", "--time",           "--photons",       "--alpha",
                                           "--radius", "--surface-radius", "--radius-offset", "--planned-paths",
-                                          "--photon-angle", "--free-flights", "--memory", "--simd", "--direct-light"};
+                                          "--photon-angle", "--free-flights", "--memory", "--simd", "--direct-light",
+                                          "--surface-boundary"};
     auto join = [](std::initializer_list<std::vector<std::string>> parts) {
         std::set<std::string> all = {"--help", "--help-all"};
         for (const auto& p : parts) all.insert(p.begin(), p.end());
@@ -124,7 +125,7 @@ TEST(Cli, HelpListsEveryOptionWithDefaults) {
         {"reference", join({scene, output, {"--spp", "--max-depth", "--no-nee"}})},
         {"bench", join({scene, {"--passes", "--photons", "--rays", "--queries", "--free-flights", "--no-hybrid", "--quality",
                             "--quality-scene", "--quality-seeds", "--quality-cpu-seconds", "--quality-library", "--reference-dir", "--reference-spp", "--plot", "--radius",
-                            "--radius-offset", "--simd", "--direct-light"}})},
+                            "--radius-offset", "--simd", "--direct-light", "--surface-boundary"}})},
         {"compare", join({scene, output, ppb, {"--gpu", "--density"}})}};
     for (const auto& [command, names] : expected) {
         CliRun r = runTyndall(command + " --help");
@@ -185,6 +186,7 @@ TEST(Cli, BadValuesGiveOneLineNamingTheOption) {
                                            {"bench --free-flights -7", "--free-flights"},
                                            {"bench --rays many", "--rays"},
                                            {"render --direct-light maybe -o " + out, "--direct-light"},
+                                           {"render --surface-boundary maybe -o " + out, "--surface-boundary"},
                                            {"render --frobnicate", "--frobnicate"}}) {
         CliRun r = runTyndall(c.args);
         EXPECT_NE(r.exitCode, 0) << c.args;
@@ -417,6 +419,27 @@ TEST(Cli, DirectLightIsRecordedAndReplays) {
     }
     EXPECT_FALSE(tyndall::test::identicalImages(tyndall::readImage(dir + "/cli_direct_on.exr"),
                                                 tyndall::readImage(dir + "/cli_direct_off.exr")));
+}
+
+TEST(Cli, SurfaceBoundaryIsRecordedAndReplays) {
+    // --surface-boundary goes into the header; the recorded settings reproduce the image bit for
+    // bit, and the two modes differ (the default scene's walls meet at edges).
+    const std::string dir = tyndall::test::outputDir();
+    for (const std::string mode : {"on", "off"}) {
+        const std::string out = dir + "/cli_boundary_" + mode + ".exr";
+        CliRun r = runTyndall("render --photons 300 --size 40x24 --seed 5 --gpu off --passes 3 --surface-boundary " +
+                              mode + " -o " + out);
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        nlohmann::json j = recordedSettings(out);
+        EXPECT_EQ(j.at("surface_boundary"), mode);
+        tyndall::RenderSettings s = tyndall::RenderSettings::fromJson(j, out);
+        tyndall::Scene scene = tyndall::makeDefaultScene();
+        scene.validate();
+        tyndall::PassRenderer renderer(scene, s);
+        EXPECT_TRUE(tyndall::test::identicalImages(tyndall::readImage(out), renderPasses(renderer, 0, s.passes))) << mode;
+    }
+    EXPECT_FALSE(tyndall::test::identicalImages(tyndall::readImage(dir + "/cli_boundary_on.exr"),
+                                                tyndall::readImage(dir + "/cli_boundary_off.exr")));
 }
 
 TEST(Cli, TimeBudgetRecordsItsPlanAndReplaysFromIt) {

@@ -1,0 +1,176 @@
+#include "cpu/surface_boundary.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+
+#include "core/error.h"
+
+namespace tyndall {
+
+namespace {
+
+/// A vertex position as a key: its bits, with -0 made +0 (the same point either way).
+std::array<uint32_t, 3> positionKey(const Vec3& p) {
+    std::array<uint32_t, 3> k;
+    const float c[3] = {p.x + 0.0f, p.y + 0.0f, p.z + 0.0f};
+    std::memcpy(k.data(), c, sizeof(c));
+    return k;
+}
+
+bool storesDiffusePhotons(const Material& m) {
+    return m.type == MaterialType::Diffuse || m.type == MaterialType::Plastic;
+}
+
+struct EdgeRecord {
+    std::array<uint32_t, 6> key;  // the two endpoints' keys, smaller first
+    uint32_t mesh, triangle, corner;
+    Vec3 normal;
+};
+
+struct QueryState {
+    std::vector<uint32_t>* candidates;
+};
+
+bool collectCandidate(RTCPointQueryFunctionArguments* args) {
+    static_cast<QueryState*>(args->userPtr)->candidates->push_back(args->primID);
+    return false;
+}
+
+}  // namespace
+
+double SurfaceBoundary::massBeyondSegment(double ax, double ay, double bx, double by, double r) {
+    const double dx = bx - ax, dy = by - ay;
+    const double len = std::sqrt(dx * dx + dy * dy);
+    if (!(len > 0) || !(r > 0)) return 0.0;
+    const double ux = dx / len, uy = dy / len;
+    const double h = std::abs(ax * uy - ay * ux);  // distance from the centre to the segment's line
+    if (h >= r) return 0.0;
+    const double ta = ax * ux + ay * uy, tb = bx * ux + by * uy;  // along the line from the foot, ta < tb
+    const double kInv2Pi = 0.5 / M_PI;
+    if (h < 1e-9 * r) {
+        // The centre on the line: beyond it is the half-disc, of which the segment's angle holds
+        // a quarter-turn on each side of the foot it reaches past.
+        const double lo = ta < 0 ? -0.5 * M_PI : 0.0, hi = tb > 0 ? 0.5 * M_PI : 0.0;
+        return hi > lo ? (hi - lo) * kInv2Pi : 0.0;
+    }
+    // In polar angle phi from the foot, the line lies at h / cos(phi); beyond it up to r the
+    // kernel's mass per radian is 1/(2 pi) - G(h sec phi), G(s) = (s^2/r^2 - s^4/(2 r^4)) / pi,
+    // zero past phi_c = acos(h / r). Its antiderivative:
+    //   F(phi) = phi/(2 pi) - (eta^2 tan phi - eta^4/2 (tan phi + tan^3 phi / 3)) / pi,  eta = h/r.
+    const double eta = h / r, phiC = std::acos(eta);
+    const double lo = std::max(std::atan(ta / h), -phiC), hi = std::min(std::atan(tb / h), phiC);
+    if (!(hi > lo)) return 0.0;
+    const double e2 = eta * eta, e4 = e2 * e2;
+    auto F = [&](double phi) {
+        const double t = std::tan(phi);
+        return phi * kInv2Pi - (e2 * t - 0.5 * e4 * (t + t * t * t / 3.0)) / M_PI;
+    };
+    return std::max(0.0, F(hi) - F(lo));
+}
+
+SurfaceBoundary::SurfaceBoundary(const Scene& scene, RTCDevice device) {
+    // Every edge of every photon-holding triangle, keyed by its endpoints' positions.
+    std::vector<EdgeRecord> records;
+    for (size_t m = 0; m < scene.meshes.size(); ++m) {
+        const TriangleMesh& mesh = scene.meshes[m];
+        if (!storesDiffusePhotons(scene.materials[mesh.material])) continue;
+        for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+            const Vec3 n = mesh.geometricNormal(t);
+            const float len = length(n);
+            if (!(len > 0) || !std::isfinite(len)) continue;
+            for (uint32_t k = 0; k < 3; ++k) {
+                auto ka = positionKey(mesh.vertex(t, int(k))), kb = positionKey(mesh.vertex(t, int((k + 1) % 3)));
+                if (kb < ka) std::swap(ka, kb);
+                EdgeRecord& e = records.emplace_back();
+                std::copy(ka.begin(), ka.end(), e.key.begin());
+                std::copy(kb.begin(), kb.end(), e.key.begin() + 3);
+                e.mesh = uint32_t(m), e.triangle = uint32_t(t), e.corner = k;
+                e.normal = n / len;
+            }
+        }
+    }
+    std::sort(records.begin(), records.end(), [](const EdgeRecord& a, const EdgeRecord& b) {
+        if (a.key != b.key) return a.key < b.key;
+        if (a.mesh != b.mesh) return a.mesh < b.mesh;
+        if (a.triangle != b.triangle) return a.triangle < b.triangle;
+        return a.corner < b.corner;
+    });
+    for (size_t i = 0; i < records.size();) {
+        size_t j = i;
+        while (j < records.size() && records[j].key == records[i].key) ++j;
+        for (size_t a = i; a < j; ++a) {
+            bool continued = false;  // a neighbour across the edge whose photons the gather takes
+            for (size_t b = i; b < j && !continued; ++b)
+                continued = b != a && std::abs(dot(records[a].normal, records[b].normal)) >= kNormalAgreement;
+            if (continued) continue;
+            const EdgeRecord& r = records[a];
+            const TriangleMesh& mesh = scene.meshes[r.mesh];
+            const Vec3 p0 = mesh.vertex(r.triangle, int(r.corner)), p1 = mesh.vertex(r.triangle, int((r.corner + 1) % 3));
+            const Vec3 p2 = mesh.vertex(r.triangle, int((r.corner + 2) % 3));
+            Vec3 inward = cross(r.normal, p1 - p0);
+            const float il = length(inward);
+            if (!(il > 0)) continue;
+            inward = inward / il;
+            if (dot(p2 - p0, inward) < 0) inward = -inward;
+            m_edges.push_back({p0, p1, r.normal, inward});
+        }
+        i = j;
+    }
+    if (m_edges.empty()) return;
+
+    m_rtcScene = rtcNewScene(device);
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+    rtcSetGeometryUserPrimitiveCount(geom, unsigned(m_edges.size()));
+    rtcSetGeometryUserData(geom, this);
+    rtcSetGeometryBoundsFunction(
+        geom,
+        [](const RTCBoundsFunctionArguments* args) {
+            const HalfEdge& e = static_cast<const SurfaceBoundary*>(args->geometryUserPtr)->m_edges[args->primID];
+            RTCBounds* b = args->bounds_o;
+            b->lower_x = std::min(e.a.x, e.b.x), b->lower_y = std::min(e.a.y, e.b.y), b->lower_z = std::min(e.a.z, e.b.z);
+            b->upper_x = std::max(e.a.x, e.b.x), b->upper_y = std::max(e.a.y, e.b.y), b->upper_z = std::max(e.a.z, e.b.z);
+        },
+        nullptr);
+    rtcCommitGeometry(geom);
+    rtcAttachGeometry(m_rtcScene, geom);
+    rtcReleaseGeometry(geom);
+    rtcCommitScene(m_rtcScene);
+}
+
+SurfaceBoundary::~SurfaceBoundary() {
+    if (m_rtcScene) rtcReleaseScene(m_rtcScene);
+}
+
+float SurfaceBoundary::coverage(const Vec3& x, const Vec3& ng, float r) const {
+    if (!m_rtcScene || !(r > 0)) return 1.0f;
+    thread_local std::vector<uint32_t> candidates;
+    candidates.clear();
+    RTCPointQuery query;
+    query.x = x.x, query.y = x.y, query.z = x.z, query.time = 0.0f, query.radius = r;
+    RTCPointQueryContext context;
+    rtcInitPointQueryContext(&context);
+    QueryState state{&candidates};
+    rtcPointQuery(m_rtcScene, &query, &context, collectCandidate, &state);
+    if (candidates.empty()) return 1.0f;
+    std::sort(candidates.begin(), candidates.end());  // Embree's traversal order is not fixed
+
+    const Frame frame(ng);
+    double missing = 0;
+    for (uint32_t i : candidates) {
+        const HalfEdge& e = m_edges[i];
+        if (dot(e.normal, ng) < kNormalAgreement) continue;  // another plane's edge
+        if (dot(x - e.a, e.inward) < 0) continue;          // x is not on the surface it bounds
+        // Near x's plane where it passes closest: the photons of that surface are in the gather's slab.
+        const Vec3 ab = e.b - e.a;
+        const float s = std::clamp(dot(x - e.a, ab) / dot(ab, ab), 0.0f, 1.0f);
+        const Vec3 c = e.a + ab * s - x;
+        if (dot(c, c) >= r * r || std::abs(dot(c, ng)) > 0.25f * r) continue;
+        const Vec3 a = frame.toLocal(e.a - x), b = frame.toLocal(e.b - x);
+        missing += massBeyondSegment(a.x, a.y, b.x, b.y, r);
+    }
+    return float(std::clamp(1.0 - missing, double(kMinCoverage), 1.0));
+}
+
+}  // namespace tyndall

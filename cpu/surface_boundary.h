@@ -1,0 +1,74 @@
+#pragma once
+// The surface photon kernel at the edges of surfaces (docs/algorithm.md, "The surface kernel at
+// edges"): the part of the 2D kernel disc that lies on a surface which can hold the photons the
+// diffuse gather accepts there. The density estimate sum_p Phi_p K(|x - x_p|, r) has the mean
+// int_S E(y) K(|x - y|, r) dA(y), which is E(x) x coverage(x) for smooth E: a disc centred near
+// a surface's edge (a concave corner of a room, a table's rim, a hole) reaches past it, where no
+// photon of this plane can lie, and the estimate is low by that fraction (boundary bias). Dividing
+// by the coverage removes that zeroth-order bias (the renormalised kernel of density estimation);
+// what is left is the ordinary blur of the light's own variation.
+//
+// Where a surface ends is found from the scene's triangles once: a **feature half-edge** is an
+// edge of a triangle that stores diffuse photons (diffuse or plastic) with no neighbour across it
+// that also does and lies within the gather's normal test (|n . n'| >= 0.7): the mesh's open
+// boundary, a crease sharper than 45.6 degrees (the walls of a box), or where a non-storing
+// material (mirror, glass, interface) begins. Neighbours are matched by vertex position (bit
+// for bit, across meshes), so unwelded meshes and meshes that meet do not make false edges.
+// The coverage of a disc of radius r at x is 1 minus, for every feature half-edge near x's plane
+// with x on its inner side, the kernel mass beyond it within the angle it subtends from x (closed
+// form: massBeyondSegment); for a convex patch around x (a wall, the corner of a room) that sum
+// is exact.
+//
+// Not seen (the coverage stays 1, as without this): an object resting on a larger surface that
+// continues under it (the floor's triangles do not end at the object), alpha cut-outs, and parts of
+// a curved surface that leave the gather's slab. Thin features are clamped at kMinCoverage (a
+// convex corner of a box, where three faces meet, is exactly 1/4), which bounds the amplified noise.
+//
+// Deterministic and thread-safe: the candidates of a query are summed in half-edge order,
+// whatever order Embree's point query returns them in.
+#include <embree3/rtcore.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "core/scene.h"
+
+namespace tyndall {
+
+class SurfaceBoundary {
+public:
+    /// Finds the scene's feature half-edges and builds a BVH over them on `device`.
+    SurfaceBoundary(const Scene& scene, RTCDevice device);
+    ~SurfaceBoundary();
+    SurfaceBoundary(const SurfaceBoundary&) = delete;
+    SurfaceBoundary& operator=(const SurfaceBoundary&) = delete;
+
+    /// The fraction in [kMinCoverage, 1] of the normalised 2D Epanechnikov kernel of radius `r`
+    /// centred at surface point `x` (unit geometric normal `ng`, SurfaceHit::ng) that lies on
+    /// photon-holding surface of x's plane. 1 away from edges (and for r <= 0).
+    float coverage(const Vec3& x, const Vec3& ng, float r) const;
+
+    /// Number of feature half-edges (0: no surface in the scene ends anywhere a kernel notices).
+    size_t featureEdgeCount() const { return m_edges.size(); }
+
+    /// In the plane, with the kernel K(d) = 2/(pi r^2) (1 - d^2/r^2) centred at the origin: its
+    /// mass beyond the segment a-b (on the side away from the origin) inside the angle the
+    /// segment subtends from the origin. Half-plane at distance h: 1/2 at h = 0, 0 at h >= r.
+    static double massBeyondSegment(double ax, double ay, double bx, double by, double r);
+
+    static constexpr float kMinCoverage = 0.25f;
+    /// The diffuse gather's normal test (camera_tracer.cpp): photons whose normal is within this
+    /// cosine of the query's count.
+    static constexpr float kNormalAgreement = 0.7f;
+
+private:
+    struct HalfEdge {
+        Vec3 a, b;
+        Vec3 normal;  ///< unit geometric normal of the triangle the edge bounds
+        Vec3 inward;  ///< unit, in that triangle's plane, perpendicular to a-b, toward its interior
+    };
+    std::vector<HalfEdge> m_edges;
+    RTCScene m_rtcScene = nullptr;
+};
+
+}  // namespace tyndall
