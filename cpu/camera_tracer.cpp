@@ -286,13 +286,29 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                     const Vec3 wo = -dir;
                     const bool shading = hasShadingNormal(hit);
                     const uint8_t directLit = m_direct ? kPhotonDirect : 0;
-                    Rgb coated =
-                        throughput * surfacePhotons.gather(hit.p, side.nf, [&](const SurfacePhoton& p) {
-                            if (dot(p.normal, side.nf) < 0.7f) return Rgb(0.0f);
-                            Rgb f = coat.photonWeight(wo, p.wi, (p.flags & kPhotonDeltaPath) != 0,
-                                                      (p.flags & directLit) != 0);
-                            return shading ? f * shadingOverGeometricCosine(hit, p.wi) : f;
+                    auto photonWeight = [&](const SurfacePhoton& p) {
+                        Rgb f = coat.photonWeight(wo, p.wi, (p.flags & kPhotonDeltaPath) != 0,
+                                                  (p.flags & directLit) != 0);
+                        return shading ? f * shadingOverGeometricCosine(hit, p.wi) : f;
+                    };
+                    Rgb coated;
+                    if (m_boundary) {
+                        // --surface-boundary on: both parts' density estimates over the part of the
+                        // kernel's disc on this surface, as at a diffuse end.
+                        float kSum = 0, krSum = 0;
+                        surfacePhotons.forEachNear(hit.p, side.nf, [&](const SurfacePhoton& p, float d2) {
+                            if (dot(p.normal, side.nf) < SurfaceBoundary::kNormalAgreement) return;
+                            const float k = SurfacePhotonGrid::kernel(d2, p.radius);
+                            coated += photonWeight(p) * p.power * k;
+                            kSum += k;
+                            krSum += k * p.radius;
                         });
+                        if (kSum > 0) coated *= throughput / m_boundary->coverage(hit.p, hit.ng, krSum / kSum);
+                    } else {
+                        coated = throughput * surfacePhotons.gather(hit.p, side.nf, [&](const SurfacePhoton& p) {
+                                     return dot(p.normal, side.nf) < 0.7f ? Rgb(0.0f) : photonWeight(p);
+                                 });
+                    }
                     if (m_direct && emission && !sp.baseColor.isBlack()) {
                         coated += throughput * m_direct->reflected(hit, side, medium, neeRng, [&](const DirectLightSample& ls) {
                             return coat.evalDiffuse(wo, ls.wi) * diffuseCosine(side, ls.wi);

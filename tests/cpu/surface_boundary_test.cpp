@@ -132,14 +132,16 @@ TEST(SurfaceBoundary, CoverageInARoom) {
                 1e-4);
 }
 
-/// A diffuse floor x, z in [-1, 1] at y = 0 in a room of black walls 1 high, open at the top, a
-/// point light above the floor, seen from straight above.
-Scene blackWallRoom() {
+/// A diffuse (or `floorType`) floor x, z in [-1, 1] at y = 0 in a room of black walls 1 high,
+/// open at the top, a point light above the floor, seen from straight above.
+Scene blackWallRoom(MaterialType floorType = MaterialType::Diffuse) {
     Scene s;
     s.name = "black-wall-room";
     s.source = "<test>";
     Material floor, black;
     floor.name = "floor";
+    floor.type = floorType;
+    floor.roughness = 0.5f;
     floor.albedo = Rgb(0.5f);
     black.name = "black";
     black.albedo = Rgb(0.0f);
@@ -246,6 +248,57 @@ TEST(SurfaceBoundary, FloorAgainstTheClosedFormAtTheWalls) {
     EXPECT_LT(edgeOff.render / edgeOff.closed, 0.85);
     EXPECT_NEAR(edgeOn.render / edgeOn.closed, 1.0, 0.06);
     EXPECT_NEAR(middleOn.render / middleOn.closed, 1.0, 0.02);
+}
+
+// A plastic floor (glTF's non-metals): its gather, both parts, is renormalised like the diffuse
+// end's. Same photons and camera paths on and off, so per pixel on = off / coverage: in the band at
+// the walls the ratio of the sums is the kernel's lost mass, in the middle exactly 1.
+TEST(SurfaceBoundary, PlasticFloorIsRenormalisedLikeADiffuseOne) {
+    const Scene scene = blackWallRoom(MaterialType::Plastic);
+    const int n = 32;
+    const float r = 0.1f;
+    auto render = [&](const std::string& boundary) {
+        RenderSettings s;
+        s.width = s.height = n;
+        s.photonsPerPass = 20000;
+        s.passes = 2;
+        s.seed = 3;
+        s.radius = 0.01f;
+        s.surfaceRadius = r;
+        s.radiusOffset = uint64_t(1) << 40;
+        s.photonAngle = 0;
+        s.directLight = "off";
+        s.surfaceBoundary = boundary;
+        s.gpu = "off";
+        PassRenderer renderer(scene, s, BeamBvh::Kind::FlatCurves, true);
+        Accumulator acc(n, n);
+        for (uint64_t pass = 0; pass < s.passes; ++pass) acc.addPass(renderer.renderPassLayers(pass).surface);
+        return acc.mean();
+    };
+    const Image off = render("off"), on = render("on");
+    // Pixels by the floor distance of their centre to the nearest wall (the floor fills the image).
+    double edgeOn = 0, edgeOff = 0, middleOn = 0, middleOff = 0;
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+            const double fx = -1 + 2 * (x + 0.5) / n, fz = -1 + 2 * (y + 0.5) / n;
+            const double wall = 1 - std::max(std::abs(fx), std::abs(fz));
+            if (wall < 0.5 * r) {  // the outermost ring of pixels: 0 to 0.625 r from a wall
+                edgeOn += on.at(x, y).g;
+                edgeOff += off.at(x, y).g;
+            } else if (wall > 1.5 * r) {
+                middleOn += on.at(x, y).g;
+                middleOff += off.at(x, y).g;
+            }
+        }
+    ASSERT_GT(edgeOff, 0.0);
+    ASSERT_GT(middleOff, 0.0);
+    std::printf("plastic floor, boundary on / off: band at the walls %.4f, middle %.6f\n", edgeOn / edgeOff,
+                middleOn / middleOff);
+    // Over 0 to 0.625 r from a wall the disc loses 50% to 4% of its mass (more in the corners):
+    // on / off ~ 1.3 there, 1 in the middle.
+    EXPECT_GT(edgeOn / edgeOff, 1.15);
+    EXPECT_LT(edgeOn / edgeOff, 2.0);
+    EXPECT_NEAR(middleOn / middleOff, 1.0, 1e-4);
 }
 
 }  // namespace
