@@ -236,21 +236,18 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                     const uint8_t skip = m_skipDirectPhotons ? kPhotonDirect : 0;
                     Rgb E;
                     if (m_boundary) {
-                        // --surface-boundary on: the kernel over the part of its disc on this
-                        // surface (cpu/surface_boundary.h), at the photons' kernel-weighted radius.
-                        // Nothing to gather for a black surface.
+                        // --surface-boundary on: each photon's kernel over the part of its disc
+                        // on this surface (cpu/surface_boundary.h). Nothing to gather for a black
+                        // surface.
                         const bool shading = hasShadingNormal(hit);
-                        float kSum = 0, krSum = 0;
                         if (!sp.baseColor.isBlack()) {
+                            SurfaceBoundary::AtPoint coverage(*m_boundary, hit.p, hit.ng);
                             surfacePhotons.forEachNear(hit.p, side.nf, [&](const SurfacePhoton& p, float d2) {
                                 if (dot(p.normal, side.nf) < SurfaceBoundary::kNormalAgreement || (p.flags & skip)) return;
                                 const float k = SurfacePhotonGrid::kernel(d2, p.radius);
-                                E += (shading ? shadingCosineRatio(side, p.wi) : 1.0f) * p.power * k;
-                                kSum += k;
-                                krSum += k * p.radius;
+                                E += (shading ? shadingCosineRatio(side, p.wi) : 1.0f) * p.power * (k / coverage(p.radius));
                             });
                         }
-                        if (kSum > 0) E *= 1.0f / m_boundary->coverage(hit.p, hit.ng, krSum / kSum);
                     } else {
                         E = !hasShadingNormal(hit) && skip == 0
                                 ? surfacePhotons.density(hit.p, side.nf)
@@ -295,15 +292,13 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                     if (m_boundary) {
                         // --surface-boundary on: both parts' density estimates over the part of the
                         // kernel's disc on this surface, as at a diffuse end.
-                        float kSum = 0, krSum = 0;
+                        SurfaceBoundary::AtPoint coverage(*m_boundary, hit.p, hit.ng);
                         surfacePhotons.forEachNear(hit.p, side.nf, [&](const SurfacePhoton& p, float d2) {
                             if (dot(p.normal, side.nf) < SurfaceBoundary::kNormalAgreement) return;
                             const float k = SurfacePhotonGrid::kernel(d2, p.radius);
-                            coated += photonWeight(p) * p.power * k;
-                            kSum += k;
-                            krSum += k * p.radius;
+                            coated += photonWeight(p) * p.power * (k / coverage(p.radius));
                         });
-                        if (kSum > 0) coated *= throughput / m_boundary->coverage(hit.p, hit.ng, krSum / kSum);
+                        coated *= throughput;
                     } else {
                         coated = throughput * surfacePhotons.gather(hit.p, side.nf, [&](const SurfacePhoton& p) {
                                      return dot(p.normal, side.nf) < 0.7f ? Rgb(0.0f) : photonWeight(p);

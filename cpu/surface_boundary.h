@@ -29,6 +29,7 @@
 #include <embree3/rtcore.h>
 
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "core/scene.h"
@@ -47,6 +48,38 @@ public:
     /// centred at surface point `x` (unit geometric normal `ng`, SurfaceHit::ng) that lies on
     /// photon-holding surface of x's plane. 1 away from edges (and for r <= 0).
     float coverage(const Vec3& x, const Vec3& ng, float r) const;
+
+    /// coverage() for the photons of one gather at x, each at its own radius quantised to 1/32
+    /// octave (the float's exponent and top 5 mantissa bits, the bucket's middle): one query per
+    /// distinct value, and a pass's photons share one or two. Dividing each photon's term by the
+    /// coverage at its own radius keeps the estimate a sum of per-photon terms, so a pass traced
+    /// in photon batches sums to the whole pass (a coverage from the gathered photons' mean radius
+    /// would depend on which photons a batch holds).
+    class AtPoint {
+    public:
+        AtPoint(const SurfaceBoundary& boundary, const Vec3& x, const Vec3& ng) : m_b(boundary), m_x(x), m_ng(ng) {}
+        float operator()(float r) {
+            uint32_t bits;
+            std::memcpy(&bits, &r, sizeof bits);
+            const uint32_t key = bits >> 18;
+            for (int i = 0; i < m_count; ++i)
+                if (m_key[i] == key) return m_value[i];
+            const uint32_t mid = (key << 18) | (1u << 17);
+            float rq;
+            std::memcpy(&rq, &mid, sizeof rq);
+            const float c = m_b.coverage(m_x, m_ng, rq);
+            if (m_count < kSlots) m_key[m_count] = key, m_value[m_count++] = c;
+            return c;
+        }
+
+    private:
+        static constexpr int kSlots = 4;
+        const SurfaceBoundary& m_b;
+        Vec3 m_x, m_ng;
+        int m_count = 0;
+        uint32_t m_key[kSlots];
+        float m_value[kSlots];
+    };
 
     /// Number of feature half-edges (0: no surface in the scene ends anywhere a kernel notices).
     size_t featureEdgeCount() const { return m_edges.size(); }
