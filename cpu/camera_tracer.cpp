@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <optional>
 
 #include "core/beam_estimator.h"
 #include "core/transmittance.h"
@@ -242,10 +243,9 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                         const bool shading = hasShadingNormal(hit);
                         if (!sp.baseColor.isBlack()) {
                             SurfaceBoundary::AtPoint coverage(*m_boundary, hit.p, hit.ng);
-                            surfacePhotons.forEachNear(hit.p, side.nf, [&](const SurfacePhoton& p, float d2) {
-                                if (dot(p.normal, side.nf) < SurfaceBoundary::kNormalAgreement || (p.flags & skip)) return;
-                                const float k = SurfacePhotonGrid::kernel(d2, p.radius);
-                                E += (shading ? shadingCosineRatio(side, p.wi) : 1.0f) * p.power * (k / coverage(p.radius));
+                            E = surfacePhotons.gather(hit.p, side.nf, [&](const SurfacePhoton& p) {
+                                if (dot(p.normal, side.nf) < SurfaceBoundary::kNormalAgreement || (p.flags & skip)) return 0.0f;
+                                return (shading ? shadingCosineRatio(side, p.wi) : 1.0f) / coverage(p.radius);
                             });
                         }
                     } else {
@@ -288,22 +288,14 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                                                   (p.flags & directLit) != 0);
                         return shading ? f * shadingOverGeometricCosine(hit, p.wi) : f;
                     };
-                    Rgb coated;
-                    if (m_boundary) {
-                        // --surface-boundary on: both parts' density estimates over the part of the
-                        // kernel's disc on this surface, as at a diffuse end.
-                        SurfaceBoundary::AtPoint coverage(*m_boundary, hit.p, hit.ng);
-                        surfacePhotons.forEachNear(hit.p, side.nf, [&](const SurfacePhoton& p, float d2) {
-                            if (dot(p.normal, side.nf) < SurfaceBoundary::kNormalAgreement) return;
-                            const float k = SurfacePhotonGrid::kernel(d2, p.radius);
-                            coated += photonWeight(p) * p.power * (k / coverage(p.radius));
-                        });
-                        coated *= throughput;
-                    } else {
-                        coated = throughput * surfacePhotons.gather(hit.p, side.nf, [&](const SurfacePhoton& p) {
-                                     return dot(p.normal, side.nf) < 0.7f ? Rgb(0.0f) : photonWeight(p);
-                                 });
-                    }
+                    // --surface-boundary on: both parts' density estimates over the part of the
+                    // kernel's disc on this surface, as at a diffuse end.
+                    std::optional<SurfaceBoundary::AtPoint> coverage;
+                    if (m_boundary) coverage.emplace(*m_boundary, hit.p, hit.ng);
+                    Rgb coated = throughput * surfacePhotons.gather(hit.p, side.nf, [&](const SurfacePhoton& p) {
+                        if (dot(p.normal, side.nf) < SurfaceBoundary::kNormalAgreement) return Rgb(0.0f);
+                        return coverage ? photonWeight(p) / (*coverage)(p.radius) : photonWeight(p);
+                    });
                     if (m_direct && emission && !sp.baseColor.isBlack()) {
                         coated += throughput * m_direct->reflected(hit, side, medium, neeRng, [&](const DirectLightSample& ls) {
                             return coat.evalDiffuse(wo, ls.wi) * diffuseCosine(side, ls.wi);

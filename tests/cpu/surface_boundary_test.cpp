@@ -161,6 +161,27 @@ Scene blackWallRoom(MaterialType floorType = MaterialType::Diffuse) {
     return s;
 }
 
+/// The mean of `passes` passes' surface layer (photons only, no shadow rays) at n x n, the surface
+/// radius fixed at r (schedule offset 2^40), 20000 photon paths a pass, seed 3.
+Image renderSurfaceLayer(const Scene& scene, int n, float r, uint64_t passes, const std::string& boundary) {
+    RenderSettings s;
+    s.width = s.height = n;
+    s.photonsPerPass = 20000;
+    s.passes = passes;
+    s.seed = 3;
+    s.radius = 0.01f;
+    s.surfaceRadius = r;
+    s.radiusOffset = uint64_t(1) << 40;  // the radius stays r
+    s.photonAngle = 0;
+    s.directLight = "off";
+    s.surfaceBoundary = boundary;
+    s.gpu = "off";
+    PassRenderer renderer(scene, s, BeamBvh::Kind::FlatCurves, true);
+    Accumulator acc(n, n);
+    for (uint64_t pass = 0; pass < s.passes; ++pass) acc.addPass(renderer.renderPassLayers(pass).surface);
+    return acc.mean();
+}
+
 TEST(SurfaceBoundary, FloorAgainstTheClosedFormAtTheWalls) {
     const Scene scene = blackWallRoom();
     const int n = 32;
@@ -205,22 +226,7 @@ TEST(SurfaceBoundary, FloorAgainstTheClosedFormAtTheWalls) {
         double render = 0, closed = 0, expected = 0;
     };
     auto bands = [&](const std::string& boundary, Band* edge, Band* middle) {
-        RenderSettings s;
-        s.width = s.height = n;
-        s.photonsPerPass = 20000;
-        s.passes = 8;
-        s.seed = 3;
-        s.radius = 0.01f;
-        s.surfaceRadius = float(r);
-        s.radiusOffset = uint64_t(1) << 40;  // the radius stays r
-        s.photonAngle = 0;
-        s.directLight = "off";
-        s.surfaceBoundary = boundary;
-        s.gpu = "off";
-        PassRenderer renderer(scene, s, BeamBvh::Kind::FlatCurves, true);
-        Accumulator acc(n, n);
-        for (uint64_t pass = 0; pass < s.passes; ++pass) acc.addPass(renderer.renderPassLayers(pass).surface);
-        const Image img = acc.mean();
+        const Image img = renderSurfaceLayer(scene, n, float(r), 8, boundary);
         for (int k = 0; k < n * n; ++k) {
             if (count[k] < sub * sub) continue;  // pixels wholly on the floor
             Band* b = wallDistance[k] < 0.5 * r ? edge : wallDistance[k] > 1.5 * r ? middle : nullptr;
@@ -257,25 +263,7 @@ TEST(SurfaceBoundary, PlasticFloorIsRenormalisedLikeADiffuseOne) {
     const Scene scene = blackWallRoom(MaterialType::Plastic);
     const int n = 32;
     const float r = 0.1f;
-    auto render = [&](const std::string& boundary) {
-        RenderSettings s;
-        s.width = s.height = n;
-        s.photonsPerPass = 20000;
-        s.passes = 2;
-        s.seed = 3;
-        s.radius = 0.01f;
-        s.surfaceRadius = r;
-        s.radiusOffset = uint64_t(1) << 40;
-        s.photonAngle = 0;
-        s.directLight = "off";
-        s.surfaceBoundary = boundary;
-        s.gpu = "off";
-        PassRenderer renderer(scene, s, BeamBvh::Kind::FlatCurves, true);
-        Accumulator acc(n, n);
-        for (uint64_t pass = 0; pass < s.passes; ++pass) acc.addPass(renderer.renderPassLayers(pass).surface);
-        return acc.mean();
-    };
-    const Image off = render("off"), on = render("on");
+    const Image off = renderSurfaceLayer(scene, n, r, 2, "off"), on = renderSurfaceLayer(scene, n, r, 2, "on");
     // Pixels by the floor distance of their centre to the nearest wall (the floor fills the image).
     double edgeOn = 0, edgeOff = 0, middleOn = 0, middleOff = 0;
     for (int y = 0; y < n; ++y)
