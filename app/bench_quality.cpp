@@ -28,6 +28,17 @@ double processCpuSeconds() {
     return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
 }
 
+/// The defaults `tyndall render` had when issue 10 was filed (before ca56336): the scene-relative
+/// radii (withSceneRelativeRadii), no photon cone, surfaces lit by photons alone (no shadow rays),
+/// the plain surface kernel. The LEGACY row: "today's defaults" the issue measures against.
+RenderSettings withLegacyDefaults(RenderSettings s, const Scene& scene) {
+    s = withSceneRelativeRadii(s, scene);
+    s.photonAngle = 0;
+    s.directLight = "off";
+    s.surfaceBoundary = "off";
+    return s;
+}
+
 struct Reference {
     Image mean;
     double noiseVariance = 0;  ///< the reference's own variance of the mean, averaged over pixels and channels
@@ -294,7 +305,7 @@ void runQualityBench(const CommonOptions& common, const QualityBenchOptions& o) 
             Rgb color;
         };
         std::vector<Variant> variants;
-        variants.push_back({"LEGACY", withSceneRelativeRadii(base, scene), Rgb(40.0f, 0.0f, 0.0f)});
+        variants.push_back({"LEGACY", withLegacyDefaults(base, scene), Rgb(40.0f, 0.0f, 0.0f)});
         RenderSettings open = base;
         open.plannedPaths = RadiusDefaults::kOpenEndedPathsPerPixel * uint64_t(base.width) * uint64_t(base.height);
         if (equalTime) {
@@ -354,10 +365,11 @@ void runQualityBench(const CommonOptions& common, const QualityBenchOptions& o) 
             PixelFootprint fp = measurePixelFootprint(renderer.rayTracer(), scene.camera, base.width, base.height);
             double rEnd = renderer.radii().beamRadiusOf(runs.back().passesDone * r.photonsPerPass);
             std::printf("  %-16s %-18s %7.0f %8.1f %8.2f%% %8.2f%% %+8.2f%% %8.2f   (radius %.4g, surface %.4g, offset %llu, "
-                        "photon angle %.3g)\n",
+                        "photon angle %.3g, direct light %s, boundary %s)\n",
                         scene.name.c_str(), v.label.c_str(), passesDone, cpu, 100 * e.relRmse, 100 * e.relRmse99,
                         100 * e.relBias, rEnd / fp.beam(1.0), r.radius, r.surfaceRadius,
-                        (unsigned long long)r.radiusOffset, r.photonAngle);
+                        (unsigned long long)r.radiusOffset, r.photonAngle, r.directLight.c_str(),
+                        r.surfaceBoundary.c_str());
             std::fflush(stdout);
             curves.push_back(std::move(curve));
         }

@@ -7,7 +7,8 @@
 // process CPU time its passes took (error measurements excluded).
 //
 // Equal work (FILE:PASSES, no CPU budget): every setting renders the same passes. The settings:
-// the scene-relative "legacy" radii (withSceneRelativeRadii), the automatic radii planned for the
+// LEGACY, the defaults issue 10 was filed against (scene-relative radii, no photon cone, no shadow
+// rays, the plain surface kernel), the automatic radii planned for the
 // pass count, the same without the photon cone (cpu/beam_cone.h), and the automatic radii of an
 // open-ended render. Plot: error against passes.
 //
