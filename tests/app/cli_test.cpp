@@ -124,7 +124,8 @@ TEST(Cli, HelpListsEveryOptionWithDefaults) {
                           "--reference", "--convergence"}})},
         {"reference", join({scene, output, {"--spp", "--max-depth", "--no-nee"}})},
         {"bench", join({scene, {"--passes", "--photons", "--rays", "--queries", "--free-flights", "--no-hybrid", "--quality",
-                            "--quality-scene", "--quality-seeds", "--quality-cpu-seconds", "--quality-library", "--reference-dir", "--reference-spp", "--plot", "--radius",
+                            "--quality-scene", "--quality-seeds", "--quality-cpu-seconds", "--quality-library",
+                            "--quality-images", "--reference-dir", "--reference-spp", "--plot", "--radius",
                             "--radius-offset", "--simd", "--direct-light", "--surface-boundary"}})},
         {"compare", join({scene, output, ppb, {"--gpu", "--density"}})}};
     for (const auto& [command, names] : expected) {
