@@ -118,6 +118,15 @@ SurfaceBoundary::SurfaceBoundary(const Scene& scene, RTCDevice device) {
         }
         i = j;
     }
+    // The pre-check's grid over where gather points lie: the photon-holding triangles.
+    Bounds3 domain;
+    for (const TriangleMesh& mesh : scene.meshes)
+        if (storesDiffusePhotons(scene.materials[mesh.material]))
+            for (size_t t = 0; t < mesh.triangleCount(); ++t)
+                for (int k = 0; k < 3; ++k) domain.extend(mesh.vertex(t, k));
+    std::vector<Vec3> ends0(m_edges.size()), ends1(m_edges.size());
+    for (size_t i = 0; i < m_edges.size(); ++i) ends0[i] = m_edges[i].a, ends1[i] = m_edges[i].b;
+    m_clearance = EdgeClearanceGrid(ends0, ends1, domain);
     if (m_edges.empty()) return;
 
     m_rtcScene = rtcNewScene(device);
@@ -144,7 +153,7 @@ SurfaceBoundary::~SurfaceBoundary() {
 }
 
 float SurfaceBoundary::coverage(const Vec3& x, const Vec3& ng, float r) const {
-    if (!m_rtcScene || !(r > 0)) return 1.0f;
+    if (!m_rtcScene || !(r > 0) || r <= m_clearance.clearance(x)) return 1.0f;
     thread_local std::vector<uint32_t> candidates;
     candidates.clear();
     RTCPointQuery query;

@@ -18,9 +18,11 @@
 #include <cstdio>
 
 #include "core/accumulator.h"
+#include "core/rng.h"
 #include "cpu/embree_scene.h"
 #include "cpu/pass_renderer.h"
 #include "cpu/surface_boundary.h"
+#include "cpu/surface_boundary_clearance.h"
 #include "loading/mesh_builders.h"
 
 namespace tyndall {
@@ -70,6 +72,76 @@ TEST(SurfaceBoundary, MassBeyondSegmentMatchesQuadrature) {
         EXPECT_NEAR(a, q, 2e-3) << s[0] << " " << s[1] << " " << s[2] << " " << s[3];
         EXPECT_NEAR(a, b, 1e-12);
     }
+}
+
+double segmentDistance(const Vec3& x, const Vec3& a, const Vec3& b) {
+    const double abx = b.x - a.x, aby = b.y - a.y, abz = b.z - a.z;
+    const double ab2 = abx * abx + aby * aby + abz * abz;
+    double s = ab2 > 0 ? ((x.x - a.x) * abx + (x.y - a.y) * aby + (x.z - a.z) * abz) / ab2 : 0;
+    s = std::clamp(s, 0.0, 1.0);
+    const double dx = a.x + s * abx - x.x, dy = a.y + s * aby - x.y, dz = a.z + s * abz - x.z;
+    return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+// The pre-check is exact only if its clearance never exceeds the true distance to the nearest
+// segment: random segments (long diagonal ones, short ones), random points in the domain (half on
+// a thin slab, where most gather points are), in and far from the origin and at two scales,
+// against the brute-force distance. And it must be useful: within sqrt(3) (its chessboard metric)
+// and ~2 cells of the truth. Then segments outside the domain (marked in its border cells).
+TEST(SurfaceBoundary, ClearanceIsALowerBoundOfTheEdgeDistance) {
+    auto nearest = [](const Vec3& x, const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+        double d = 1e30;
+        for (size_t i = 0; i < a.size(); ++i) d = std::min(d, segmentDistance(x, a[i], b[i]));
+        return d;
+    };
+    for (int trial = 0; trial < 6; ++trial) {
+        Rng rng(17 + trial, 5);
+        auto in = [&](float lo, float hi) { return lo + (hi - lo) * rng.uniform(); };
+        const float scale = trial % 2 ? 1000.0f : 0.01f;  // the unit of length does not matter
+        const Vec3 shift = trial >= 4 ? Vec3(3000.0f, -20.0f, 0.0f) * scale : Vec3(0.0f);
+        Bounds3 domain;
+        domain.extend(shift + Vec3(-2, -0.5f, -1) * scale);
+        domain.extend(shift + Vec3(2, 0.5f, 1) * scale);
+        auto inside = [&](const Vec3& p) { return vmin(vmax(p, domain.lo), domain.hi); };
+        std::vector<Vec3> a, b;
+        const int n = trial % 3 == 0 ? 3 : 40;
+        for (int i = 0; i < n; ++i) {
+            const Vec3 p = shift + Vec3(in(-2, 2), in(-0.5f, 0.5f), in(-1, 1)) * scale;
+            const float len = i % 4 == 0 ? 3.0f : 0.05f;
+            a.push_back(p);
+            b.push_back(inside(p + Vec3(in(-len, len), in(-len, len) * 0.3f, in(-len, len)) * scale));
+        }
+        const EdgeClearanceGrid grid(a, b, domain);
+        ASSERT_GT(grid.cellCount(), 0u);
+        const float cell = grid.cellSize();
+        int positive = 0;
+        for (int q = 0; q < 20000; ++q) {
+            const float y = q % 2 ? in(-0.5f, 0.5f) : in(-1e-3f, 1e-3f);
+            const Vec3 x = shift + Vec3(in(-2, 2), y, in(-1, 1)) * scale;
+            const double truth = nearest(x, a, b);
+            const float c = grid.clearance(x);
+            ASSERT_LE(c, truth) << "trial " << trial << " point " << x.x << " " << x.y << " " << x.z;
+            ASSERT_GE(c, truth / std::sqrt(3.0) - 2.2 * cell) << "trial " << trial;
+            positive += c > 0;
+        }
+        EXPECT_GT(positive, 10000) << "trial " << trial;
+
+        // Segments beyond the domain's faces and corners: still bounded, from inside and outside.
+        std::vector<Vec3> oa, ob;
+        for (int i = 0; i < 8; ++i) {
+            const Vec3 p = shift + Vec3(i & 1 ? 2.2f : -2.4f, i & 2 ? 0.6f : in(-0.5f, 0.5f), i & 4 ? 1.3f : in(-1, 1)) * scale;
+            oa.push_back(p);
+            ob.push_back(p + Vec3(in(-0.3f, 0.3f), 0.0f, in(-0.3f, 0.3f)) * scale);
+        }
+        const EdgeClearanceGrid outer(oa, ob, domain);
+        for (int q = 0; q < 5000; ++q) {
+            const Vec3 x = shift + Vec3(in(-2.6f, 2.6f), in(-0.7f, 0.7f), in(-1.4f, 1.4f)) * scale;
+            ASSERT_LE(outer.clearance(x), nearest(x, oa, ob)) << "trial " << trial;
+        }
+    }
+    // No segments: nothing is near; no domain: nothing is known.
+    EXPECT_EQ(EdgeClearanceGrid({}, {}, Bounds3{}).clearance(Vec3(0.0f)), kInfinity);
+    EXPECT_EQ(EdgeClearanceGrid({Vec3(0.0f)}, {Vec3(1.0f)}, Bounds3{}).clearance(Vec3(5.0f)), 0.0f);
 }
 
 /// A room [-1, 1]^3 of diffuse walls (one inward box), or a floor made of two unwelded quads.
