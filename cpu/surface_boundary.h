@@ -19,6 +19,16 @@
 // form: massBeyondSegment); for a convex patch around x (a wall, the corner of a room) that sum
 // is exact.
 //
+// **Layered surfaces.** A surface lying a little in front of a parallel one (a rug on a floor, a
+// picture frame before a wall, a decal) has open edges, but past them the gather's slab test
+// (|offset . n| <= r/4) takes the photons of the surface behind: nothing is lost there, and
+// dividing by the coverage would over-count. So each feature half-edge is probed once, just past
+// it in its plane (three points along it), by rays along its normal both ways, for the nearest
+// photon-holding surface within the gather's normal test; the edge stores the largest |offset| of
+// the three (infinity when one finds none), and removes kernel mass only at radii whose slab,
+// r/4, that offset exceeds: exact for one parallel layer along the whole edge, as the radius
+// shrinks past 4x the offset as well.
+//
 // Not seen (the coverage stays 1, as without this): an object resting on a larger surface that
 // continues under it (the floor's triangles do not end at the object), alpha cut-outs, and parts of
 // a curved surface that leave the gather's slab. Thin features are clamped at kMinCoverage (a
@@ -38,14 +48,19 @@
 #include <vector>
 
 #include "core/scene.h"
+#include "cpu/embree_scene.h"
 #include "cpu/surface_boundary_clearance.h"
 
 namespace tyndall {
 
 class SurfaceBoundary {
 public:
-    /// Finds the scene's feature half-edges and builds a BVH over them on `device`.
-    SurfaceBoundary(const Scene& scene, RTCDevice device);
+    /// Whether feature half-edges are probed for a parallel surface past them (Layers::Ignore only
+    /// to measure what the probe fixes: tests/cpu/surface_boundary_test.cpp).
+    enum class Layers { Probe, Ignore };
+    /// Finds the scene's feature half-edges (probing past them with rays of `rt`, the scene's
+    /// Embree scene) and builds a BVH over them on rt's device.
+    SurfaceBoundary(const Scene& scene, const EmbreeScene& rt, Layers layers = Layers::Probe);
     ~SurfaceBoundary();
     SurfaceBoundary(const SurfaceBoundary&) = delete;
     SurfaceBoundary& operator=(const SurfaceBoundary&) = delete;
@@ -111,6 +126,7 @@ private:
         Vec3 a, b;
         Vec3 normal;  ///< unit geometric normal of the triangle the edge bounds
         Vec3 inward;  ///< unit, in that triangle's plane, perpendicular to a-b, toward its interior
+        float layerOffset;  ///< |normal offset| of a photon-holding surface just past it; infinity: none
     };
     std::vector<HalfEdge> m_edges;
     EdgeClearanceGrid m_clearance;
