@@ -7,9 +7,28 @@
 namespace tyndall {
 
 namespace {
-constexpr int kMaxCellsPerSide = 128;
+constexpr int kMaxCellsPerSide = 96;
 constexpr size_t kMaxCells = size_t(1) << 22;
 constexpr int kFar = 255;
+
+/// p[0..n+1] = the row src[0..n-1] + 1 (255 stays 255), with a far cell on either side.
+void plusOnePadded(const uint8_t* __restrict src, uint8_t* __restrict p, int n) {
+    p[0] = p[n + 1] = uint8_t(kFar);
+    for (int x = 0; x < n; ++x) p[x + 1] = uint8_t(src[x] + (src[x] != kFar));
+}
+
+/// v[x] = min(v[x], the 12 p_k[x .. x+2]): the neighbours of x in four padded rows.
+void minOfRows(uint8_t* __restrict v, const uint8_t* __restrict p0, const uint8_t* __restrict p1,
+               const uint8_t* __restrict p2, const uint8_t* __restrict p3, int n) {
+    for (int x = 0; x < n; ++x) {
+        uint8_t m = v[x];
+        m = std::min(m, std::min(std::min(p0[x], p0[x + 1]), p0[x + 2]));
+        m = std::min(m, std::min(std::min(p1[x], p1[x + 1]), p1[x + 2]));
+        m = std::min(m, std::min(std::min(p2[x], p2[x + 1]), p2[x + 2]));
+        m = std::min(m, std::min(std::min(p3[x], p3[x + 1]), p3[x + 2]));
+        v[x] = m;
+    }
+}
 }  // namespace
 
 EdgeClearanceGrid::EdgeClearanceGrid(const std::vector<Vec3>& a, const std::vector<Vec3>& b, const Bounds3& domain) {
@@ -68,28 +87,30 @@ EdgeClearanceGrid::EdgeClearanceGrid(const std::vector<Vec3>& a, const std::vect
     }
 
     // Chebyshev distance transform: two raster sweeps with the 26-neighbourhood, unit steps
-    // (exact for the chessboard metric).
+    // (exact for the chessboard metric). Each sweep takes, per row, the minimum over the 12
+    // neighbours in rows already swept (all x at once: the compiler vectorises it), then runs
+    // along the row for the 13th (x - 1, or x + 1 backward), the same as the plain raster order.
+    std::vector<uint8_t> far(size_t(nx) + 2, uint8_t(kFar));
+    auto row = [&](int y, int z) -> const uint8_t* {  // with a far cell on either side
+        return y < 0 || z < 0 || y >= ny || z >= nz ? far.data() + 1 : m_cells.data() + (size_t(z) * ny + y) * nx;
+    };
+    std::vector<uint8_t> padded[4];
+    for (std::vector<uint8_t>& p : padded) p.resize(size_t(nx) + 2);
     auto sweep = [&](int s) {  // s = -1: forward (neighbours before), +1: backward
-        const int zb = s < 0 ? 0 : nz - 1, yb = s < 0 ? 0 : ny - 1, xb = s < 0 ? 0 : nx - 1;
         for (int zi = 0; zi < nz; ++zi) {
-            const int z = s < 0 ? zi : zb - zi;
+            const int z = s < 0 ? zi : nz - 1 - zi;
             for (int yi = 0; yi < ny; ++yi) {
-                const int y = s < 0 ? yi : yb - yi;
-                for (int xi = 0; xi < nx; ++xi) {
-                    const int x = s < 0 ? xi : xb - xi;
-                    uint8_t& v = m_cells[(size_t(z) * ny + y) * nx + x];
-                    if (v == 0) continue;
-                    int best = v;
-                    auto take = [&](int dx, int dy, int dz) {
-                        const int X = x + dx, Y = y + dy, Z = z + dz;
-                        if (X < 0 || Y < 0 || Z < 0 || X >= nx || Y >= ny || Z >= nz) return;
-                        best = std::min(best, int(m_cells[(size_t(Z) * ny + Y) * nx + X]) + 1);
-                    };
-                    for (int dy = -1; dy <= 1; ++dy)
-                        for (int dx = -1; dx <= 1; ++dx) take(dx, dy, s);  // the slab already swept
-                    for (int dx = -1; dx <= 1; ++dx) take(dx, s, 0);
-                    take(s, 0, 0);
-                    v = uint8_t(std::min(best, kFar));
+                const int y = s < 0 ? yi : ny - 1 - yi;
+                uint8_t* v = m_cells.data() + (size_t(z) * ny + y) * nx;
+                // The 12 neighbour rows: (y + dy, z + s) for dy in -1..1, and (y + s, z), each read
+                // at x - 1, x, x + 1 through a copy padded with far cells.
+                const uint8_t* rows[4] = {row(y - 1, z + s), row(y, z + s), row(y + 1, z + s), row(y + s, z)};
+                for (int k = 0; k < 4; ++k) plusOnePadded(rows[k], padded[k].data(), nx);
+                minOfRows(v, padded[0].data(), padded[1].data(), padded[2].data(), padded[3].data(), nx);
+                if (s < 0) {
+                    for (int x = 1; x < nx; ++x) v[x] = uint8_t(std::min(int(v[x]), v[x - 1] + 1));
+                } else {
+                    for (int x = nx - 2; x >= 0; --x) v[x] = uint8_t(std::min(int(v[x]), v[x + 1] + 1));
                 }
             }
         }

@@ -13,7 +13,7 @@
 // photon-holding triangles); outside it the bound is 0 (no skip), so the test is conservative
 // everywhere and the coverage, hence the image, is bit for bit the same as without it.
 //
-// The cells are cubes, at most 128 across the box's longest side and 2^22 in all (4 MiB);
+// The cells are cubes, at most 96 across the box's longest side and 2^22 in all (4 MiB);
 // building is linear in the cells plus the segments' lengths in cells.
 #include <cstdint>
 #include <vector>
