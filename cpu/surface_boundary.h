@@ -110,6 +110,8 @@ public:
     size_t featureEdgeCount() const { return m_edges.size(); }
     /// The pre-check's grid (its cell size, cell count and memory: docs/performance.md).
     const EdgeClearanceGrid& clearanceGrid() const { return m_clearance; }
+    /// Bytes the boundary keeps besides Embree's BVH: the half-edges and the pre-check's grid.
+    size_t memoryBytes() const { return m_edges.capacity() * sizeof(HalfEdge) + m_clearance.memoryBytes(); }
 
     /// In the plane, with the kernel K(d) = 2/(pi r^2) (1 - d^2/r^2) centred at the origin: its
     /// mass beyond the segment a-b (on the side away from the origin) inside the angle the
