@@ -3,6 +3,7 @@
 #include <time.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -219,6 +220,7 @@ struct Run {
     ImageError end;
     uint64_t passesDone = 0;
     double cpuSeconds = 0;  ///< process CPU time of the passes (the error measurements excluded)
+    Image image;            ///< the mean after the last pass
     std::unique_ptr<PassRenderer> renderer;
 };
 
@@ -240,7 +242,7 @@ Run renderRun(const Scene& scene, const RenderSettings& s, const Reference& ref,
             run.passes.push_back(double(n));
             run.cpu.push_back(run.cpuSeconds);
             run.relRmse.push_back(e.relRmse);
-            if (last) run.end = e;
+            if (last) run.end = e, run.image = acc.mean();
         }
         if (last) {
             run.passesDone = n;
@@ -332,6 +334,17 @@ void runQualityBench(const CommonOptions& common, const QualityBenchOptions& o) 
                 RenderSettings sk = v.s;
                 sk.seed = base.seed + uint64_t(k);
                 runs.push_back(renderRun(scene, sk, ref, passes, o.cpuSeconds));
+                if (!o.imageDir.empty()) {
+                    std::filesystem::create_directories(o.imageDir);
+                    std::string row;  // "DEFAULTS (--TIME)" -> "defaults-time"
+                    for (unsigned char c : v.label)
+                        if (std::isalnum(c)) row += char(std::tolower(c));
+                        else if (!row.empty() && row.back() != '-') row += '-';
+                    while (!row.empty() && row.back() == '-') row.pop_back();
+                    writeImage(o.imageDir + "/" + scene.name + "-" + row + "-seed" + std::to_string(sk.seed) + ".exr",
+                               runs.back().image, {{"Software", "tyndall"}, {"tyndall:settings", sk.toJson().dump()},
+                                                   {"tyndall:passes", std::to_string(runs.back().passesDone)}});
+                }
             }
             // Over the seeds: errors as root mean squares, bias, CPU time and passes as means. The
             // curve's points are the doubling pass counts every seed reached (at their mean CPU time),

@@ -43,6 +43,8 @@ struct QualityBenchOptions {
     /// its mirror and glass surfaces made index-matched Interfaces (withoutSpecularSurfaces), where
     /// the path tracer is valid; named <scene>-no-specular (also in the reference cache).
     std::string library;
+    /// A folder for each row's final image per seed (<scene>-<row>-seed<N>.exr); "" = none.
+    std::string imageDir;
 };
 
 /// Runs the benchmark; `common` carries size, seed, threads and photons. Prints a table.

@@ -97,6 +97,9 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                     "With --quality and --quality-cpu-seconds: also every scene file in this folder (scenes/), its "
                     "mirrors and glass made index-matched so that the path tracer is valid; replaces the default "
                     "--quality-scene list unless one is given (default: none)");
+    cmd->add_option("--quality-images", o->qualityOptions.imageDir,
+                    "With --quality: write every row's final image per seed, <dir>/<scene>-<row>-seed<N>.exr, "
+                    "to look at beside the reference (default: none)");
     cmd->add_option("--plot", o->qualityOptions.plot,
                     "With --quality: write the error plot (PNG): against passes, or against CPU seconds with "
                     "--quality-cpu-seconds (default: none)");

@@ -46,6 +46,66 @@ LightSampler::LightSampler(const Scene& scene) : m_scene(scene) {
     for (size_t e = 0; e < scene.emitters.size(); ++e)
         m_emitterSource[(uint64_t(scene.emitters[e].mesh) << 32) | scene.emitters[e].triangle] =
             int(scene.lights.size() + e);
+    for (size_t e = 0; e < scene.emitters.size(); ++e) {
+        const EmissiveTriangle& t = scene.emitters[e];
+        m_emitterPower += std::max(0.0f, m_power[scene.lights.size() + e].luminance());
+        m_emitterCdf.push_back(m_emitterPower);
+        m_emitterArea += t.area;
+        for (int v = 0; v < 3; ++v) m_emitterBounds.extend(scene.meshes[size_t(t.mesh)].vertex(t.triangle, v));
+    }
+    if (m_emitterPower > 0)
+        for (double& c : m_emitterCdf) c /= m_emitterPower;
+    const size_t groups = scene.lights.size() + (m_emitterPower > 0 ? 1 : 0);
+    m_spatialChoice = groups >= 2 && scene.lights.size() <= kMaxSpatialChoiceLights;
+}
+
+double LightSampler::directWeights(const Vec3& x, double* w) const {
+    double sum = 0;
+    for (size_t k = 0; k < m_scene.lights.size(); ++k) {
+        const Light& l = m_scene.lights[k];
+        double intensity = std::max(0.0f, l.intensity.luminance());
+        if (l.type == LightType::Directional) {
+            w[k] = intensity;
+        } else {
+            // The falloff exactly as sampleDirect evaluates it, so a light it can light is never
+            // given weight 0.
+            Vec3 toLight = l.position - x;
+            float d2 = lengthSquared(toLight);
+            if (!(d2 > 0)) {
+                w[k] = 0;
+                continue;
+            }
+            float falloff = l.type == LightType::Spot ? l.spotFalloff(dot(-(toLight / std::sqrt(d2)), l.direction)) : 1.0f;
+            w[k] = intensity * double(falloff) / double(d2);
+        }
+        sum += w[k];
+    }
+    double& group = w[m_scene.lights.size()];
+    group = 0;
+    if (m_emitterPower > 0) {
+        Vec3 lo = m_emitterBounds.lo - x, hi = x - m_emitterBounds.hi;
+        Vec3 out(std::max({lo.x, hi.x, 0.0f}), std::max({lo.y, hi.y, 0.0f}), std::max({lo.z, hi.z, 0.0f}));
+        double d2 = std::max(double(lengthSquared(out)), m_emitterArea / kPi);
+        group = m_emitterPower / (kPi * std::max(d2, 1e-30));
+    }
+    return sum + group;
+}
+
+size_t LightSampler::chooseEmitter(double u) const {
+    size_t e = size_t(std::lower_bound(m_emitterCdf.begin(), m_emitterCdf.end(), u) - m_emitterCdf.begin());
+    e = std::min(e, m_emitterCdf.size() - 1);
+    while (e > 0 && m_emitterCdf[e] == m_emitterCdf[e - 1]) --e;  // never a zero-power emitter
+    return e;
+}
+
+float LightSampler::directChoiceProbability(size_t i, const Vec3& x) const {
+    if (!m_spatialChoice) return sourceProbability(i);
+    double w[kMaxSpatialChoiceLights + 1];
+    const double sum = directWeights(x, w);
+    if (!(sum > 0)) return 0.0f;
+    const size_t lights = m_scene.lights.size();
+    if (i < lights) return float(w[i] / sum);
+    return float(w[lights] / sum * emitterShare(i - lights));
 }
 
 size_t LightSampler::chooseSource(float u) const {
@@ -62,9 +122,41 @@ int LightSampler::emitterSource(int mesh, uint32_t triangle) const {
 
 DirectLightSample LightSampler::sampleDirect(const Vec3& x, Rng& rng) const {
     DirectLightSample s;
-    size_t i = chooseSource(rng.uniform());
+    const float u = rng.uniform();
     float u1 = rng.uniform(), u2 = rng.uniform();
-    float pick = sourceProbability(i);
+    size_t i = 0;
+    float pick = 0;
+    if (!m_spatialChoice) {
+        i = chooseSource(u);
+        pick = sourceProbability(i);
+    } else {
+        double w[kMaxSpatialChoiceLights + 1];
+        const double sum = directWeights(x, w);
+        if (!(sum > 0)) return s;  // no source can reach x
+        const size_t lights = m_scene.lights.size();
+        double target = double(u) * sum, below = 0;
+        i = lights;  // the emitters, unless a light's interval holds the target
+        for (size_t k = 0; k < lights; ++k) {
+            if (w[k] > 0 && target < below + w[k]) {
+                i = k;
+                break;
+            }
+            below += w[k];
+        }
+        if (i < lights) {
+            pick = float(w[i] / sum);
+        } else if (w[lights] > 0) {
+            size_t e = chooseEmitter(std::clamp((target - below) / w[lights], 0.0, std::nextafter(1.0, 0.0)));
+            i = lights + e;
+            pick = float(w[lights] / sum * emitterShare(e));
+        } else {  // rounding put the target past the last light's interval: take the last lit one
+            i = lights;
+            while (i > 0 && !(w[i - 1] > 0)) --i;
+            if (i == 0) return s;
+            i -= 1;
+            pick = float(w[i] / sum);
+        }
+    }
     s.source = int(i);
     if (i < m_scene.lights.size()) {
         const Light& l = m_scene.lights[i];
@@ -112,7 +204,7 @@ float LightSampler::directPdf(size_t source, const Vec3& x, const Vec3& y) const
     float d2 = lengthSquared(toLight);
     float cosLight = -dot(toLight, n) / std::sqrt(d2);
     if (!(cosLight > 0)) return 0.0f;
-    return sourceProbability(source) * d2 / (cosLight * e.area);
+    return directChoiceProbability(source, x) * d2 / (cosLight * e.area);
 }
 
 EmittedPhoton LightSampler::sample(Rng& rng) const {

@@ -1,9 +1,9 @@
 #pragma once
 // Light sampling. Photon emission: picks a light (point, spot, directional or one emissive
 // triangle) with probability proportional to its power and samples an emitted ray (the photon
-// tracer). Next-event estimation: the same power-proportional choice, then a point on the chosen
-// light as seen from a shading point (the reference path tracer). Sources are indexed lights
-// first (Scene::lights), then Scene::emitters.
+// tracer). Next-event estimation (the reference path tracer, PPB's shadow rays): a source chosen
+// by what it can send to the shading point (directChoiceProbability), then a point on it. Sources
+// are indexed lights first (Scene::lights), then Scene::emitters.
 #include <unordered_map>
 #include <vector>
 
@@ -63,9 +63,22 @@ public:
     /// The source index of emissive triangle `triangle` of mesh `mesh`, or -1 when it is not one.
     int emitterSource(int mesh, uint32_t triangle) const;
 
-    /// Next-event estimation from shading point `x`: a power-proportional source, then a point
-    /// on it (uniform over an emissive triangle's area). Draws three uniforms from `rng`.
+    /// Next-event estimation from shading point `x`: a source chosen with directChoiceProbability,
+    /// then a point on it (uniform over an emissive triangle's area). Draws three uniforms from `rng`.
     DirectLightSample sampleDirect(const Vec3& x, Rng& rng) const;
+    /// Probability that sampleDirect(x) picks source `i`. With two or more sources of which at
+    /// most kMaxSpatialChoiceLights are point, spot or directional lights, the choice follows what
+    /// each could send to x unoccluded, the receiver's cosine left out: I falloff / d^2 for point
+    /// and spot lights (0 outside a spot's cone), E for directional ones, and, for all emissive
+    /// triangles together, their power / (pi max(d^2, area / pi)) with d the distance from x to
+    /// their bounding box (then a triangle by power). A spot that cannot reach x costs no shadow
+    /// rays there, and a dim light near x is not starved by a bright far one (power alone spent
+    /// 3/4 of the caustic box's shadow rays on its spot outside the spot's cone). Otherwise
+    /// (one source, or more lights than that) sourceProbability(i), the power-proportional choice.
+    float directChoiceProbability(size_t i, const Vec3& x) const;
+    /// Beyond this many point, spot and directional lights the choice is by power (the per-point
+    /// weights cost one evaluation per light).
+    static constexpr size_t kMaxSpatialChoiceLights = 32;
     /// The pdf sampleDirect(x) has of reaching point `y` on area-light `source` (solid angle at
     /// x, choice included); for MIS when a scattered path hits that emitter. 0 for delta lights
     /// and when x is behind the triangle.
@@ -76,9 +89,21 @@ private:
     /// (the source pmf follows the untextured power; the texture weights the sample, unbiased).
     Rgb emittedRadiance(const EmissiveTriangle& e, Vec2 b) const;
 
+    /// The spatial choice's weights at x: w[k] for light k, w[lights] for all emitters together;
+    /// returns their sum.
+    double directWeights(const Vec3& x, double* w) const;
+    /// Emitter `e` (index into Scene::emitters) chosen by power among the emitters from u in [0, 1).
+    size_t chooseEmitter(double u) const;
+    double emitterShare(size_t e) const { return m_emitterCdf[e] - (e > 0 ? m_emitterCdf[e - 1] : 0.0); }
+
     const Scene& m_scene;
     std::vector<Rgb> m_power;
     std::vector<double> m_cdf;  // over luminance of m_power
+    bool m_spatialChoice = false;
+    std::vector<double> m_emitterCdf;  // over luminance of the emitters' power, normalised
+    double m_emitterPower = 0;         // luminance, summed
+    double m_emitterArea = 0;
+    Bounds3 m_emitterBounds;
     Rgb m_totalPower;
     Vec3 m_sceneCenter;
     float m_sceneRadius = 1.0f;

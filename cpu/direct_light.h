@@ -2,7 +2,8 @@
 // Next-event estimation (direct light by shadow rays), shared by the reference path tracer and
 // PPB's camera paths (the diffuse end of a camera path with `--direct-light on`,
 // docs/algorithm.md "Direct light by shadow rays"):
-//   - a light sample: LightSampler::sampleDirect's power-proportional source, then a point on it
+//   - a light sample: LightSampler::sampleDirect's source (chosen by what it can send to the point),
+//     then a point on it
 //     (point, spot, directional, or uniform over an emissive triangle);
 //   - a shadow ray toward it that passes through Interface surfaces (switching medium) and through
 //     alpha-masked or blended geometry as EmbreeScene's occlusion filter decides, and is blocked by

@@ -282,7 +282,8 @@ bool ReferenceTracer::isPointLike(int source) const {
 }
 
 Rgb ReferenceTracer::pointLightInScattering(const Ray& seg, MediumId medium, Rng& rng) const {
-    // The light choice is sampleDirect's (same pmf as the free-flight NEE that skips these lights).
+    // The light chosen by power (sourceProbability); the free-flight NEE that skips these lights
+    // divides by its own choice probability, so the two parts still add up.
     size_t source = m_lights.chooseSource(rng.uniform());
     float uDistance = rng.uniform();
     if (!isPointLike(int(source))) return Rgb(0.0f);

@@ -16,8 +16,8 @@
 //     pass straight through and switch the medium;
 //   - emission: from the front (normal) side of emissive triangles only.
 //
-// Next-event estimation at every diffuse and medium-scattering vertex: one power-proportional
-// light sample (LightSampler::sampleDirect) with a shadow ray that passes through Interface
+// Next-event estimation at every diffuse and medium-scattering vertex: one light sample
+// (LightSampler::sampleDirect, the source chosen by what it can send to the vertex) with a shadow ray that passes through Interface
 // surfaces (switching medium, multiplying their transmittance: analytic, or ratio tracking in
 // grid media) and is blocked by any other surface. Area lights combine NEE with BSDF/phase
 // sampling by multiple importance sampling (power heuristic); emission reached after a mirror or
@@ -28,8 +28,9 @@
 // as fireflies that never settle. With `equiangular` on, the light these lights scatter into each
 // medium segment is estimated instead by equiangular sampling along the segment (Kulla & Fajardo
 // 2012: distance pdf proportional to 1/(h^2 + (t - t_c)^2), h the light's distance to the line),
-// and the free-flight vertices leave point and spot lights out of their NEE. Both strategies pick
-// the light with the same power-proportional choice, so the two parts add up to the whole.
+// and the free-flight vertices leave point and spot lights out of their NEE. Each strategy divides
+// by its own choice probability (the segment's by power, the vertex's sampleDirect's), so each
+// part is unbiased on its own lights and the two add up to the whole.
 //
 // LIMITATION (inherent to path tracing, not a bug): delta lights (point, spot, directional)
 // seen only through or via a mirror or glass surface are unreachable: NEE is blocked by the

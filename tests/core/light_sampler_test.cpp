@@ -1,7 +1,8 @@
-// Next-event light sampling (LightSampler::sampleDirect / directPdf / chooseSource): the choice
-// frequencies follow the power-proportional probabilities, the pdf a scattered path would use for
-// MIS equals the pdf of the sample, and the irradiance estimated from the samples matches
-// Lambert's closed form for a polygonal area light.
+// Light sampling (LightSampler): the photon choice frequencies follow the power-proportional
+// probabilities; next-event estimation (sampleDirect / directPdf / directChoiceProbability) chooses
+// by what each source sends to the point, the pdf a scattered path would use for MIS equals the
+// pdf of the sample, and the irradiance estimated from the samples matches the closed forms
+// (Lambert's for a polygonal area light, I cos / d^2 for point and spot lights).
 #include "core/light_sampler.h"
 
 #include <gtest/gtest.h>
@@ -85,7 +86,7 @@ TEST(LightSampler, DirectSamplesAgreeWithDirectPdfAndLambertIrradiance) {
             e = s.incident.r * std::max(0.0f, dot(s.wi, n)) / s.pdf;
         } else {
             ASSERT_TRUE(s.delta);
-            EXPECT_NEAR(s.pdf, lights.sourceProbability(size_t(s.source)), 1e-7);
+            EXPECT_NEAR(s.pdf, lights.directChoiceProbability(size_t(s.source), x), 1e-7);
             float d = length(scene.lights[s.source].position - x);
             float falloff = s.source == 1 ? scene.lights[1].spotFalloff(dot(-s.wi, scene.lights[1].direction)) : 1.0f;
             EXPECT_NEAR(s.incident.r, scene.lights[s.source].intensity.r * falloff / (d * d), 1e-5);
@@ -118,6 +119,90 @@ TEST(LightSampler, DirectSamplesAgreeWithDirectPdfAndLambertIrradiance) {
             EXPECT_EQ(s.pdf, 0.0f);
         }
     }
+}
+
+/// Irradiance at x (normal n) of every source of makeLights(): point and spot in closed form,
+/// the panel by Lambert's formula.
+double exactIrradiance(const Scene& scene, const Vec3& x, const Vec3& n) {
+    double e = 0;
+    for (const Light& l : scene.lights) {
+        Vec3 toLight = l.position - x;
+        float d = length(toLight);
+        Vec3 wi = toLight / d;
+        float falloff = l.type == LightType::Spot ? l.spotFalloff(dot(-wi, l.direction)) : 1.0f;
+        e += l.intensity.r * falloff * std::max(0.0f, dot(wi, n)) / (d * d);
+    }
+    const TriangleMesh& panel = scene.meshes[0];
+    std::vector<Vec3> r;
+    for (int k : {0, 1, 2, 3}) r.push_back(normalize(panel.positions[k] - x));
+    double lambert = 0;
+    for (size_t i = 0; i < 4; ++i) {
+        Vec3 a = r[i], b = r[(i + 1) % 4];
+        lambert += std::acos(std::clamp(double(dot(a, b)), -1.0, 1.0)) * dot(normalize(cross(a, b)), n);
+    }
+    return e + std::abs(lambert) * 0.5 * scene.materials[0].emission.r;
+}
+
+TEST(LightSampler, DirectChoiceFollowsWhatEachSourceSendsToThePoint) {
+    Scene scene = makeLights();
+    LightSampler lights(scene);
+    // Outside the spot's cone (cos 0.8 around straight down from (0, 3, 0)): the spot is never
+    // chosen, though by power it would take a fifth of the shadow rays. Just under the spot it
+    // gets most of them. The probabilities sum to one everywhere.
+    const Vec3 outside(2.5f, 0.0f, 0.0f);
+    EXPECT_EQ(lights.directChoiceProbability(1, outside), 0.0f);
+    EXPECT_GT(lights.sourceProbability(1), 0.2f);
+    EXPECT_GT(lights.directChoiceProbability(1, Vec3(0.1f, 2.6f, 0.05f)), 0.8f);
+    for (Vec3 x : {outside, Vec3(0.1f, 2.6f, 0.05f), Vec3(0.1f, 0.0f, 0.2f)}) {
+        double total = 0;
+        for (size_t i = 0; i < lights.sourceCount(); ++i) total += lights.directChoiceProbability(i, x);
+        EXPECT_NEAR(total, 1.0, 1e-6);
+    }
+    // The choice frequencies at a point follow directChoiceProbability (chi-square, 3 degrees of
+    // freedom, p = 0.001), and the estimate of the irradiance from all sources is unbiased against
+    // the closed forms, at a point lit by all three and at one outside the spot.
+    for (Vec3 x : {Vec3(0.1f, 0.0f, 0.2f), outside}) {
+        const Vec3 n(0, 1, 0);
+        Rng rng = Rng::forKey(4, 0, 0, StreamPurpose::Test);
+        const int samples = 200000;
+        std::vector<int> counts(4, 0);
+        double sum = 0, sum2 = 0;
+        for (int i = 0; i < samples; ++i) {
+            DirectLightSample s = lights.sampleDirect(x, rng);
+            ASSERT_GE(s.source, 0);
+            counts[size_t(s.source)]++;
+            double e = s.pdf > 0 ? s.incident.r * std::max(0.0f, dot(s.wi, n)) / s.pdf : 0.0;
+            sum += e;
+            sum2 += e * e;
+        }
+        double chi2 = 0;
+        for (size_t i = 0; i < 4; ++i) {
+            double expected = samples * lights.directChoiceProbability(i, x);
+            if (expected > 0) chi2 += (counts[i] - expected) * (counts[i] - expected) / expected;
+            else EXPECT_EQ(counts[i], 0);
+        }
+        EXPECT_LT(chi2, 16.3);
+        double exact = exactIrradiance(scene, x, n);
+        double mean = sum / samples, se = std::sqrt((sum2 / samples - mean * mean) / samples);
+        std::printf("at (%g, %g, %g): irradiance from samples %.5f +- %.5f, closed form %.5f\n", x.x, x.y, x.z, mean,
+                    se, exact);
+        EXPECT_LT(se, 0.01 * exact);
+        EXPECT_NEAR(mean, exact, 4.0 * se);
+    }
+}
+
+TEST(LightSampler, ManyLightsAreChosenByPower) {
+    Scene scene = makeLights();
+    for (size_t k = scene.lights.size(); k <= LightSampler::kMaxSpatialChoiceLights; ++k) {
+        Light l = scene.lights[0];
+        l.position = Vec3(float(k), 2.0f, 0.0f);
+        scene.lights.push_back(l);
+    }
+    scene.finalize();
+    LightSampler lights(scene);
+    const Vec3 x(0.1f, 0.0f, 0.2f);
+    for (size_t i = 0; i < lights.sourceCount(); ++i)
+        EXPECT_EQ(lights.directChoiceProbability(i, x), lights.sourceProbability(i));
 }
 
 }  // namespace
