@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cfloat>
 #include <cmath>
 #include <cstring>
@@ -98,6 +99,8 @@ double SurfaceBoundary::massBeyondSegment(double ax, double ay, double bx, doubl
 }
 
 SurfaceBoundary::SurfaceBoundary(const Scene& scene, const EmbreeScene& rt, Layers layers) {
+    static std::atomic<uint64_t> instances{0};
+    m_id = ++instances;
     RTCDevice device = rt.device()->get();
     // Every edge of every photon-holding triangle, keyed by its endpoints' positions.
     std::vector<EdgeRecord> records;
@@ -198,22 +201,55 @@ SurfaceBoundary::~SurfaceBoundary() {
     if (m_rtcScene) rtcReleaseScene(m_rtcScene);
 }
 
-float SurfaceBoundary::coverage(const Vec3& x, const Vec3& ng, float r) const {
-    if (!m_rtcScene || !(r > 0) || r <= m_clearance.clearance(x)) return 1.0f;
-    thread_local std::vector<uint32_t> candidates;
-    candidates.clear();
+void SurfaceBoundary::query(const Vec3& x, float r, std::vector<uint32_t>* out) const {
     RTCPointQuery query;
     query.x = x.x, query.y = x.y, query.z = x.z, query.time = 0.0f, query.radius = r;
     RTCPointQueryContext context;
     rtcInitPointQueryContext(&context);
-    QueryState state{&candidates};
+    QueryState state{out};
     rtcPointQuery(m_rtcScene, &query, &context, collectCandidate, &state);
-    if (candidates.empty()) return 1.0f;
-    std::sort(candidates.begin(), candidates.end());  // Embree's traversal order is not fixed
+    std::sort(out->begin(), out->end());  // Embree's traversal order is not fixed
+}
+
+float SurfaceBoundary::coverage(const Vec3& x, const Vec3& ng, float r) const {
+    if (!m_rtcScene || !(r > 0) || r <= m_clearance.clearance(x)) return 1.0f;
+    // The candidates of x's pre-check cell at this radius, cached per thread (surface_boundary.h);
+    // outside the grid, x's own.
+    struct CellCandidates {
+        uint64_t owner = 0;
+        size_t cell = 0;
+        float r = 0;
+        std::vector<uint32_t> list;
+    };
+    constexpr int kCached = 4;
+    thread_local CellCandidates cache[kCached];
+    thread_local int nextSlot = 0;
+    thread_local std::vector<uint32_t> own;
+    const std::vector<uint32_t>* candidates = nullptr;
+    size_t cell;
+    Vec3 centre;
+    float reach;
+    if (m_clearance.cellOf(x, &cell, &centre, &reach)) {
+        for (const CellCandidates& c : cache)
+            if (c.owner == m_id && c.cell == cell && c.r == r) candidates = &c.list;
+        if (!candidates) {
+            CellCandidates& c = cache[nextSlot];
+            nextSlot = (nextSlot + 1) % kCached;
+            c.owner = m_id, c.cell = cell, c.r = r;
+            c.list.clear();
+            query(centre, r + reach, &c.list);
+            candidates = &c.list;
+        }
+    } else {
+        own.clear();
+        query(x, r, &own);
+        candidates = &own;
+    }
+    if (candidates->empty()) return 1.0f;
 
     const Frame frame(ng);
     double missing = 0;
-    for (uint32_t i : candidates) {
+    for (uint32_t i : *candidates) {
         const HalfEdge& e = m_edges[i];
         if (dot(e.normal, ng) < kNormalAgreement) continue;  // another plane's edge
         if (dot(x - e.a, e.inward) < 0) continue;          // x is not on the surface it bounds

@@ -40,7 +40,10 @@
 // Most gather points are farther than their radius from every feature half-edge, where the
 // coverage is exactly 1: a grid of lower bounds on the distance to the nearest one
 // (cpu/surface_boundary_clearance.h) answers those without the point query, conservatively, so
-// the coverage is bit for bit what the query gives.
+// the coverage is bit for bit what the query gives. Near an edge, the half-edges within r of any
+// point of the grid cell holding x are found once per cell and radius and kept per thread (the last
+// few): neighbouring gather points share them. A superset of those within r of x, summed in
+// half-edge order after the same tests, so again the same coverage.
 #include <embree3/rtcore.h>
 
 #include <cstdint>
@@ -130,8 +133,12 @@ private:
         Vec3 inward;  ///< unit, in that triangle's plane, perpendicular to a-b, toward its interior
         float layerOffset;  ///< |normal offset| of a photon-holding surface just past it; infinity: none
     };
+    /// Appends to `out` the half-edges Embree finds within r of x (a superset of those closer).
+    void query(const Vec3& x, float r, std::vector<uint32_t>* out) const;
+
     std::vector<HalfEdge> m_edges;
     EdgeClearanceGrid m_clearance;
+    uint64_t m_id;  ///< unique per instance: keys the per-thread candidate cache
     RTCScene m_rtcScene = nullptr;
 };
 

@@ -62,6 +62,7 @@ EdgeClearanceGrid::EdgeClearanceGrid(const std::vector<Vec3>& a, const std::vect
     for (int k = 0; k < 3; ++k)
         maxAbs = std::max({maxAbs, std::abs(m_origin[k]), std::abs(m_origin[k] + cell * float(m_dims[k]))});
     const float slack = 0.05f * cell + 16.0f * FLT_EPSILON * maxAbs;
+    m_slack = slack;
     for (int k = 1; k <= kFar; ++k) m_clearanceOf[k] = std::max(0.0f, float(k - 1) * cell - slack);
 
     m_cells.assign(total, uint8_t(kFar));

@@ -42,6 +42,22 @@ public:
         return m_clearanceOf[m_cells[(size_t(idx[2]) * m_dims[1] + idx[1]) * m_dims[0] + idx[0]]];
     }
 
+    /// The cell holding x (false outside the grid): its index, and the centre and radius of a
+    /// sphere holding every point the index can be computed for (the cell, plus the float slack).
+    bool cellOf(const Vec3& x, size_t* index, Vec3* centre, float* radius) const {
+        if (m_cells.empty()) return false;
+        int idx[3];
+        for (int k = 0; k < 3; ++k) {
+            const float c = (x[k] - m_origin[k]) * m_invCell;
+            if (!(c >= 0.0f) || !(c < float(m_dims[k]))) return false;
+            idx[k] = int(c);
+        }
+        *index = (size_t(idx[2]) * m_dims[1] + idx[1]) * m_dims[0] + idx[0];
+        *centre = m_origin + Vec3(float(idx[0]) + 0.5f, float(idx[1]) + 0.5f, float(idx[2]) + 0.5f) * m_cell;
+        *radius = 0.8660254f * m_cell + m_slack;
+        return true;
+    }
+
     float cellSize() const { return m_cell; }
     size_t cellCount() const { return m_cells.size(); }
     size_t memoryBytes() const { return m_cells.capacity(); }
@@ -50,7 +66,7 @@ private:
     std::vector<uint8_t> m_cells;  ///< Chebyshev distance in cells to the nearest touched cell
     float m_clearanceOf[256] = {};  ///< lower bound on the distance, per cell value
     Vec3 m_origin;
-    float m_cell = 0, m_invCell = 0;
+    float m_cell = 0, m_invCell = 0, m_slack = 0;
     int m_dims[3] = {0, 0, 0};
     bool m_noSegments = false;
 };
