@@ -230,14 +230,19 @@ float SurfaceBoundary::coverage(const Vec3& x, const Vec3& ng, float r) const {
     Vec3 centre;
     float reach;
     if (m_clearance.cellOf(x, &cell, &centre, &reach)) {
+        // Keyed by the half octave above r (photons with the cone carry many radii): the cell's
+        // list holds the half-edges within that radius, a superset of those within r.
+        int e;
+        const float m = std::frexp(r, &e);  // r = m 2^e, m in [0.5, 1)
+        const float rKey = std::ldexp(m < 0.70710677f ? 0.70710683f : 1.0f, e);
         for (const CellCandidates& c : cache)
-            if (c.owner == m_id && c.cell == cell && c.r == r) candidates = &c.list;
+            if (c.owner == m_id && c.cell == cell && c.r == rKey) candidates = &c.list;
         if (!candidates) {
             CellCandidates& c = cache[nextSlot];
             nextSlot = (nextSlot + 1) % kCached;
-            c.owner = m_id, c.cell = cell, c.r = r;
+            c.owner = m_id, c.cell = cell, c.r = rKey;
             c.list.clear();
-            query(centre, r + reach, &c.list);
+            query(centre, rKey + reach, &c.list);
             candidates = &c.list;
         }
     } else {
