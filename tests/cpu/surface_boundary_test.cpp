@@ -12,6 +12,10 @@
 //    part of the disc) within 2%, in the band within r/2 of the walls and in the middle: the plain
 //    kernel reads ~0.77 of the closed form in the band, the renormalised one ~1.03 (the
 //    first-order blur of the light's slope, which renormalising does not remove).
+// 4. The pre-check's clearance grid is a lower bound of the distance to the nearest half-edge
+//    (brute force), and a useful one (within sqrt(3) and ~2 cells).
+// 5. Layered surfaces: a rug 0.1 r above a floor, its rim's band against the closed form and the
+//    kernels' exact means (plain, boundary without the layer probe: over-counted ~1.4x, with it).
 #include <gtest/gtest.h>
 
 #include <cmath>
