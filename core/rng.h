@@ -14,6 +14,7 @@ enum class StreamPurpose : uint32_t {
     ReferencePath = 4,
     Transmittance = 5,
     DirectLight = 6,  ///< a camera path's shadow rays (--direct-light): drawn apart from its own stream
+    PixelJitterRotation = 7,  ///< a pixel's offset of the film jitter's sequence (core/pixel_jitter.h)
     Test = 99,
 };
 

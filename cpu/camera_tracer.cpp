@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "core/beam_estimator.h"
+#include "core/pixel_jitter.h"
 #include "core/transmittance.h"
 #include "cpu/direct_light.h"
 #include "cpu/surface_boundary.h"
@@ -152,9 +153,9 @@ PrimaryPass CameraTracer::tracePrimary(uint64_t pass) const {
         for (int x = 0; x < w; ++x) {
             const uint64_t pixel = uint64_t(y) * w + x;
             Rng jitter = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::PixelJitter);
-            float jx = jitter.uniform(), jy = jitter.uniform();
+            const Vec2 film = pixelJitter(m_settings.seed, pass, pixel);
             Vec2 lens{jitter.uniform(), jitter.uniform()};
-            Ray ray = camera.generateRay(float(x) + jx, float(y) + jy, w, h, lens);
+            Ray ray = camera.generateRay(float(x) + film.x, float(y) + film.y, w, h, lens);
             PrimaryHit& ph = hits[pixel];
             if (nff > 0) std::fill_n(&primary.freeFlights[pixel * nff], nff, kInfinity);  // none stored
             ph.medium = cameraMedium;

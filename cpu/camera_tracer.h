@@ -16,8 +16,9 @@
 // PassRenderer::traceCamera runs both. The camera is read from the scene at each tracePrimary call, so a camera
 // that moves between passes (the viewer's reset) is followed, the medium it sits in included.
 //
-// Deterministic: pixel p of pass i draws its film/lens jitter and its primary stored distances
-// from Rng::forKey(seed, i, p, PixelJitter), the rest of its path from (seed, i, p, CameraPath) and
+// Deterministic: pixel p of pass i takes its film jitter from pixelJitter(seed, i, p) (a
+// low-discrepancy sequence over the passes, core/pixel_jitter.h), draws its lens sample and its
+// primary stored distances from Rng::forKey(seed, i, p, PixelJitter), the rest of its path from (seed, i, p, CameraPath) and
 // its shadow ray from (seed, i, p, DirectLight), so the split changes no bit of the image.
 #include <cstdint>
 #include <memory>

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/fresnel.h"
+#include "core/material_eval.h"
 #include "core/radius_schedule.h"
 #include "cpu/pixel_footprint.h"
 
@@ -24,7 +25,7 @@ uint64_t plannedPhotonPaths(const RenderSettings& s) {
 
 bool pointLightNearTheImage(const Scene& scene, int width, int height, double reach, double wider) {
     const Camera& c = scene.camera;
-    const double pixelsPerUnitAtDepth1 = height / (2.0 * std::tan(0.5 * double(c.yFov)));
+    const double pixelsPerUnitAtDepth1 = 1.0 / double(pixelSpread(c.yFov, height));
     for (const Light& l : scene.lights) {
         if (l.type == LightType::Directional) continue;
         if (length(l.position - c.position) <= reach) return true;
@@ -47,7 +48,8 @@ bool pointLightSeenInAMirror(const EmbreeScene& rt, int width, int height, doubl
     pinhole.lensRadius = 0;
     const int nx = std::min(64, width), ny = std::min(64, height);
     // Radians between neighbouring grid rays, and half the cell's diagonal in them.
-    const double cell = 2.0 * std::tan(0.5 * double(pinhole.yFov)) / height * std::max(double(width) / nx, double(height) / ny);
+    const double spread = pixelSpread(pinhole.yFov, height);  // a pixel's footprint per unit of path length
+    const double cell = spread * std::max(double(width) / nx, double(height) / ny);
     const double halfCell = 0.75 * cell;
     for (int y = 0; y < ny; ++y)
         for (int x = 0; x < nx; ++x) {
@@ -64,7 +66,7 @@ bool pointLightSeenInAMirror(const EmbreeScene& rt, int width, int height, doubl
                         const Vec3 toLight = l.position - ray.o;
                         const double t = std::clamp(double(dot(toLight, ray.d)), 0.0, tEnd);
                         const double miss = length(toLight - ray.d * float(t));
-                        const double footprint = (travelled + t) * 2.0 * std::tan(0.5 * double(pinhole.yFov)) / height;
+                        const double footprint = (travelled + t) * spread;
                         if (miss <= reach + halfCell * (travelled + t) && !(wider > 0 && wider <= footprint))
                             return true;
                     }
