@@ -1,5 +1,7 @@
 // Microbenchmarks (Google Benchmark) of the innermost PPB routines: the beam x ray estimator, HG
-// sampling, the radius schedule and free-flight sampling (homogeneous and density-grid media).
+// sampling, the radius schedule, free-flight sampling (homogeneous and density-grid media), texture
+// lookups and building the surface kernel's boundary (SurfaceBoundary: feature half-edges, their
+// layer probe, the pre-check grid and the point-query BVH) for the largest glTF asset.
 // Whole-stage throughput (photon tracing, gathers, passes/s) is `tyndall bench`; these isolate
 // the per-call cost of what those stages call millions of times. Not run by ctest.
 //
@@ -8,6 +10,7 @@
 //   build/bench/micro_bench --benchmark_filter=FreeFlight --benchmark_repetitions=5
 #include <benchmark/benchmark.h>
 
+#include <atomic>
 #include <vector>
 
 #include "core/beam_estimator.h"
@@ -17,7 +20,10 @@
 #include "core/rng.h"
 #include "core/sampling.h"
 #include "core/texture.h"
+#include "cpu/embree_scene.h"
 #include "cpu/free_flight.h"
+#include "cpu/surface_boundary.h"
+#include "loading/scene_file.h"
 
 namespace tyndall {
 namespace {
@@ -176,6 +182,45 @@ void BM_TextureLookup(benchmark::State& state) {
     state.counters["fileMB"] = double(st.fileBytes) / (1024.0 * 1024.0);
 }
 BENCHMARK(BM_TextureLookup)->Arg(0)->Arg(1)->Arg(2);  // 0: plain array baseline, 1: width 0, 2: width 1/256
+
+// SurfaceBoundary's construction (cpu/surface_boundary.h) on the largest glTF asset (by file size;
+// Arg 1: the one with the most triangles), ../shared/assets relative to the working directory (run
+// from the project root). Counters: feature half-edges, the pre-check's cells, and the memory it
+// keeps: the edges and the grid, plus the bytes Embree allocated for its BVH (the device's memory
+// monitor, while building).
+void BM_SurfaceBoundaryBuild(benchmark::State& state) {
+    const char* files[] = {"../shared/assets/gltf/GlassVaseFlowers/GlassVaseFlowers.glb",
+                           "../shared/assets/gltf/TransmissionRoughnessTest/TransmissionRoughnessTest.glb"};
+    SceneFile file;
+    try {
+        file = loadSceneFile(files[state.range(0)]);
+    } catch (const std::exception& e) {
+        state.SkipWithError((std::string("asset not found (run from the project root): ") + e.what()).c_str());
+        return;
+    }
+    const EmbreeScene rt(file.scene);
+    static std::atomic<int64_t> embreeBytes{0};
+    rtcSetDeviceMemoryMonitorFunction(
+        rt.device()->get(), [](void*, ssize_t bytes, bool) { embreeBytes += bytes; return true; }, nullptr);
+    int64_t peak = 0;
+    size_t edges = 0, cells = 0, kept = 0;
+    for (auto _ : state) {
+        embreeBytes = 0;
+        SurfaceBoundary b(file.scene, rt);
+        peak = std::max<int64_t>(peak, embreeBytes.load());
+        edges = b.featureEdgeCount(), cells = b.clearanceGrid().cellCount(), kept = b.memoryBytes();
+        benchmark::DoNotOptimize(b);
+    }
+    rtcSetDeviceMemoryMonitorFunction(rt.device()->get(), nullptr, nullptr);
+    size_t triangles = 0;
+    for (const TriangleMesh& m : file.scene.meshes) triangles += m.triangleCount();
+    state.counters["triangles"] = double(triangles);
+    state.counters["featureEdges"] = double(edges);
+    state.counters["gridCells"] = double(cells);
+    state.counters["keptKiB"] = double(kept) / 1024.0;
+    state.counters["embreeKiB"] = double(peak) / 1024.0;
+}
+BENCHMARK(BM_SurfaceBoundaryBuild)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace tyndall

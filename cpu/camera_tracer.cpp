@@ -47,7 +47,7 @@ Rgb gatherBeams(const Scene& scene, const PhotonMap& photons, const std::vector<
 CameraTracer::CameraTracer(const EmbreeScene& rt, const RenderSettings& settings)
     : m_rt(rt), m_scene(rt.scene()), m_settings(settings) {
     for (const Medium& m : m_scene.media) m_anyHeterogeneous |= !m.homogeneous();
-    if (settings.surfaceBoundary == "on") m_boundary = std::make_unique<SurfaceBoundary>(m_scene, m_rt.device()->get());
+    if (settings.surfaceBoundary == "on") m_boundary = std::make_unique<SurfaceBoundary>(m_scene, m_rt);
     if (settings.directLight == "on") {
         lightsChanged();
         // Photons from glossy and plastic surfaces (kPhotonDirect ones among them, for their

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
+#include <cfloat>
 #include <cmath>
 #include <cstring>
 
@@ -28,6 +30,32 @@ struct EdgeRecord {
     uint32_t mesh, triangle, corner;
     Vec3 normal;
 };
+
+/// The layer probe (surface_boundary.h, "Layered surfaces") at point p of a half-edge's plane,
+/// just past the edge: for each side of the plane, the first surface a ray meets going from
+/// `lift` in front of p through the plane (glass and interfaces let it on: light reaches what is
+/// behind them). When that surface holds diffuse photons and passes the gather's normal test
+/// against n, its photons there lie |t - lift| off the plane; the smaller such offset of the two
+/// sides, infinity when neither has one.
+float layerOffsetAt(const Scene& scene, const EmbreeScene& rt, const Vec3& p, const Vec3& n, float lift) {
+    float best = kInfinity;
+    for (float side : {1.0f, -1.0f}) {
+        Ray ray{p + n * (side * lift), n * -side, 0.0f, kInfinity};
+        for (int k = 0; k < 8; ++k) {
+            SurfaceHit hit;
+            if (!rt.intersect(ray, &hit)) break;
+            const Material& m = scene.materials[scene.meshes[size_t(hit.mesh)].material];
+            if (m.isTransmissive()) {
+                ray.tMin = std::nextafter(hit.t, kInfinity);
+                continue;
+            }
+            if (storesDiffusePhotons(m) && std::abs(dot(hit.ng, n)) >= SurfaceBoundary::kNormalAgreement)
+                best = std::min(best, std::abs(hit.t - lift));
+            break;
+        }
+    }
+    return best;
+}
 
 struct QueryState {
     std::vector<uint32_t>* candidates;
@@ -70,7 +98,10 @@ double SurfaceBoundary::massBeyondSegment(double ax, double ay, double bx, doubl
     return std::max(0.0, F(hi) - F(lo));
 }
 
-SurfaceBoundary::SurfaceBoundary(const Scene& scene, RTCDevice device) {
+SurfaceBoundary::SurfaceBoundary(const Scene& scene, const EmbreeScene& rt, Layers layers) {
+    static std::atomic<uint64_t> instances{0};
+    m_id = ++instances;
+    RTCDevice device = rt.device()->get();
     // Every edge of every photon-holding triangle, keyed by its endpoints' positions.
     std::vector<EdgeRecord> records;
     for (size_t m = 0; m < scene.meshes.size(); ++m) {
@@ -114,10 +145,37 @@ SurfaceBoundary::SurfaceBoundary(const Scene& scene, RTCDevice device) {
             if (!(il > 0)) continue;
             inward = inward / il;
             if (dot(p2 - p0, inward) < 0) inward = -inward;
-            m_edges.push_back({p0, p1, r.normal, inward});
+            m_edges.push_back({p0, p1, r.normal, inward, kInfinity});
         }
         i = j;
     }
+    // The layer probe, at 1/6, 1/2 and 5/6 along each edge, a ten-thousandth of the scene's
+    // diagonal past it (and as far off its plane to start), plus the float error of the points.
+    if (layers == Layers::Probe) {
+        const Vec3 diag = scene.bounds.diagonal();
+        const float sceneScale = std::isfinite(length(diag)) ? length(diag) : 0.0f;
+        const float maxAbs = std::max({std::abs(scene.bounds.lo.x), std::abs(scene.bounds.lo.y), std::abs(scene.bounds.lo.z),
+                                       std::abs(scene.bounds.hi.x), std::abs(scene.bounds.hi.y), std::abs(scene.bounds.hi.z)});
+        const float step = 1e-4f * sceneScale + 256.0f * FLT_EPSILON * (std::isfinite(maxAbs) ? maxAbs : 0.0f);
+        for (HalfEdge& e : m_edges) {
+            float offset = 0;
+            for (float u : {1.0f / 6.0f, 0.5f, 5.0f / 6.0f}) {
+                const Vec3 p = e.a + (e.b - e.a) * u - e.inward * step;
+                offset = std::max(offset, layerOffsetAt(scene, rt, p, e.normal, step));
+            }
+            e.layerOffset = offset;
+        }
+    }
+
+    // The pre-check's grid over where gather points lie: the photon-holding triangles.
+    Bounds3 domain;
+    for (const TriangleMesh& mesh : scene.meshes)
+        if (storesDiffusePhotons(scene.materials[mesh.material]))
+            for (size_t t = 0; t < mesh.triangleCount(); ++t)
+                for (int k = 0; k < 3; ++k) domain.extend(mesh.vertex(t, k));
+    std::vector<Vec3> ends0(m_edges.size()), ends1(m_edges.size());
+    for (size_t i = 0; i < m_edges.size(); ++i) ends0[i] = m_edges[i].a, ends1[i] = m_edges[i].b;
+    m_clearance = EdgeClearanceGrid(ends0, ends1, domain);
     if (m_edges.empty()) return;
 
     m_rtcScene = rtcNewScene(device);
@@ -143,22 +201,60 @@ SurfaceBoundary::~SurfaceBoundary() {
     if (m_rtcScene) rtcReleaseScene(m_rtcScene);
 }
 
-float SurfaceBoundary::coverage(const Vec3& x, const Vec3& ng, float r) const {
-    if (!m_rtcScene || !(r > 0)) return 1.0f;
-    thread_local std::vector<uint32_t> candidates;
-    candidates.clear();
+void SurfaceBoundary::query(const Vec3& x, float r, std::vector<uint32_t>* out) const {
     RTCPointQuery query;
     query.x = x.x, query.y = x.y, query.z = x.z, query.time = 0.0f, query.radius = r;
     RTCPointQueryContext context;
     rtcInitPointQueryContext(&context);
-    QueryState state{&candidates};
+    QueryState state{out};
     rtcPointQuery(m_rtcScene, &query, &context, collectCandidate, &state);
-    if (candidates.empty()) return 1.0f;
-    std::sort(candidates.begin(), candidates.end());  // Embree's traversal order is not fixed
+    std::sort(out->begin(), out->end());  // Embree's traversal order is not fixed
+}
+
+float SurfaceBoundary::coverage(const Vec3& x, const Vec3& ng, float r) const {
+    if (!m_rtcScene || !(r > 0) || r <= m_clearance.clearance(x)) return 1.0f;
+    // The candidates of x's pre-check cell at this radius, cached per thread (surface_boundary.h);
+    // outside the grid, x's own.
+    struct CellCandidates {
+        uint64_t owner = 0;
+        size_t cell = 0;
+        float r = 0;
+        std::vector<uint32_t> list;
+    };
+    constexpr int kCached = 4;
+    thread_local CellCandidates cache[kCached];
+    thread_local int nextSlot = 0;
+    thread_local std::vector<uint32_t> own;
+    const std::vector<uint32_t>* candidates = nullptr;
+    size_t cell;
+    Vec3 centre;
+    float reach;
+    if (m_clearance.cellOf(x, &cell, &centre, &reach)) {
+        // Keyed by the half octave above r (photons with the cone carry many radii): the cell's
+        // list holds the half-edges within that radius, a superset of those within r.
+        int e;
+        const float m = std::frexp(r, &e);  // r = m 2^e, m in [0.5, 1)
+        const float rKey = std::ldexp(m < 0.70710677f ? 0.70710683f : 1.0f, e);
+        for (const CellCandidates& c : cache)
+            if (c.owner == m_id && c.cell == cell && c.r == rKey) candidates = &c.list;
+        if (!candidates) {
+            CellCandidates& c = cache[nextSlot];
+            nextSlot = (nextSlot + 1) % kCached;
+            c.owner = m_id, c.cell = cell, c.r = rKey;
+            c.list.clear();
+            query(centre, rKey + reach, &c.list);
+            candidates = &c.list;
+        }
+    } else {
+        own.clear();
+        query(x, r, &own);
+        candidates = &own;
+    }
+    if (candidates->empty()) return 1.0f;
 
     const Frame frame(ng);
     double missing = 0;
-    for (uint32_t i : candidates) {
+    for (uint32_t i : *candidates) {
         const HalfEdge& e = m_edges[i];
         if (dot(e.normal, ng) < kNormalAgreement) continue;  // another plane's edge
         if (dot(x - e.a, e.inward) < 0) continue;          // x is not on the surface it bounds
@@ -167,6 +263,8 @@ float SurfaceBoundary::coverage(const Vec3& x, const Vec3& ng, float r) const {
         const float s = std::clamp(dot(x - e.a, ab) / dot(ab, ab), 0.0f, 1.0f);
         const Vec3 c = e.a + ab * s - x;
         if (dot(c, c) >= r * r || std::abs(dot(c, ng)) > 0.25f * r) continue;
+        // A parallel surface just past it whose photons the slab takes: nothing lost there.
+        if (e.layerOffset <= 0.25f * r) continue;
         const Vec3 a = frame.toLocal(e.a - x), b = frame.toLocal(e.b - x);
         missing += massBeyondSegment(a.x, a.y, b.x, b.y, r);
     }

@@ -19,6 +19,16 @@
 // form: massBeyondSegment); for a convex patch around x (a wall, the corner of a room) that sum
 // is exact.
 //
+// **Layered surfaces.** A surface lying a little in front of a parallel one (a rug on a floor, a
+// picture frame before a wall, a decal) has open edges, but past them the gather's slab test
+// (|offset . n| <= r/4) takes the photons of the surface behind: nothing is lost there, and
+// dividing by the coverage would over-count. So each feature half-edge is probed once, just past
+// it in its plane (three points along it), by rays along its normal both ways, for the nearest
+// photon-holding surface within the gather's normal test; the edge stores the largest |offset| of
+// the three (infinity when one finds none), and removes kernel mass only at radii whose slab,
+// r/4, that offset exceeds: exact for one parallel layer along the whole edge, as the radius
+// shrinks past 4x the offset as well.
+//
 // Not seen (the coverage stays 1, as without this): an object resting on a larger surface that
 // continues under it (the floor's triangles do not end at the object), alpha cut-outs, and parts of
 // a curved surface that leave the gather's slab. Thin features are clamped at kMinCoverage (a
@@ -26,6 +36,14 @@
 //
 // Deterministic and thread-safe: the candidates of a query are summed in half-edge order,
 // whatever order Embree's point query returns them in.
+//
+// Most gather points are farther than their radius from every feature half-edge, where the
+// coverage is exactly 1: a grid of lower bounds on the distance to the nearest one
+// (cpu/surface_boundary_clearance.h) answers those without the point query, conservatively, so
+// the coverage is bit for bit what the query gives. Near an edge, the half-edges within r of any
+// point of the grid cell holding x are found once per cell and radius and kept per thread (the last
+// few): neighbouring gather points share them. A superset of those within r of x, summed in
+// half-edge order after the same tests, so again the same coverage.
 #include <embree3/rtcore.h>
 
 #include <cstdint>
@@ -33,13 +51,19 @@
 #include <vector>
 
 #include "core/scene.h"
+#include "cpu/embree_scene.h"
+#include "cpu/surface_boundary_clearance.h"
 
 namespace tyndall {
 
 class SurfaceBoundary {
 public:
-    /// Finds the scene's feature half-edges and builds a BVH over them on `device`.
-    SurfaceBoundary(const Scene& scene, RTCDevice device);
+    /// Whether feature half-edges are probed for a parallel surface past them (Layers::Ignore only
+    /// to measure what the probe fixes: tests/cpu/surface_boundary_test.cpp).
+    enum class Layers { Probe, Ignore };
+    /// Finds the scene's feature half-edges (probing past them with rays of `rt`, the scene's
+    /// Embree scene) and builds a BVH over them on rt's device.
+    SurfaceBoundary(const Scene& scene, const EmbreeScene& rt, Layers layers = Layers::Probe);
     ~SurfaceBoundary();
     SurfaceBoundary(const SurfaceBoundary&) = delete;
     SurfaceBoundary& operator=(const SurfaceBoundary&) = delete;
@@ -57,8 +81,11 @@ public:
     /// would depend on which photons a batch holds).
     class AtPoint {
     public:
-        AtPoint(const SurfaceBoundary& boundary, const Vec3& x, const Vec3& ng) : m_b(boundary), m_x(x), m_ng(ng) {}
+        AtPoint(const SurfaceBoundary& boundary, const Vec3& x, const Vec3& ng)
+            : m_b(boundary), m_x(x), m_ng(ng), m_clear(boundary.m_clearance.clearance(x)) {}
         float operator()(float r) {
+            // The quantised radius is at most 1/64 above r: no half-edge within it, coverage 1.
+            if (r * 1.02f <= m_clear) return 1.0f;
             uint32_t bits;
             std::memcpy(&bits, &r, sizeof bits);
             const uint32_t key = bits >> 18;
@@ -76,6 +103,7 @@ public:
         static constexpr int kSlots = 4;
         const SurfaceBoundary& m_b;
         Vec3 m_x, m_ng;
+        float m_clear;  ///< no feature half-edge is nearer x than this
         int m_count = 0;
         uint32_t m_key[kSlots];
         float m_value[kSlots];
@@ -83,6 +111,10 @@ public:
 
     /// Number of feature half-edges (0: no surface in the scene ends anywhere a kernel notices).
     size_t featureEdgeCount() const { return m_edges.size(); }
+    /// The pre-check's grid (its cell size, cell count and memory: docs/performance.md).
+    const EdgeClearanceGrid& clearanceGrid() const { return m_clearance; }
+    /// Bytes the boundary keeps besides Embree's BVH: the half-edges and the pre-check's grid.
+    size_t memoryBytes() const { return m_edges.capacity() * sizeof(HalfEdge) + m_clearance.memoryBytes(); }
 
     /// In the plane, with the kernel K(d) = 2/(pi r^2) (1 - d^2/r^2) centred at the origin: its
     /// mass beyond the segment a-b (on the side away from the origin) inside the angle the
@@ -99,8 +131,14 @@ private:
         Vec3 a, b;
         Vec3 normal;  ///< unit geometric normal of the triangle the edge bounds
         Vec3 inward;  ///< unit, in that triangle's plane, perpendicular to a-b, toward its interior
+        float layerOffset;  ///< |normal offset| of a photon-holding surface just past it; infinity: none
     };
+    /// Appends to `out` the half-edges Embree finds within r of x (a superset of those closer).
+    void query(const Vec3& x, float r, std::vector<uint32_t>* out) const;
+
     std::vector<HalfEdge> m_edges;
+    EdgeClearanceGrid m_clearance;
+    uint64_t m_id;  ///< unique per instance: keys the per-thread candidate cache
     RTCScene m_rtcScene = nullptr;
 };
 

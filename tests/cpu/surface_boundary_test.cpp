@@ -12,15 +12,21 @@
 //    part of the disc) within 2%, in the band within r/2 of the walls and in the middle: the plain
 //    kernel reads ~0.77 of the closed form in the band, the renormalised one ~1.03 (the
 //    first-order blur of the light's slope, which renormalising does not remove).
+// 4. The pre-check's clearance grid is a lower bound of the distance to the nearest half-edge
+//    (brute force), and a useful one (within sqrt(3) and ~2 cells).
+// 5. Layered surfaces: a rug 0.1 r above a floor, its rim's band against the closed form and the
+//    kernels' exact means (plain, boundary without the layer probe: over-counted ~1.4x, with it).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 
 #include "core/accumulator.h"
+#include "core/rng.h"
 #include "cpu/embree_scene.h"
 #include "cpu/pass_renderer.h"
 #include "cpu/surface_boundary.h"
+#include "cpu/surface_boundary_clearance.h"
 #include "loading/mesh_builders.h"
 
 namespace tyndall {
@@ -72,6 +78,76 @@ TEST(SurfaceBoundary, MassBeyondSegmentMatchesQuadrature) {
     }
 }
 
+double segmentDistance(const Vec3& x, const Vec3& a, const Vec3& b) {
+    const double abx = b.x - a.x, aby = b.y - a.y, abz = b.z - a.z;
+    const double ab2 = abx * abx + aby * aby + abz * abz;
+    double s = ab2 > 0 ? ((x.x - a.x) * abx + (x.y - a.y) * aby + (x.z - a.z) * abz) / ab2 : 0;
+    s = std::clamp(s, 0.0, 1.0);
+    const double dx = a.x + s * abx - x.x, dy = a.y + s * aby - x.y, dz = a.z + s * abz - x.z;
+    return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+// The pre-check is exact only if its clearance never exceeds the true distance to the nearest
+// segment: random segments (long diagonal ones, short ones), random points in the domain (half on
+// a thin slab, where most gather points are), in and far from the origin and at two scales,
+// against the brute-force distance. And it must be useful: within sqrt(3) (its chessboard metric)
+// and ~2 cells of the truth. Then segments outside the domain (marked in its border cells).
+TEST(SurfaceBoundary, ClearanceIsALowerBoundOfTheEdgeDistance) {
+    auto nearest = [](const Vec3& x, const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+        double d = 1e30;
+        for (size_t i = 0; i < a.size(); ++i) d = std::min(d, segmentDistance(x, a[i], b[i]));
+        return d;
+    };
+    for (int trial = 0; trial < 6; ++trial) {
+        Rng rng(17 + trial, 5);
+        auto in = [&](float lo, float hi) { return lo + (hi - lo) * rng.uniform(); };
+        const float scale = trial % 2 ? 1000.0f : 0.01f;  // the unit of length does not matter
+        const Vec3 shift = trial >= 4 ? Vec3(3000.0f, -20.0f, 0.0f) * scale : Vec3(0.0f);
+        Bounds3 domain;
+        domain.extend(shift + Vec3(-2, -0.5f, -1) * scale);
+        domain.extend(shift + Vec3(2, 0.5f, 1) * scale);
+        auto inside = [&](const Vec3& p) { return vmin(vmax(p, domain.lo), domain.hi); };
+        std::vector<Vec3> a, b;
+        const int n = trial % 3 == 0 ? 3 : 40;
+        for (int i = 0; i < n; ++i) {
+            const Vec3 p = shift + Vec3(in(-2, 2), in(-0.5f, 0.5f), in(-1, 1)) * scale;
+            const float len = i % 4 == 0 ? 3.0f : 0.05f;
+            a.push_back(p);
+            b.push_back(inside(p + Vec3(in(-len, len), in(-len, len) * 0.3f, in(-len, len)) * scale));
+        }
+        const EdgeClearanceGrid grid(a, b, domain);
+        ASSERT_GT(grid.cellCount(), 0u);
+        const float cell = grid.cellSize();
+        int positive = 0;
+        for (int q = 0; q < 20000; ++q) {
+            const float y = q % 2 ? in(-0.5f, 0.5f) : in(-1e-3f, 1e-3f);
+            const Vec3 x = shift + Vec3(in(-2, 2), y, in(-1, 1)) * scale;
+            const double truth = nearest(x, a, b);
+            const float c = grid.clearance(x);
+            ASSERT_LE(c, truth) << "trial " << trial << " point " << x.x << " " << x.y << " " << x.z;
+            ASSERT_GE(c, truth / std::sqrt(3.0) - 2.2 * cell) << "trial " << trial;
+            positive += c > 0;
+        }
+        EXPECT_GT(positive, 10000) << "trial " << trial;
+
+        // Segments beyond the domain's faces and corners: still bounded, from inside and outside.
+        std::vector<Vec3> oa, ob;
+        for (int i = 0; i < 8; ++i) {
+            const Vec3 p = shift + Vec3(i & 1 ? 2.2f : -2.4f, i & 2 ? 0.6f : in(-0.5f, 0.5f), i & 4 ? 1.3f : in(-1, 1)) * scale;
+            oa.push_back(p);
+            ob.push_back(p + Vec3(in(-0.3f, 0.3f), 0.0f, in(-0.3f, 0.3f)) * scale);
+        }
+        const EdgeClearanceGrid outer(oa, ob, domain);
+        for (int q = 0; q < 5000; ++q) {
+            const Vec3 x = shift + Vec3(in(-2.6f, 2.6f), in(-0.7f, 0.7f), in(-1.4f, 1.4f)) * scale;
+            ASSERT_LE(outer.clearance(x), nearest(x, oa, ob)) << "trial " << trial;
+        }
+    }
+    // No segments: nothing is near; no domain: nothing is known.
+    EXPECT_EQ(EdgeClearanceGrid({}, {}, Bounds3{}).clearance(Vec3(0.0f)), kInfinity);
+    EXPECT_EQ(EdgeClearanceGrid({Vec3(0.0f)}, {Vec3(1.0f)}, Bounds3{}).clearance(Vec3(5.0f)), 0.0f);
+}
+
 /// A room [-1, 1]^3 of diffuse walls (one inward box), or a floor made of two unwelded quads.
 Scene roomScene(bool floorOnly) {
     Scene s;
@@ -107,7 +183,7 @@ float floorCoverage(const EmbreeScene& rt, const SurfaceBoundary& b, float x, fl
 TEST(SurfaceBoundary, CoverageInARoom) {
     Scene room = roomScene(false);
     EmbreeScene rt(room);
-    SurfaceBoundary b(room, rt.device()->get());
+    SurfaceBoundary b(room, rt);
     EXPECT_EQ(b.featureEdgeCount(), 24u);  // 12 box edges, each bounding two faces
     const float r = 0.2f;
     EXPECT_FLOAT_EQ(floorCoverage(rt, b, 0.1f, 0.2f, r), 1.0f);
@@ -125,7 +201,7 @@ TEST(SurfaceBoundary, CoverageInARoom) {
     // Two unwelded quads that meet: no edge between them; their outer rims are open edges.
     Scene floor = roomScene(true);
     EmbreeScene frt(floor);
-    SurfaceBoundary fb(floor, frt.device()->get());
+    SurfaceBoundary fb(floor, frt);
     EXPECT_FLOAT_EQ(floorCoverage(frt, fb, 0.0f, 0.0f, r), 1.0f);
     EXPECT_FLOAT_EQ(floorCoverage(frt, fb, 0.05f, 0.3f, r), 1.0f);
     EXPECT_NEAR(floorCoverage(frt, fb, 0.95f, 0.3f, r), 1 - SurfaceBoundary::massBeyondSegment(0.05, -5, 0.05, 5, r),
@@ -287,6 +363,123 @@ TEST(SurfaceBoundary, PlasticFloorIsRenormalisedLikeADiffuseOne) {
     EXPECT_GT(edgeOn / edgeOff, 1.15);
     EXPECT_LT(edgeOn / edgeOff, 2.0);
     EXPECT_NEAR(middleOn / middleOff, 1.0, 1e-4);
+}
+
+// Layered surfaces: a rug (a diffuse quad [-0.5, 0.5]^2) lying 0.1 r above a larger diffuse floor
+// ([-1, 1]^2), lit by a point light, photons only, seen from straight above. Past the rug's rim
+// the gather's slab (r/4) takes the floor's photons, so the plain kernel loses nothing there, and
+// dividing by the rug's coverage (what the boundary did before the layer probe) over-counts: by
+// the kernel means below, ~1.4x in the band within r/2 of the rim. With the probe the rim's edges
+// find the floor 0.1 r below and remove nothing at this radius; at 0.3 r (slab 0.075 r < 0.1 r)
+// they do again. Means per pixel: the closed form E, and each estimator's exact mean, the kernel
+// integrated over its disc by a polar grid (rug part at the rug's height; floor part past the rim
+// with the floor's light, the rug's shadow included, and the kernel at the 3D distance).
+TEST(SurfaceBoundary, RugOnAFloorIsNotOverCounted) {
+    const float r = 0.1f, h = 0.1f * r;
+    Scene scene;
+    scene.name = "rug";
+    scene.source = "<test>";
+    Material white;
+    white.name = "white";
+    white.albedo = Rgb(0.5f);
+    scene.materials = {white};
+    scene.meshes.push_back(makeQuad("floor", {-1, 0, 1}, {2, 0, 0}, {0, 0, -2}, 0));
+    scene.meshes.push_back(makeQuad("rug", {-0.5f, h, 0.5f}, {1, 0, 0}, {0, 0, -1}, 0));
+    Light light;
+    light.name = "bulb";
+    light.position = {0.2f, 0.7f, -0.1f};
+    light.intensity = Rgb(1.0f);
+    scene.lights.push_back(light);
+    scene.camera = Camera::lookAt({0, 3, 0}, {0, 0, 0}, {0, 0, -1}, 2.0f * std::atan(0.6f / 3.0f));
+    scene.finalize();
+
+    // The coverage itself at a point r/4 inside the rim.
+    {
+        EmbreeScene rt(scene);
+        const SurfaceBoundary probe(scene, rt), ignore(scene, rt, SurfaceBoundary::Layers::Ignore);
+        const Vec3 x(0.5f - 0.25f * r, h, 0.1f), n(0, 1, 0);
+        const double lost = SurfaceBoundary::massBeyondSegment(0.25 * r, -5, 0.25 * r, 5, r);
+        EXPECT_NEAR(ignore.coverage(x, n, r), 1 - lost, 1e-4);
+        EXPECT_EQ(probe.coverage(x, n, r), 1.0f);  // the floor, 0.1 r below, is in the slab
+        EXPECT_NEAR(probe.coverage(x, n, 0.3f * r), 1 - SurfaceBoundary::massBeyondSegment(0.25 * r, -5, 0.25 * r, 5, 0.3 * r),
+                    1e-4);  // at 0.3 r it is not
+        EXPECT_EQ(probe.coverage(Vec3(0.5f + 0.25f * r, 0.0f, 0.1f), n, r), 1.0f);  // the floor past the rim
+    }
+
+    const Vec3 L = light.position;
+    auto E = [&](double x, double y, double z) {  // outgoing radiance rho/pi I cos / d^2 at height y
+        const double dx = L.x - x, dy = L.y - y, dz = L.z - z, d2 = dx * dx + dy * dy + dz * dz;
+        return 0.5 / M_PI * dy / std::sqrt(d2) / d2;
+    };
+    auto onRug = [](double x, double z) { return std::abs(x) <= 0.5 && std::abs(z) <= 0.5; };
+    auto floorLight = [&](double x, double z) {  // the floor's: none under the rug or in its shadow
+        const double s = h / L.y;
+        return onRug(x, z) || onRug(x + (L.x - x) * s, z + (L.z - z) * s) ? 0.0 : E(x, 0, z);
+    };
+    const int n = 48, sub = 4, nr = 32, nt = 96;
+    std::vector<double> closed(n * n, 0.0), plain(n * n, 0.0), old(n * n, 0.0), count(n * n, 0.0);
+    std::vector<double> rim(n * n, 1e9);
+    for (int i = 0; i < n * sub; ++i)
+        for (int j = 0; j < n * sub; ++j) {
+            const double x = -0.6 + 1.2 * (i + 0.5) / (n * sub), z = -0.6 + 1.2 * (j + 0.5) / (n * sub);
+            if (!onRug(x, z)) continue;
+            float px, py, depth;
+            if (!scene.camera.project(Vec3(float(x), h, float(z)), n, n, &px, &py, &depth)) continue;
+            if (px < 0 || py < 0 || px >= n || py >= n) continue;
+            const int k = int(py) * n + int(px);
+            double sum = 0, mass = 0;
+            for (int ir = 0; ir < nr; ++ir)
+                for (int it = 0; it < nt; ++it) {
+                    const double rho = (ir + 0.5) * r / nr, th = (it + 0.5) * 2 * M_PI / nt;
+                    const double qx = x + rho * std::cos(th), qz = z + rho * std::sin(th), area = rho * (r / nr) * (2 * M_PI / nt);
+                    const double k2 = 2 / (M_PI * r * r);
+                    if (onRug(qx, qz)) {
+                        const double w = k2 * (1 - rho * rho / (r * r)) * area;
+                        sum += w * E(qx, h, qz);
+                        mass += w;
+                    } else if (rho * rho + h * h < r * r) {
+                        sum += k2 * (1 - (rho * rho + h * h) / (r * r)) * area * floorLight(qx, qz);
+                    }
+                }
+            closed[k] += E(x, h, z);
+            plain[k] += sum;
+            old[k] += sum / std::max(mass, 0.25);
+            count[k] += 1;
+            rim[k] = std::min(rim[k], 0.5 - std::max(std::abs(x), std::abs(z)));
+        }
+
+    struct Band {
+        double render = 0, closed = 0, plain = 0, old = 0;
+    };
+    auto bands = [&](const Image& img, Band* edge, Band* middle) {
+        for (int k = 0; k < n * n; ++k) {
+            if (count[k] < sub * sub) continue;  // pixels wholly on the rug
+            Band* b = rim[k] < 0.5 * r ? edge : rim[k] > 1.5 * r ? middle : nullptr;
+            if (!b) continue;
+            b->render += img.at(k % n, k / n).g;
+            b->closed += closed[k] / count[k];
+            b->plain += plain[k] / count[k];
+            b->old += old[k] / count[k];
+        }
+    };
+    Band edgeOff, middleOff, edgeOn, middleOn;
+    bands(renderSurfaceLayer(scene, n, r, 8, "off"), &edgeOff, &middleOff);
+    bands(renderSurfaceLayer(scene, n, r, 8, "on"), &edgeOn, &middleOn);
+    std::printf("rug 0.1 r above the floor, band within r/2 of its rim / closed form: plain kernel's mean %.4f, "
+                "boundary without the layer probe %.4f; render off %.4f, on %.4f (middle: %.4f, %.4f)\n",
+                edgeOff.plain / edgeOff.closed, edgeOff.old / edgeOff.closed, edgeOff.render / edgeOff.closed,
+                edgeOn.render / edgeOn.closed, middleOff.render / middleOff.closed, middleOn.render / middleOn.closed);
+    // What the probe is for: the plain kernel's mean is close to the light here (the floor fills
+    // the disc past the rim; 0.94: the rug's shadow on it, and the kernel at the 3D distance), and
+    // dividing it by the rug's coverage over-counts by ~40%.
+    EXPECT_NEAR(edgeOff.plain / edgeOff.closed, 0.95, 0.03);
+    EXPECT_GT(edgeOff.old / edgeOff.closed, 1.25);
+    // Both renders against the plain kernel's mean (the band's noise is ~0.5%): with the probe the
+    // coverage is 1 at the rim (without it, on / plain would be the ~1.5 above).
+    EXPECT_NEAR(edgeOff.render / edgeOff.plain, 1.0, 0.02);
+    EXPECT_NEAR(edgeOn.render / edgeOn.plain, 1.0, 0.02);
+    EXPECT_NEAR(middleOn.render / middleOn.closed, 1.0, 0.02);
+    EXPECT_NEAR(middleOff.render / middleOff.closed, 1.0, 0.02);
 }
 
 }  // namespace
