@@ -117,8 +117,9 @@ RenderSettings resolveRadiusDefaults(const RenderSettings& in, const EmbreeScene
         // The cone reaches the full radius at path distance beamEnd / angle from the light (the
         // same for every path); it only pays where camera rays pass that close to a light.
         const double angle = photonConeAngle(s.plannedPaths);
-        // ... and where the kernel at the end of the plan is wider than the light's own pixel.
-        const double wider = beamEnd / RadiusDefaults::kConeMinLightFootprints;
+        // ... and where the kernel at the start of the plan (k end radii) is wider than the light's
+        // own pixel: the early passes' blur of the light's glow stays in the render's mean.
+        const double wider = k * beamEnd / RadiusDefaults::kConeMinLightFootprints;
         const bool inView = pointLightNearTheImage(scene, s.width, s.height, beamEnd / angle, wider) ||
                             pointLightSeenInAMirror(rt, s.width, s.height, beamEnd / angle, wider);
         s.photonAngle = inView ? float(angle / endFactor) : 0.0f;

@@ -38,9 +38,11 @@ struct RadiusDefaults {
     /// Photon cone angle at the end of a plan of P paths: kConeAngleScale x P^(-1/5) radians
     /// (photonConeAngle; the model in docs/algorithm.md, "The photon cone").
     static constexpr double kConeAngleScale = 3.3;
-    /// The automatic cone is on only where the beam radius at the end of the plan exceeds this many
-    /// pixel footprints at the light's depth (pointLightNearTheImage's `wider`; docs/performance.md,
-    /// "The library at equal time").
+    /// The automatic cone is on only where the first beam radius of the plan (kStartOverEnd end
+    /// radii) exceeds this many pixel footprints at the light's depth (pointLightNearTheImage's
+    /// `wider`): the early passes' blur of the light's glow stays in the mean of the whole render
+    /// (docs/performance.md, "The library against the filed defaults"; the end radius was used
+    /// before, and left a light in view at 64x64 worse than the filed defaults).
     static constexpr double kConeMinLightFootprints = 1.0;
 };
 

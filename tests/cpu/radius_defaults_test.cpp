@@ -231,10 +231,17 @@ TEST(RadiusDefaults, ThePhotonConeIsOnForALightInViewAndShapesTheBeams) {
     EXPECT_GT(inside, 100) << "first segments split near the light";
     EXPECT_GT(beyond, 100);
 
-    // Off where the light's own pixel is as wide as the kernel (the light at the fog's median
-    // depth: the cone would only add beams and variance), where no point light is near the image,
-    // and with an explicit radius. Planted bug (run): no footprint condition fails the first check.
-    EXPECT_EQ(PassRenderer(fogTunnel(4.0f), in).settings().photonAngle, 0.0f) << "light at the fog's median depth";
+    // On for a light at the fog's median depth: the first radius of the plan (4 x 0.5 footprints)
+    // is wider than the light's pixel there, and the early passes' blur stays in the mean. Off where
+    // the light's own pixel is wider than even that kernel (a light far behind the fog: the cone
+    // would only add beams and variance), where no point light is near the image, and with an
+    // explicit radius. Planted bugs (run): no footprint condition fails the far light's check; the
+    // end radius in the condition (the rule before) fails the median-depth check.
+    EXPECT_GT(PassRenderer(fogTunnel(4.0f), in).settings().photonAngle, 0.0f) << "light at the fog's median depth";
+    Scene far = fogTunnel(4.0f);
+    far.lights[0].position = Vec3(0.3f, 0.5f, -12.0f);  // 6x the fog's median depth, in view
+    far.finalize();
+    EXPECT_EQ(PassRenderer(far, in).settings().photonAngle, 0.0f) << "light far behind the fog";
     Scene away = fogTunnel(4.0f);
     away.lights[0].position = Vec3(0.0f, 0.0f, 0.9f);  // behind the camera, out of its reach
     away.finalize();
