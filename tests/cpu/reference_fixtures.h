@@ -250,7 +250,11 @@ inline void expectRegionAgrees(const Scene& scene, const std::vector<int>& meshO
     // 0.04: with direct light by shadow rays (the default) the camera paths through the glass sphere
     // end at diffuse surfaces with one shadow ray per pass, noise the photon kernel had smoothed:
     // that region's standard error went from 0.028 (photons only) to 0.033 (measured, seed as here).
-    EXPECT_LT(se, 0.04) << meshName << ": too noisy to test";
+    // 0.05: the glass region's spread is heavy-tailed (Fresnel-split paths through the glass) and
+    // moves with the random streams, not with the estimator: with the same estimator it read 0.031
+    // (the film jitter drawn from the PixelJitter stream), 0.046 (drawn from another stream) and
+    // 0.045 (the low-discrepancy film jitter, core/pixel_jitter.h; 16 batches of 4: 0.044).
+    EXPECT_LT(se, 0.05) << meshName << ": too noisy to test";
     EXPECT_NEAR(mean, 1.0, 4.0 * se + bias) << "region seeing '" << meshName << "'";
 }
 
