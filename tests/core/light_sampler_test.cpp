@@ -46,6 +46,20 @@ Scene makeLights() {
     return s;
 }
 
+/// The panel's irradiance at x (normal n), red channel, by Lambert's formula: E = Le/2 sum_edges
+/// angle(r_i, r_i+1) dot(unit(r_i x r_i+1), n), r_i the unit directions to its vertices.
+double panelIrradiance(const Scene& scene, const Vec3& x, const Vec3& n) {
+    const TriangleMesh& panel = scene.meshes[0];
+    std::vector<Vec3> r;
+    for (int k : {0, 1, 2, 3}) r.push_back(normalize(panel.positions[k] - x));
+    double lambert = 0;
+    for (size_t i = 0; i < 4; ++i) {
+        Vec3 a = r[i], b = r[(i + 1) % 4];
+        lambert += std::acos(std::clamp(double(dot(a, b)), -1.0, 1.0)) * dot(normalize(cross(a, b)), n);
+    }
+    return std::abs(lambert) * 0.5 * scene.materials[0].emission.r;
+}
+
 TEST(LightSampler, ChoiceFrequenciesFollowPower) {
     Scene scene = makeLights();
     LightSampler lights(scene);
@@ -95,18 +109,7 @@ TEST(LightSampler, DirectSamplesAgreeWithDirectPdfAndLambertIrradiance) {
         sum2 += e * e;
     }
     EXPECT_GT(areaSamples, 0);
-    // Lambert: E = Le/2 sum_edges angle(r_i, r_i+1) dot(unit(r_i x r_i+1), n), vertices seen from x
-    // in the order that makes the polygon's normal point toward x (the panel faces down).
-    const TriangleMesh& panel = scene.meshes[0];
-    std::vector<Vec3> r;
-    for (int k : {0, 1, 2, 3}) r.push_back(normalize(panel.positions[k] - x));
-    double lambert = 0;
-    for (size_t i = 0; i < 4; ++i) {
-        Vec3 a = r[i], b = r[(i + 1) % 4];
-        double angle = std::acos(std::clamp(double(dot(a, b)), -1.0, 1.0));
-        lambert += angle * dot(normalize(cross(a, b)), n);
-    }
-    lambert = std::abs(lambert) * 0.5 * scene.materials[0].emission.r;
+    const double lambert = panelIrradiance(scene, x, n);
     double mean = sum / samples, se = std::sqrt((sum2 / samples - mean * mean) / samples);
     std::printf("irradiance from samples %.5f +- %.5f, Lambert %.5f\n", mean, se, lambert);
     EXPECT_LT(se, 0.005 * lambert);
@@ -122,7 +125,7 @@ TEST(LightSampler, DirectSamplesAgreeWithDirectPdfAndLambertIrradiance) {
 }
 
 /// Irradiance at x (normal n) of every source of makeLights(): point and spot in closed form,
-/// the panel by Lambert's formula.
+/// the panel by panelIrradiance.
 double exactIrradiance(const Scene& scene, const Vec3& x, const Vec3& n) {
     double e = 0;
     for (const Light& l : scene.lights) {
@@ -132,15 +135,7 @@ double exactIrradiance(const Scene& scene, const Vec3& x, const Vec3& n) {
         float falloff = l.type == LightType::Spot ? l.spotFalloff(dot(-wi, l.direction)) : 1.0f;
         e += l.intensity.r * falloff * std::max(0.0f, dot(wi, n)) / (d * d);
     }
-    const TriangleMesh& panel = scene.meshes[0];
-    std::vector<Vec3> r;
-    for (int k : {0, 1, 2, 3}) r.push_back(normalize(panel.positions[k] - x));
-    double lambert = 0;
-    for (size_t i = 0; i < 4; ++i) {
-        Vec3 a = r[i], b = r[(i + 1) % 4];
-        lambert += std::acos(std::clamp(double(dot(a, b)), -1.0, 1.0)) * dot(normalize(cross(a, b)), n);
-    }
-    return e + std::abs(lambert) * 0.5 * scene.materials[0].emission.r;
+    return e + panelIrradiance(scene, x, n);
 }
 
 TEST(LightSampler, DirectChoiceFollowsWhatEachSourceSendsToThePoint) {
