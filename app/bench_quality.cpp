@@ -40,6 +40,16 @@ RenderSettings withLegacyDefaults(RenderSettings s, const Scene& scene) {
     return s;
 }
 
+/// A row label as a file-name part: "DEFAULTS (--TIME)" -> "defaults-time".
+std::string rowSlug(const std::string& label) {
+    std::string row;
+    for (unsigned char c : label)
+        if (std::isalnum(c)) row += char(std::tolower(c));
+        else if (!row.empty() && row.back() != '-') row += '-';
+    while (!row.empty() && row.back() == '-') row.pop_back();
+    return row;
+}
+
 struct Reference {
     Image mean;
     double noiseVariance = 0;  ///< the reference's own variance of the mean, averaged over pixels and channels
@@ -238,11 +248,12 @@ Run renderRun(const Scene& scene, const RenderSettings& s, const Reference& ref,
         const uint64_t n = i + 1;
         const bool last = cpuBudget > 0 ? run.cpuSeconds >= cpuBudget : n == passes;
         if ((n & (n - 1)) == 0 || last) {
-            ImageError e = measure(acc.mean(), ref);
+            Image mean = acc.mean();
+            ImageError e = measure(mean, ref);
             run.passes.push_back(double(n));
             run.cpu.push_back(run.cpuSeconds);
             run.relRmse.push_back(e.relRmse);
-            if (last) run.end = e, run.image = acc.mean();
+            if (last) run.end = e, run.image = std::move(mean);
         }
         if (last) {
             run.passesDone = n;
@@ -253,6 +264,7 @@ Run renderRun(const Scene& scene, const RenderSettings& s, const Reference& ref,
 }  // namespace
 
 void runQualityBench(const CommonOptions& common, const QualityBenchOptions& o) {
+    if (!o.imageDir.empty()) std::filesystem::create_directories(o.imageDir);
     std::vector<std::pair<std::string, std::vector<Curve>>> panels;
     const bool equalTime = o.cpuSeconds > 0;
     if (equalTime)
@@ -334,17 +346,11 @@ void runQualityBench(const CommonOptions& common, const QualityBenchOptions& o) 
                 RenderSettings sk = v.s;
                 sk.seed = base.seed + uint64_t(k);
                 runs.push_back(renderRun(scene, sk, ref, passes, o.cpuSeconds));
-                if (!o.imageDir.empty()) {
-                    std::filesystem::create_directories(o.imageDir);
-                    std::string row;  // "DEFAULTS (--TIME)" -> "defaults-time"
-                    for (unsigned char c : v.label)
-                        if (std::isalnum(c)) row += char(std::tolower(c));
-                        else if (!row.empty() && row.back() != '-') row += '-';
-                    while (!row.empty() && row.back() == '-') row.pop_back();
-                    writeImage(o.imageDir + "/" + scene.name + "-" + row + "-seed" + std::to_string(sk.seed) + ".exr",
+                if (!o.imageDir.empty())
+                    writeImage(o.imageDir + "/" + scene.name + "-" + rowSlug(v.label) + "-seed" + std::to_string(sk.seed) +
+                                   ".exr",
                                runs.back().image, {{"Software", "tyndall"}, {"tyndall:settings", sk.toJson().dump()},
                                                    {"tyndall:passes", std::to_string(runs.back().passesDone)}});
-                }
             }
             // Over the seeds: errors as root mean squares, bias, CPU time and passes as means. The
             // curve's points are the doubling pass counts every seed reached (at their mean CPU time),
