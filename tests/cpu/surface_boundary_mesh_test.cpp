@@ -91,6 +91,26 @@ TEST(SurfaceBoundaryMesh, AtAnyRadiusTheCoverageIsTheKernelMassOnTheSquare) {
     expectCoverageIsTheMassOnTheSquare(floorScene(false));
 }
 
+TEST(SurfaceBoundaryMesh, RadiiBelowThePreCheckCellAtEveryPointOfACell) {
+    // Radii just under a power of two (the per-cell candidate lists are keyed by the half octave
+    // above r) and near the pre-check's cell size, at points stepping across several cells toward
+    // an edge: every half-edge within r of the point must be among its cell's candidates.
+    Scene s = floorScene(false);
+    EmbreeScene rt(s);
+    SurfaceBoundary b(s, rt);
+    const float cell = b.clearanceGrid().cellSize();
+    ASSERT_GT(cell, 0.0f);
+    int probes = 0;
+    for (float r : {0.99f * 0.0078125f, 0.99f * 0.015625f, 0.99f * 0.03125f})
+        for (float x = 0.3f * r; x < 1.2f * r + 2 * cell; x += 0.07f * cell) {
+            const double expected = std::clamp(squareMass(x, 0.5, r), double(SurfaceBoundary::kMinCoverage), 1.0);
+            const float c = b.coverage(Vec3(x, 0.0f, 0.5f), Vec3(0, 1, 0), r);
+            EXPECT_NEAR(c, expected, 2e-4) << "x " << x << " r " << r << " (cell " << cell << ")";
+            ++probes;
+        }
+    EXPECT_GT(probes, 60);
+}
+
 TEST(SurfaceBoundaryMesh, MixedWindingMakesNoFalseEdgesInside) {
     Scene s = floorScene(true);
     EmbreeScene rt(s);
