@@ -47,13 +47,16 @@ struct Ggx {
     float G1(const Vec3& w) const { return 1.0f / (1.0f + lambda(w)); }
     /// Height-correlated masking-shadowing.
     float G(const Vec3& wo, const Vec3& wi) const { return 1.0f / (1.0f + lambda(wo) + lambda(wi)); }
-    /// Density of visible normals seen from w: G1(w) max(0, w.wm) D(wm) / |w.z|.
+    /// Density of visible normals seen from w, on either side: G1(w) max(0, w'.wm) D(wm) / |w.z|
+    /// with w' = w flipped to the upper hemisphere (wm is always there; from below the surface the
+    /// visible microfacets are those facing -w). Integrates to 1 over wm for every w.
     float visibleD(const Vec3& w, const Vec3& wm) const {
         float c = std::abs(w.z);
-        return c > 0 ? G1(w) * std::max(0.0f, dot(w, wm)) * D(wm) / c : 0.0f;
+        float cosM = w.z < 0 ? -dot(w, wm) : dot(w, wm);
+        return c > 0 ? G1(w) * std::max(0.0f, cosM) * D(wm) / c : 0.0f;
     }
-    /// Samples a visible normal from w (either hemisphere: sampled as seen from the side w is on;
-    /// the result is in the upper hemisphere).
+    /// Samples a visible normal from w with density visibleD(w, .) (either hemisphere: sampled as
+    /// seen from the side w is on; the result is in the upper hemisphere).
     Vec3 sampleVisibleNormal(Vec3 w, float u1, float u2) const {
         if (w.z < 0) w = -w;
         Vec3 vh = normalize(Vec3(alpha * w.x, alpha * w.y, w.z));
@@ -169,8 +172,8 @@ struct RoughDielectric {
             s.wi = reflect(wo, wm);
             if (!(wo.z * s.wi.z > 0)) return s;
         } else {
-            Vec3 n = wm;  // refract() takes any side; wo . wm > 0 for a visible normal
-            if (!refract(wo, n, eta, &s.wi) || !(wo.z * s.wi.z < 0)) return s;
+            // refract() takes either side: wo . wm < 0 (wo inside) flips eta and the normal.
+            if (!refract(wo, wm, eta, &s.wi) || !(wo.z * s.wi.z < 0)) return s;
             s.transmitted = true;
         }
         s.pdf = pdf(wo, s.wi);
