@@ -28,7 +28,31 @@ bool storesDiffusePhotons(const Material& m) {
 struct EdgeRecord {
     std::array<uint32_t, 6> key;  // the two endpoints' keys, smaller first
     uint32_t mesh, triangle, corner;
+    uint32_t face;  // the triangle's index over all photon-holding meshes
     Vec3 normal;
+};
+
+/// Union-find over triangles: the sheets of triangles joined across edges the gather continues
+/// over, each remembering whether two of its neighbours are wound opposite ways.
+class Sheets {
+public:
+    explicit Sheets(size_t n) : m_parent(n), m_mixed(n, 0) {
+        for (size_t i = 0; i < n; ++i) m_parent[i] = uint32_t(i);
+    }
+    uint32_t find(uint32_t i) {
+        while (m_parent[i] != i) i = m_parent[i] = m_parent[m_parent[i]];
+        return i;
+    }
+    void join(uint32_t a, uint32_t b, bool opposite) {
+        a = find(a), b = find(b);
+        if (a != b) m_parent[b] = a, m_mixed[a] |= m_mixed[b];
+        m_mixed[a] |= opposite;
+    }
+    bool mixed(uint32_t i) { return m_mixed[find(i)] != 0; }
+
+private:
+    std::vector<uint32_t> m_parent;
+    std::vector<uint8_t> m_mixed;
 };
 
 /// The layer probe (surface_boundary.h, "Layered surfaces") at point p of a half-edge's plane,
@@ -104,6 +128,7 @@ SurfaceBoundary::SurfaceBoundary(const Scene& scene, const EmbreeScene& rt, Laye
     RTCDevice device = rt.device()->get();
     // Every edge of every photon-holding triangle, keyed by its endpoints' positions.
     std::vector<EdgeRecord> records;
+    uint32_t faces = 0;
     for (size_t m = 0; m < scene.meshes.size(); ++m) {
         const TriangleMesh& mesh = scene.meshes[m];
         if (!storesDiffusePhotons(scene.materials[mesh.material])) continue;
@@ -111,13 +136,14 @@ SurfaceBoundary::SurfaceBoundary(const Scene& scene, const EmbreeScene& rt, Laye
             const Vec3 n = mesh.geometricNormal(t);
             const float len = length(n);
             if (!(len > 0) || !std::isfinite(len)) continue;
+            const uint32_t face = faces++;
             for (uint32_t k = 0; k < 3; ++k) {
                 auto ka = positionKey(mesh.vertex(t, int(k))), kb = positionKey(mesh.vertex(t, int((k + 1) % 3)));
                 if (kb < ka) std::swap(ka, kb);
                 EdgeRecord& e = records.emplace_back();
                 std::copy(ka.begin(), ka.end(), e.key.begin());
                 std::copy(kb.begin(), kb.end(), e.key.begin() + 3);
-                e.mesh = uint32_t(m), e.triangle = uint32_t(t), e.corner = k;
+                e.mesh = uint32_t(m), e.triangle = uint32_t(t), e.corner = k, e.face = face;
                 e.normal = n / len;
             }
         }
@@ -128,13 +154,26 @@ SurfaceBoundary::SurfaceBoundary(const Scene& scene, const EmbreeScene& rt, Laye
         if (a.triangle != b.triangle) return a.triangle < b.triangle;
         return a.corner < b.corner;
     });
+    // Sheets first (an edge's winding is judged over its whole sheet), then the feature half-edges.
+    Sheets sheets(faces);
+    auto continues = [](const EdgeRecord& a, const EdgeRecord& b) {
+        return std::abs(dot(a.normal, b.normal)) >= kNormalAgreement;
+    };
+    std::vector<std::pair<size_t, size_t>> groups;  // [begin, end) of records sharing an edge
     for (size_t i = 0; i < records.size();) {
         size_t j = i;
         while (j < records.size() && records[j].key == records[i].key) ++j;
+        groups.emplace_back(i, j);
+        for (size_t a = i; a < j; ++a)
+            for (size_t b = a + 1; b < j; ++b)
+                if (continues(records[a], records[b]))
+                    sheets.join(records[a].face, records[b].face, dot(records[a].normal, records[b].normal) < 0);
+        i = j;
+    }
+    for (auto [i, j] : groups) {
         for (size_t a = i; a < j; ++a) {
             bool continued = false;  // a neighbour across the edge whose photons the gather takes
-            for (size_t b = i; b < j && !continued; ++b)
-                continued = b != a && std::abs(dot(records[a].normal, records[b].normal)) >= kNormalAgreement;
+            for (size_t b = i; b < j && !continued; ++b) continued = b != a && continues(records[a], records[b]);
             if (continued) continue;
             const EdgeRecord& r = records[a];
             const TriangleMesh& mesh = scene.meshes[r.mesh];
@@ -145,9 +184,8 @@ SurfaceBoundary::SurfaceBoundary(const Scene& scene, const EmbreeScene& rt, Laye
             if (!(il > 0)) continue;
             inward = inward / il;
             if (dot(p2 - p0, inward) < 0) inward = -inward;
-            m_edges.push_back({p0, p1, r.normal, inward, kInfinity});
+            m_edges.push_back({p0, p1, r.normal, inward, kInfinity, sheets.mixed(r.face)});
         }
-        i = j;
     }
     // The layer probe, at 1/6, 1/2 and 5/6 along each edge, a ten-thousandth of the scene's
     // diagonal past it (and as far off its plane to start), plus the float error of the points.
@@ -256,7 +294,8 @@ float SurfaceBoundary::coverage(const Vec3& x, const Vec3& ng, float r) const {
     double missing = 0;
     for (uint32_t i : *candidates) {
         const HalfEdge& e = m_edges[i];
-        if (dot(e.normal, ng) < kNormalAgreement) continue;  // another plane's edge
+        // Another plane's edge; on a sheet of mixed winding either face of x's plane is x's.
+        if ((e.mixedWinding ? std::abs(dot(e.normal, ng)) : dot(e.normal, ng)) < kNormalAgreement) continue;
         if (dot(x - e.a, e.inward) < 0) continue;          // x is not on the surface it bounds
         // Near x's plane where it passes closest: the photons of that surface are in the gather's slab.
         const Vec3 ab = e.b - e.a;

@@ -29,6 +29,12 @@
 // r/4, that offset exceeds: exact for one parallel layer along the whole edge, as the radius
 // shrinks past 4x the offset as well.
 //
+// **Winding.** A half-edge counts for gather points whose geometric normal agrees with its
+// triangle's (a thin closed panel's top and bottom are two planes). Real meshes often wind
+// neighbouring triangles inconsistently, so the triangles are first joined into sheets across the
+// edges the gather continues over (union-find); on a sheet where two neighbours are wound
+// opposite ways the normal's sign says nothing, and its half-edges count for either face.
+//
 // Not seen (the coverage stays 1, as without this): an object resting on a larger surface that
 // continues under it (the floor's triangles do not end at the object), alpha cut-outs, and parts of
 // a curved surface that leave the gather's slab. Thin features are clamped at kMinCoverage (a
@@ -132,6 +138,7 @@ private:
         Vec3 normal;  ///< unit geometric normal of the triangle the edge bounds
         Vec3 inward;  ///< unit, in that triangle's plane, perpendicular to a-b, toward its interior
         float layerOffset;  ///< |normal offset| of a photon-holding surface just past it; infinity: none
+        bool mixedWinding;  ///< its sheet holds neighbours wound opposite ways: normal's sign unknown
     };
     /// Appends to `out` the half-edges Embree finds within r of x (a superset of those closer).
     void query(const Vec3& x, float r, std::vector<uint32_t>* out) const;

@@ -125,14 +125,10 @@ TEST(SurfaceBoundaryMesh, MixedWindingMakesNoFalseEdgesInside) {
         }
 }
 
-// Known defect, left disabled so the suite stays green until the product is fixed: at the outline,
-// a half-edge of an oppositely wound triangle carries the opposite normal, and coverage() skips it
-// as "another plane's edge" (dot(e.normal, ng) < kNormalAgreement) when the gather point lies in a
-// triangle of the other winding, so the loss past that part of the outline is not corrected
-// (measured: coverage 1.0 where the kernel's mass on the square is 0.74 at r = 0.1 from an edge).
-// A plain |dot| would count both faces of a thin closed panel (a table top) at radii above 4x its
-// thickness; the fix wants the surface's orientation propagated across matched edges.
-TEST(SurfaceBoundaryMesh, DISABLED_MixedWindingOutlineMatchesTheKernelMassOnTheSquare) {
+// At the outline, a half-edge of an oppositely wound triangle carries the opposite normal: the
+// loss past it must be corrected whichever winding the gather point's triangle has (measured before
+// the sheets: coverage 1.0 where the kernel's mass on the square is 0.74 at r = 0.1 from an edge).
+TEST(SurfaceBoundaryMesh, MixedWindingOutlineMatchesTheKernelMassOnTheSquare) {
     expectCoverageIsTheMassOnTheSquare(floorScene(true));
 }
 
