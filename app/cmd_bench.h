@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 
 namespace tyndall::app {
-/// `tyndall bench`: throughput of every stage on a scene, each against a baseline from the same run.
+/// `tyndall bench`: what this machine does with a scene: the throughput of every stage and, with
+/// OpenGL, the split between the CPU passes and the GL splat.
 void addBenchCommand(CLI::App& app, int& exitCode);
 }  // namespace tyndall::app

@@ -2,8 +2,9 @@
 // sampling, the radius schedule, free-flight sampling (homogeneous and density-grid media), texture
 // lookups and building the surface kernel's boundary (SurfaceBoundary: feature half-edges, their
 // layer probe, the pre-check grid and the point-query BVH) for the largest glTF asset.
-// Whole-stage throughput (photon tracing, gathers, passes/s) is `tyndall bench`; these isolate
-// the per-call cost of what those stages call millions of times. Not run by ctest.
+// Whole-stage throughput (photon tracing, gathers, passes/s) is `tyndall bench` and
+// build/bench/tyndall_stages; these isolate the per-call cost of what those stages call millions
+// of times. Not run by ctest.
 //
 // Run (Release build):
 //   cmake --build build --target micro_bench && build/bench/micro_bench

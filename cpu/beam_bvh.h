@@ -2,7 +2,7 @@
 // A BVH over photon-beam cylinders for the CPU gather of secondary camera segments: finds every
 // beam whose axis passes within its radius of a ray segment, with the exact beam x ray closest
 // approach of beam_estimator.h. Two Embree representations, chosen at construction, so that
-// `tyndall bench` can measure both (see docs/performance.md for which is faster):
+// build/bench/tyndall_stages can measure both (see docs/performance.md for which is faster):
 //   UserGeometry: one user primitive per beam (AABB of the cylinder, our own intersector);
 //   FlatCurves:   Embree flat linear curves (ray-facing ribbons of half-width r) with a filter that
 //                 applies the exact test and rejects the hit so traversal continues. The default:

@@ -158,7 +158,7 @@ public:
     static constexpr float kHitErrorUlps = 64.0f;
 
     const Scene& scene() const { return m_scene; }
-    /// The Embree scene, for raw-throughput baselines in `tyndall bench`.
+    /// The Embree scene, for raw-throughput baselines in build/bench/tyndall_stages.
     RTCScene rtcScene() const { return m_rtcScene; }
     const std::shared_ptr<EmbreeDevice>& device() const { return m_device; }
 

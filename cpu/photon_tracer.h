@@ -58,7 +58,7 @@ public:
     PhotonMap traceBatch(uint64_t pass, uint32_t begin, uint32_t end) const;
 
     /// trace(pass), also appending every ray it casts (origin, direction, t range), in path order:
-    /// what `tyndall bench` replays through Embree alone as the photon tracer's raw ray rate.
+    /// what build/bench/tyndall_stages replays through Embree alone as the photon tracer's raw ray rate.
     PhotonMap traceRecordingRays(uint64_t pass, std::vector<Ray>* rays) const;
 
 private:

@@ -75,7 +75,7 @@ uint64_t plannedPhotonPaths(const RenderSettings& s);
 
 /// `s` with the scene-relative radii Tyndall used before the automatic ones: the first beam radius
 /// 0.5% and the surface radius 2% of the scene's diagonal, offset 1000 (the photon cone angle is
-/// left as it is). `tyndall bench --quality`'s LEGACY row, and tests whose bounds were measured with
+/// left as it is). build/bench/tyndall_quality's LEGACY row, and tests whose bounds were measured with
 /// these radii rather than with the defaults of the day.
 RenderSettings withSceneRelativeRadii(RenderSettings s, const Scene& scene);
 

@@ -121,7 +121,7 @@ private:
 /// `scene` with every mirror and glass surface (smooth or rough) made an index-matched Interface,
 /// media kept: no delta light reaches anything through a specular bounce, so the path tracer is
 /// valid on it (docs/reference.md, "What it cannot compute"). Used to compare PPB with it on the
-/// scene library (the SceneLibrary tests, `tyndall bench --quality --quality-library`).
+/// scene library (the SceneLibrary tests, build/bench/tyndall_quality --library).
 Scene withoutSpecularSurfaces(const Scene& scene);
 
 }  // namespace tyndall

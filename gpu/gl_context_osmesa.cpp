@@ -1,5 +1,5 @@
 // OSMesa backend of GlContext, loaded with dlopen so that libOSMesa's gl* exports never meet
-// another GL library's at link time (DEPS.md); every entry point comes from OSMesaGetProcAddress.
+// another GL library's at link time (gl_functions.h says why); every entry point comes from OSMesaGetProcAddress.
 // Order matters: glcorearb.h (through gl_context.h) must come before osmesa.h's gl.h, which
 // would hide the GL 1.x function-pointer typedefs the function table uses.
 // clang-format off

@@ -10,7 +10,7 @@ packages=(
   libembree-dev libtbb-dev libopenvdb-dev libboost-iostreams-dev
   libopenimageio-dev openimageio-tools libtinygltf-dev nlohmann-json3-dev libcli11-dev
   libglfw3-dev libegl1-mesa-dev libgl1-mesa-dri libosmesa6-dev
-  libgtest-dev libbenchmark-dev
+  libgtest-dev libbenchmark-dev gnuplot-nox
   clang libclang-rt-14-dev
   libopenmpi-dev openmpi-bin xvfb xauth
   libimgui-dev libstb-dev libhwy-dev xdotool x11-apps imagemagick

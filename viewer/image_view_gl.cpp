@@ -5,51 +5,9 @@
 #include <vector>
 
 #include "core/error.h"
+#include "gpu/gl_functions.h"
 
 namespace tyndall {
-
-#define TYNDALL_VIEW_GL(X)                                  \
-    X(PFNGLGENTEXTURESPROC, GenTextures)                    \
-    X(PFNGLDELETETEXTURESPROC, DeleteTextures)              \
-    X(PFNGLBINDTEXTUREPROC, BindTexture)                    \
-    X(PFNGLACTIVETEXTUREPROC, ActiveTexture)                \
-    X(PFNGLTEXIMAGE2DPROC, TexImage2D)                      \
-    X(PFNGLTEXPARAMETERIPROC, TexParameteri)                \
-    X(PFNGLPIXELSTOREIPROC, PixelStorei)                    \
-    X(PFNGLCREATESHADERPROC, CreateShader)                  \
-    X(PFNGLSHADERSOURCEPROC, ShaderSource)                  \
-    X(PFNGLCOMPILESHADERPROC, CompileShader)                \
-    X(PFNGLGETSHADERIVPROC, GetShaderiv)                    \
-    X(PFNGLGETSHADERINFOLOGPROC, GetShaderInfoLog)          \
-    X(PFNGLDELETESHADERPROC, DeleteShader)                  \
-    X(PFNGLCREATEPROGRAMPROC, CreateProgram)                \
-    X(PFNGLATTACHSHADERPROC, AttachShader)                  \
-    X(PFNGLLINKPROGRAMPROC, LinkProgram)                    \
-    X(PFNGLGETPROGRAMIVPROC, GetProgramiv)                  \
-    X(PFNGLGETPROGRAMINFOLOGPROC, GetProgramInfoLog)        \
-    X(PFNGLDELETEPROGRAMPROC, DeleteProgram)                \
-    X(PFNGLUSEPROGRAMPROC, UseProgram)                      \
-    X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)      \
-    X(PFNGLUNIFORM1FPROC, Uniform1f)                        \
-    X(PFNGLUNIFORM1IPROC, Uniform1i)                        \
-    X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)            \
-    X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)      \
-    X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)            \
-    X(PFNGLDRAWARRAYSPROC, DrawArrays)                      \
-    X(PFNGLVIEWPORTPROC, Viewport)                          \
-    X(PFNGLSCISSORPROC, Scissor)                            \
-    X(PFNGLENABLEPROC, Enable)                              \
-    X(PFNGLDISABLEPROC, Disable)                            \
-    X(PFNGLCLEARCOLORPROC, ClearColor)                      \
-    X(PFNGLCLEARPROC, Clear)                                \
-    X(PFNGLREADPIXELSPROC, ReadPixels)                      \
-    X(PFNGLREADBUFFERPROC, ReadBuffer)
-
-struct ImageViewGl::Functions {
-#define TYNDALL_DECLARE(type, name) type name = nullptr;
-    TYNDALL_VIEW_GL(TYNDALL_DECLARE)
-#undef TYNDALL_DECLARE
-};
 
 namespace {
 const char* kVertex = R"(#version 330 core
@@ -81,7 +39,7 @@ void main() {
 }
 )";
 
-unsigned compile(const ImageViewGl::Functions& gl, GLenum type, const char* source) {
+unsigned compile(const GlFunctions& gl, GLenum type, const char* source) {
     GLuint s = gl.CreateShader(type);
     gl.ShaderSource(s, 1, &source, nullptr);
     gl.CompileShader(s);
@@ -96,13 +54,9 @@ unsigned compile(const ImageViewGl::Functions& gl, GLenum type, const char* sour
 }
 }  // namespace
 
-ImageViewGl::ImageViewGl(GlProcLoader load) : m_gl(std::make_unique<Functions>()) {
-#define TYNDALL_LOAD(type, name)                                                                  \
-    m_gl->name = reinterpret_cast<type>(load("gl" #name));                                        \
-    if (!m_gl->name) throw Error("viewer: the window's OpenGL has no gl" #name " (OpenGL 3.3 needed)");
-    TYNDALL_VIEW_GL(TYNDALL_LOAD)
-#undef TYNDALL_LOAD
-    const Functions& gl = *m_gl;
+ImageViewGl::ImageViewGl(GlProcLoader load) : m_gl(std::make_unique<GlFunctions>()) {
+    m_gl->load([load](const char* name) { return load(name); }, "viewer: the window's OpenGL", GlVersion::Core33);
+    const GlFunctions& gl = *m_gl;
     GLuint vs = compile(gl, GL_VERTEX_SHADER, kVertex), fs = compile(gl, GL_FRAGMENT_SHADER, kFragment);
     m_program = gl.CreateProgram();
     gl.AttachShader(m_program, vs);
@@ -133,7 +87,7 @@ ImageViewGl::~ImageViewGl() {
 }
 
 void ImageViewGl::upload(int slot, const Image& image) {
-    const Functions& gl = *m_gl;
+    const GlFunctions& gl = *m_gl;
     gl.BindTexture(GL_TEXTURE_2D, m_texture[slot]);
     gl.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
     gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, image.width, image.height, 0, GL_RGB, GL_FLOAT, image.pixels.data());
@@ -141,7 +95,7 @@ void ImageViewGl::upload(int slot, const Image& image) {
 }
 
 void ImageViewGl::clear(int w, int h) {
-    const Functions& gl = *m_gl;
+    const GlFunctions& gl = *m_gl;
     gl.Viewport(0, 0, w, h);
     gl.Disable(GL_SCISSOR_TEST);
     gl.ClearColor(0.12f, 0.12f, 0.13f, 1.0f);
@@ -150,7 +104,7 @@ void ImageViewGl::clear(int w, int h) {
 
 void ImageViewGl::draw(int slot, int x, int y, int w, int h, float exposure) {
     if (!m_hasImage[slot] || w <= 0 || h <= 0) return;
-    const Functions& gl = *m_gl;
+    const GlFunctions& gl = *m_gl;
     gl.Viewport(x, y, w, h);
     gl.Disable(GL_BLEND);
     gl.UseProgram(m_program);
@@ -164,7 +118,7 @@ void ImageViewGl::draw(int slot, int x, int y, int w, int h, float exposure) {
 }
 
 std::string ImageViewGl::readPixels(int w, int h) {
-    const Functions& gl = *m_gl;
+    const GlFunctions& gl = *m_gl;
     std::string rows(size_t(w) * h * 4, '\0'), out(rows.size(), '\0');
     gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
     gl.ReadBuffer(GL_BACK);

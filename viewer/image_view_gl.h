@@ -2,7 +2,8 @@
 // Shows a linear float image in the current OpenGL 3.3 core context: uploaded to a float texture,
 // tone-mapped in a fragment shader with the same curve as the PNG writer (exposure, the ACES fit,
 // sRGB: core/image_io.h toneMapChannel) and drawn into a viewport rectangle. The window's context
-// only; entry points come from the window system's getProcAddress, so the binary links no libGL.
+// only; entry points come from the window system's getProcAddress into gpu/'s table
+// (gl_functions.h), so the binary links no libGL.
 // Not thread-safe: the UI thread that owns the context.
 #include <memory>
 #include <string>
@@ -11,6 +12,7 @@
 
 namespace tyndall {
 
+struct GlFunctions;
 using GlProcLoader = void* (*)(const char* name);
 
 class ImageViewGl {
@@ -31,10 +33,8 @@ public:
     /// Reads the framebuffer (w x h, RGBA8, top row first) for screenshots.
     std::string readPixels(int w, int h);
 
-    struct Functions;
-
 private:
-    std::unique_ptr<Functions> m_gl;
+    std::unique_ptr<GlFunctions> m_gl;
     unsigned m_program = 0, m_vao = 0;
     unsigned m_texture[2] = {0, 0};
     bool m_hasImage[2] = {false, false};

@@ -1,4 +1,4 @@
-#include "app/bench_cpu.h"
+#include "bench/stage_studies.h"
 
 #include <tbb/parallel_for.h>
 
@@ -10,11 +10,11 @@
 #include "core/rng.h"
 #include "core/sampling.h"
 
-namespace tyndall::app {
+namespace tyndall::bench {
 
 namespace {
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+using app::secondsSince;
 }  // namespace
 
 double measureRawRayRate(const EmbreeScene& rt, uint64_t count) {
@@ -37,7 +37,7 @@ double measureRawRayRate(const EmbreeScene& rt, uint64_t count) {
         }
         hits += localHits;
     });
-    double s = since(t0);
+    double s = secondsSince(t0);
     return double(((count + block - 1) / block) * block) / s;
 }
 
@@ -55,7 +55,7 @@ double replaySeconds(const EmbreeScene& rt, const std::vector<Ray>& rays) {
             rtcIntersect1(rt.rtcScene(), &ctx, &rh);
         }
     });
-    return since(t0);
+    return secondsSince(t0);
 }
 }  // namespace
 
@@ -69,16 +69,8 @@ PhotonStageRate measurePhotonStage(const PassRenderer& renderer, int passes, int
     r.beamRays = beamRays.size();
     if (rays.empty()) return r;
     for (int round = 0; round < rounds; ++round) {
-        uint64_t paths = 0, beams = 0, traced = 0;
-        auto t0 = Clock::now();
-        for (int i = 0; i < passes; ++i) {
-            PhotonMap m = renderer.tracePhotons(uint64_t(i));
-            paths += m.pathCount;
-            beams += m.beams.size();
-            traced += m.raysTraced;
-        }
-        double s = since(t0);
-        if (traced / s > r.tracing.raysPerSecond) r.tracing = {paths / s, beams / s, traced / s};
+        PhotonRate tracing = app::measurePhotonTracing(renderer, passes, 1);
+        if (tracing.raysPerSecond > r.tracing.raysPerSecond) r.tracing = tracing;
         r.replayRaysPerSecond =
             std::max(r.replayRaysPerSecond, double(rays.size()) / replaySeconds(renderer.rayTracer(), rays));
         r.beamReplayRaysPerSecond = std::max(r.beamReplayRaysPerSecond,
@@ -101,7 +93,7 @@ std::vector<GatherRate> measureBeamGather(const PassRenderer& renderer, const st
         for (size_t k = 0; k < kinds.size(); ++k) {
             auto tb = Clock::now();
             BeamBvh bvh(*renderer.rayTracer().device(), photons.beams, kinds[k]);
-            const double build = since(tb);
+            const double build = secondsSince(tb);
             std::atomic<uint64_t> hits{0};
             const uint64_t block = 256;
             auto t0 = Clock::now();
@@ -115,7 +107,7 @@ std::vector<GatherRate> measureBeamGather(const PassRenderer& renderer, const st
                 }
                 hits += local;
             });
-            const double s = since(t0);
+            const double s = secondsSince(t0);
             GatherRate& g = best[k];
             if (round == 0 || build < g.buildSeconds) g.buildSeconds = build;
             if (double(perRound) / s > g.queriesPerSecond) {
@@ -127,17 +119,6 @@ std::vector<GatherRate> measureBeamGather(const PassRenderer& renderer, const st
     return best;
 }
 
-PassRate measurePasses(const PassRenderer& renderer, int passes) {
-    PassRate r;
-    renderer.renderPass(0);  // warm-up: page in, build caches
-    auto t0 = Clock::now();
-    for (int i = 1; i <= passes; ++i) renderer.renderPass(uint64_t(i), &r.totals);
-    double s = since(t0);
-    r.passes = passes;
-    r.passesPerSecond = passes / s;
-    return r;
-}
-
 void measurePassesAlternating(const PassRenderer& a, const PassRenderer& b, int passes, PassRate* rateA,
                               PassRate* rateB) {
     a.renderPass(0);
@@ -146,10 +127,10 @@ void measurePassesAlternating(const PassRenderer& a, const PassRenderer& b, int 
     for (int i = 1; i <= passes; ++i) {
         auto t0 = Clock::now();
         a.renderPass(uint64_t(i), &rateA->totals);
-        sa += since(t0);
+        sa += secondsSince(t0);
         auto t1 = Clock::now();
         b.renderPass(uint64_t(i), &rateB->totals);
-        sb += since(t1);
+        sb += secondsSince(t1);
     }
     rateA->passes = rateB->passes = passes;
     rateA->passesPerSecond = passes / sa;
@@ -179,7 +160,7 @@ SplatRate measureSplatKernels(const PassRenderer& renderer, int passes, int roun
             evals += stats.pixelTests;
         }
         r.evalsPerRound = evals;
-        return double(evals) / since(t0);
+        return double(evals) / secondsSince(t0);
     };
     for (int k = 0; k < rounds; ++k) {
         r.scalarEvalsPerSecond = std::max(r.scalarEvalsPerSecond, round(scalar));
@@ -214,9 +195,9 @@ double measurePrimaryRayReplay(const PassRenderer& renderer, uint64_t pass, int 
                 rtcIntersect1(renderer.rayTracer().rtcScene(), &ctx, &rh);
             }
         });
-        best = std::max(best, double(rays.size()) / since(t0));
+        best = std::max(best, double(rays.size()) / secondsSince(t0));
     }
     return best;
 }
 
-}  // namespace tyndall::app
+}  // namespace tyndall::bench

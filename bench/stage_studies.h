@@ -1,19 +1,22 @@
 #pragma once
-// Measurements behind `tyndall bench` for the CPU renderer. Each returns rates measured in the
-// caller's run so they can be printed as ratios against a baseline from the same run.
+// The stage studies behind build/bench/tyndall_stages: each stage against a baseline measured in
+// the same run (Embree alone on the same rays, the other BVH kind, the scalar splat), so the
+// figures can be printed as ratios that the machine's load affects alike.
 #include <cstdint>
+#include <vector>
 
+#include "app/stage_rates.h"
 #include "cpu/pass_renderer.h"
 
-namespace tyndall::app {
+namespace tyndall::bench {
+
+using app::PassRate;
+using app::PhotonRate;
+using app::measurePasses;
 
 /// Embree's raw incoherent closest-hit throughput on `rt`: `count` rays with origins uniform in the
 /// scene bounds and uniform random directions, rtcIntersect1 in parallel. Rays per second.
 double measureRawRayRate(const EmbreeScene& rt, uint64_t count);
-
-struct PhotonRate {
-    double pathsPerSecond = 0, beamsPerSecond = 0, raysPerSecond = 0;
-};
 
 /// The photon stage against Embree alone on the same rays.
 struct PhotonStageRate {
@@ -22,10 +25,10 @@ struct PhotonStageRate {
     double beamReplayRaysPerSecond = 0;  ///< only the rays that start a beam (the earlier baseline)
     uint64_t rays = 0, beamRays = 0;     ///< per round
 };
-/// Traces passes 0 .. passes-1 (the renderer's own pass size) and replays every ray they cast
-/// (origin, direction, t range; the tracer's own ray setup) through rtcIntersect1 in blocks of
-/// 1024, in parallel at the same thread count. Rounds alternate tracing and replay; each rate is
-/// its best round (the machine's noise only ever slows a round down).
+/// Traces passes 0 .. passes-1 (the renderer's own pass size, app::measurePhotonTracing) and
+/// replays every ray they cast (origin, direction, t range; the tracer's own ray setup) through
+/// rtcIntersect1 in blocks of 1024, in parallel at the same thread count. Rounds alternate tracing
+/// and replay; each rate is its best round (the machine's noise only ever slows a round down).
 PhotonStageRate measurePhotonStage(const PassRenderer& renderer, int passes, int rounds);
 
 struct GatherRate {
@@ -36,13 +39,6 @@ struct GatherRate {
 /// one build each), the best round of each kind kept, so load on the machine hits all alike.
 std::vector<GatherRate> measureBeamGather(const PassRenderer& renderer, const std::vector<BeamBvh::Kind>& kinds,
                                           uint64_t count, int rounds = 3);
-
-struct PassRate {
-    double passesPerSecond = 0;
-    PassStats totals;  ///< summed over the measured passes
-    int passes = 0;
-};
-PassRate measurePasses(const PassRenderer& renderer, int passes);
 
 /// Passes 1..passes of two renderers of the same scene (e.g. --simd on and off), alternating pass
 /// by pass after one warm-up pass each, so the machine's load falls on both alike.
@@ -61,4 +57,4 @@ SplatRate measureSplatKernels(const PassRenderer& renderer, int passes, int roun
 /// parallel rows as the camera stage casts them), best of `rounds`: rays per second.
 double measurePrimaryRayReplay(const PassRenderer& renderer, uint64_t pass, int rounds);
 
-}  // namespace tyndall::app
+}  // namespace tyndall::bench

@@ -1,20 +1,19 @@
 #pragma once
-// The whole-pass rate targets `tyndall bench` judges its "passes" figure against. Each target
-// was set by an issue for one image size, one photon count per pass and 2 cores (CPU only); a run
-// at other settings is not judged, and its note says which settings would be.
+// The whole-pass rate targets build/bench/tyndall_stages judges its "passes" figure against. Each
+// target holds for one image size, one photon count per pass and 2 threads (CPU only); a run at
+// other settings is not judged, and its note says which settings would be.
 #include <string>
 
-namespace tyndall::app {
+namespace tyndall::bench {
 
 struct PassRateTarget {
-    const char* issue;        ///< where the target was set, e.g. "issue 12"
     int width, height;        ///< image size in pixels
     unsigned photonsPerPass;  ///< photon paths per pass
     double passesPerSecond;   ///< the target: at least this many passes per second
 };
 
-/// The target set for `width` x `height` with `photonsPerPass` photon paths per pass, or nullptr:
-/// issue 2's >= 3 passes/s at 512x512 with 1000, issue 12's >= 1.0 at 1920x1080 with 4000.
+/// The target for `width` x `height` with `photonsPerPass` photon paths per pass, or nullptr:
+/// >= 3 passes/s at 512x512 with 1000, >= 1.0 at 1920x1080 with 4000.
 const PassRateTarget* passRateTarget(int width, int height, unsigned photonsPerPass);
 
 /// The note printed after the measured pass rate: the applicable target and "met" or "NOT met"
@@ -23,4 +22,4 @@ const PassRateTarget* passRateTarget(int width, int height, unsigned photonsPerP
 std::string passRateVerdict(double passesPerSecond, int width, int height, unsigned photonsPerPass,
                             unsigned threads);
 
-}  // namespace tyndall::app
+}  // namespace tyndall::bench

@@ -1,19 +1,19 @@
-#include "app/bench_targets.h"
+#include "bench/pass_rate_targets.h"
 
 #include <cstdio>
 
-namespace tyndall::app {
+namespace tyndall::bench {
 
 namespace {
 constexpr unsigned kTargetThreads = 2;  // every target is "on 2 cores"
 constexpr PassRateTarget kTargets[] = {
-    {"issue 2", 512, 512, 1000, 3.0},
-    {"issue 12", 1920, 1080, 4000, 1.0},
+    {512, 512, 1000, 3.0},
+    {1920, 1080, 4000, 1.0},
 };
 
 std::string describe(const PassRateTarget& t) {
     char buf[128];
-    std::snprintf(buf, sizeof buf, "%s's >= %g passes/s is for %dx%d, %u photon paths/pass, %u threads", t.issue,
+    std::snprintf(buf, sizeof buf, ">= %g passes/s is the target for %dx%d, %u photon paths/pass, %u threads",
                   t.passesPerSecond, t.width, t.height, t.photonsPerPass, kTargetThreads);
     return buf;
 }
@@ -30,8 +30,8 @@ std::string passRateVerdict(double passesPerSecond, int width, int height, unsig
     if (const PassRateTarget* t = passRateTarget(width, height, photonsPerPass)) {
         if (threads != kTargetThreads) return "(not judged: " + describe(*t) + ")";
         char buf[96];
-        std::snprintf(buf, sizeof buf, "(%s's target at %dx%d: >= %g: %s)", t->issue, width, height,
-                      t->passesPerSecond, passesPerSecond >= t->passesPerSecond ? "met" : "NOT met");
+        std::snprintf(buf, sizeof buf, "(target at %dx%d: >= %g: %s)", width, height, t->passesPerSecond,
+                      passesPerSecond >= t->passesPerSecond ? "met" : "NOT met");
         return buf;
     }
     for (const PassRateTarget& t : kTargets)
@@ -39,4 +39,4 @@ std::string passRateVerdict(double passesPerSecond, int width, int height, unsig
     return "(no pass-rate target at this size: " + describe(kTargets[0]) + "; " + describe(kTargets[1]) + ")";
 }
 
-}  // namespace tyndall::app
+}  // namespace tyndall::bench

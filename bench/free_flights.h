@@ -1,13 +1,12 @@
 #pragma once
-// Measurements behind the heterogeneous-media part of `tyndall bench`: the cost of free-flight
-// sampling (the stored transmittance distances and delta tracking) in density-grid media, under
-// the three majorants tracking can use, measured in the caller's run so it can be printed as
-// ratios.
+// The heterogeneous-media study of build/bench/tyndall_stages: the cost of free-flight sampling
+// (the stored transmittance distances and delta tracking) in density-grid media under the three
+// majorants tracking can use, measured in the caller's run so it can be printed as ratios.
 #include <cstdint>
 
 #include "cpu/pass_renderer.h"
 
-namespace tyndall::app {
+namespace tyndall::bench {
 
 /// Which bound delta tracking runs against.
 enum class MajorantMode {
@@ -30,4 +29,4 @@ struct FreeFlightRate {
 FreeFlightRate measureFreeFlights(const PassRenderer& renderer, uint64_t samples, MajorantMode mode,
                                   int perSegment = 1);
 
-}  // namespace tyndall::app
+}  // namespace tyndall::bench

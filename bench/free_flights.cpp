@@ -1,4 +1,4 @@
-#include "app/bench_media.h"
+#include "bench/free_flights.h"
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -7,10 +7,11 @@
 #include <chrono>
 #include <memory>
 
+#include "app/stage_rates.h"
 #include "core/rng.h"
 #include "cpu/free_flight.h"
 
-namespace tyndall::app {
+namespace tyndall::bench {
 
 namespace {
 using Clock = std::chrono::steady_clock;
@@ -89,7 +90,7 @@ FreeFlightRate measureFreeFlights(const PassRenderer& renderer, uint64_t samples
         volatile float sink = sampleRange(media, b * block, std::min(samples, (b + 1) * block));
         (void)sink;
     });
-    double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    double seconds = app::secondsSince(t0);
     rate.samplesPerSecond = double(samples) / seconds;
 
     for (const auto& v : views)
@@ -106,4 +107,4 @@ FreeFlightRate measureFreeFlights(const PassRenderer& renderer, uint64_t samples
     return rate;
 }
 
-}  // namespace tyndall::app
+}  // namespace tyndall::bench

@@ -1,5 +1,5 @@
 #pragma once
-// The hybrid figures of `tyndall bench`: passes/s of the hybrid loop (GL splat on its own thread,
+// The hybrid split of `tyndall bench`: passes/s of the hybrid loop (GL splat on its own thread,
 // overlapped with the CPU passes) against the CPU-only loop, both through PassScheduler in the
 // same run; each side's time per pass measured alone; the overlap efficiency; and the GL splat's
 // own rates (fragments/s, time per beam), plus process CPU time per pass, which shows where a
@@ -10,7 +10,7 @@
 
 namespace tyndall::app {
 
-struct HybridBench {
+struct HybridSplit {
     int passes = 0;
     std::string gl;  ///< the GL context's description
     double cpuOnlyPassesPerSecond = 0, hybridPassesPerSecond = 0;
@@ -34,9 +34,9 @@ struct HybridBench {
 
 /// Runs `passes` passes (after one warm-up pass) CPU-only and hybrid (--gpu on), then the sides
 /// alone. Throws Error when there is no GL context.
-HybridBench measureHybrid(const PassRenderer& renderer, int passes);
+HybridSplit measureHybridSplit(const PassRenderer& renderer, int passes);
 
-/// Prints the figures as `tyndall bench` sections, ratios against the CPU-only loop.
-void printHybridBench(const HybridBench& b);
+/// Prints the figures as a `tyndall bench` section, ratios against the CPU-only loop.
+void printHybridSplit(const HybridSplit& b);
 
 }  // namespace tyndall::app

@@ -1,39 +1,38 @@
 #pragma once
-// `tyndall bench --quality`: image error against a long reference of the in-tree path tracer,
-// for several radius settings in one run, at equal work (the same passes) or at equal time.
-// Per scene: the reference (cached as <dir>/<scene>-<W>x<H>-<spp>spp.exr, rendered when absent,
-// with its own noise recorded so the figures can remove it), then for each setting a progressive
-// render with the relative RMSE and bias taken at doubling pass counts and at its end, and the
-// process CPU time its passes took (error measurements excluded).
+// build/bench/tyndall_quality: image error against a long reference of the in-tree path tracer
+// (bench/quality_reference.h), for several radius settings in one run, at equal work (the same
+// passes) or at equal time. Per scene, for each setting, a progressive render with the relative
+// RMSE and bias taken at doubling pass counts and at its end, and the process CPU time its passes
+// took (error measurements excluded).
 //
 // Equal work (FILE:PASSES, no CPU budget): every setting renders the same passes. The settings:
-// LEGACY, the defaults issue 10 was filed against (scene-relative radii, no photon cone, no shadow
-// rays, the plain surface kernel), the automatic radii planned for the
-// pass count, the same without the photon cone (cpu/beam_cone.h), and the automatic radii of an
-// open-ended render. Plot: error against passes.
+// LEGACY (scene-relative radii, no photon cone, no shadow rays, the plain surface kernel: the
+// defaults before the automatic radii), the automatic radii planned for the pass count, the same
+// without the photon cone (cpu/beam_cone.h), and the automatic radii of an open-ended render. The
+// plot: error against passes.
 //
 // Equal time (cpuSeconds > 0): every render goes on until its passes' process CPU time reaches the
 // budget, so a setting that costs more per pass gets fewer passes. CPU time stands in for wall time
 // on a machine shared with other work (its wall clock measures the neighbours); on an idle machine
 // with T threads busy the two differ by about T (docs/performance.md). The image is still a pure
 // function of the pass count: the budget only decides where the render stops, so a row is
-// reproduced by rendering its printed pass count. The settings: legacy, the defaults of the day as
+// reproduced by rendering its printed pass count. The settings: legacy, today's defaults as
 // `tyndall render --time` resolves them (the open-ended plan) and, given FILE:PASSES, the automatic
-// radii planned for that pass count. Plot: error against CPU seconds.
-// Both plots are log-log PNGs with the N^(-alpha/2) slope drawn.
+// radii planned for that pass count. The plot: error against CPU seconds.
 // With a library folder its scenes are added, made valid for the path tracer (withoutSpecularSurfaces).
 #include <string>
 #include <vector>
 
-#include "app/cli_common.h"
+#include "core/scene.h"
+#include "core/settings.h"
 
-namespace tyndall::app {
+namespace tyndall::bench {
 
-struct QualityBenchOptions {
+struct QualityStudyOptions {
     std::vector<std::string> scenes;  ///< scene files; each with its pass count after ':' (file:passes)
     std::string referenceDir = "build/quality-references";
     uint32_t referenceSpp = 1024;
-    std::string plot;                 ///< PNG path; "" = no plot
+    std::string plot;  ///< PREFIX of PREFIX.csv, PREFIX.gp and (by gnuplot) PREFIX.png; "" = no plot
     /// Seeds each setting is rendered with (seed, seed + 1, ...): errors are the root mean square
     /// over them, bias the mean (a visible light's central pixel is heavy-tailed: one seed misleads).
     int seeds = 1;
@@ -47,7 +46,11 @@ struct QualityBenchOptions {
     std::string imageDir;
 };
 
-/// Runs the benchmark; `common` carries size, seed, threads and photons. Prints a table.
-void runQualityBench(const CommonOptions& common, const QualityBenchOptions& options);
+/// The LEGACY row's settings: `s` with the scene-relative radii (withSceneRelativeRadii), no photon
+/// cone, surfaces lit by photons alone (no shadow rays) and the plain surface kernel.
+RenderSettings withLegacyDefaults(RenderSettings s, const Scene& scene);
 
-}  // namespace tyndall::app
+/// Runs the study; `base` carries size, seed, threads, photons and alpha. Prints a table.
+void runQualityStudy(const RenderSettings& base, const QualityStudyOptions& options);
+
+}  // namespace tyndall::bench

@@ -1,0 +1,88 @@
+// build/bench/tyndall_quality: image error of several radius settings against cached path-traced
+// references, at equal work or at equal CPU time (bench/quality_study.h says which rows and why),
+// with the curves as CSV plus a gnuplot script (and the PNG gnuplot makes of it).
+//   build/bench/tyndall_quality [--scene FILE:PASSES]... [--cpu-seconds S] [--library scenes]
+//                               [--plot PREFIX] [--size WxH] [--photons N] [--seeds K] ...
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+
+#include "app/cli_common.h"
+#include "bench/quality_study.h"
+#include "core/error.h"
+
+namespace tyndall::bench {
+namespace {
+
+struct Options {
+    app::CommonOptions common;
+    QualityStudyOptions study;
+};
+
+void addOptions(CLI::App& cli, Options& o) {
+    o.common.size = "256x256";
+    o.common.settings.photonsPerPass = 4000;
+    o.study.scenes = {"bench/scenes/fog-box.json:1584", "bench/scenes/walls-fog-box.json:421",
+                      "bench/scenes/fog-lamp-box.json:1584"};
+    cli.add_option("--scene", o.study.scenes,
+                   "FILE:PASSES (or FILE with --cpu-seconds), repeatable (default: bench/scenes' fog box and fog box "
+                   "with a lamp in view at 1584 passes and the box with walls at 421: 60 s at 256x256 on an idle "
+                   "2-core machine)");
+    cli.add_option("--size", o.common.size, "Image size WxH in pixels")->capture_default_str();
+    cli.add_option("--photons", o.common.settings.photonsPerPass, "Photon paths per pass")
+        ->check(app::positiveInteger())
+        ->capture_default_str();
+    cli.add_option("--seed", o.common.settings.seed, "First seed")->check(app::nonNegativeInteger())->capture_default_str();
+    cli.add_option("--threads", o.common.settings.threads, "Worker threads (0 = all cores)")->capture_default_str();
+    cli.add_option("--reference-dir", o.study.referenceDir, "The reference cache")->capture_default_str();
+    cli.add_option("--reference-spp", o.study.referenceSpp, "Samples per pixel of a reference rendered when not cached")
+        ->check(app::positiveInteger())
+        ->capture_default_str();
+    cli.add_option("--seeds", o.study.seeds, "Render each setting with this many seeds; errors are their root mean square")
+        ->check(app::positiveInteger())
+        ->capture_default_str();
+    cli.add_option("--cpu-seconds", o.study.cpuSeconds,
+                   "Equal time instead of equal work: every render stops when its passes' process CPU time reaches "
+                   "this many seconds (117 = 60 s wall with 2 threads on an idle 2-core machine); --scene's :PASSES "
+                   "is then optional and adds a row planned for it (default: 0, equal work)")
+        ->check(CLI::NonNegativeNumber);
+    cli.add_option("--library", o.study.library,
+                   "With --cpu-seconds: also every scene file in this folder (scenes/), its mirrors and glass made "
+                   "index-matched so that the path tracer is valid; replaces the default --scene list unless one is "
+                   "given (default: none)");
+    cli.add_option("--images", o.study.imageDir,
+                   "Write every row's final image per seed, <dir>/<scene>-<row>-seed<N>.exr (default: none)");
+    cli.add_option("--plot", o.study.plot,
+                   "Write PREFIX.csv and the gnuplot script PREFIX.gp, and run gnuplot for PREFIX.png: error against "
+                   "passes, or against CPU seconds with --cpu-seconds (default: none)");
+}
+
+void run(Options& o) {
+    if (!o.study.library.empty() && o.common.command->get_option("--scene")->count() == 0) o.study.scenes.clear();
+    if (!o.study.library.empty() && !(o.study.cpuSeconds > 0))
+        throw Error("--library needs --cpu-seconds (library scenes have no pass count)");
+    app::finishOptions(o.common);
+    app::ThreadLimit threads(o.common.settings.threads);
+    runQualityStudy(o.common.settings, o.study);
+}
+
+}  // namespace
+}  // namespace tyndall::bench
+
+int main(int argc, char** argv) {
+    CLI::App cli{"Image error of radius settings against path-traced references (equal work or equal time)",
+                 "tyndall_quality"};
+    tyndall::bench::Options o;
+    o.common.command = &cli;
+    tyndall::bench::addOptions(cli, o);
+    try {
+        cli.parse(argc, argv);
+        tyndall::bench::run(o);
+    } catch (const CLI::ParseError& e) {
+        return cli.exit(e);
+    } catch (const tyndall::Error& e) {
+        std::fprintf(stderr, "tyndall_quality: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}
