@@ -35,6 +35,11 @@ LightSampler::LightSampler(const Scene& scene) : m_scene(scene) {
     m_sceneRadius = boundingRadius(scene.bounds);
     for (const Light& l : scene.lights) m_power.push_back(lightPower(l, scene.bounds));
     for (const EmissiveTriangle& e : scene.emitters) m_power.push_back(e.radiance * (kPi * e.area));
+    if (scene.environment && scene.environment->integral().luminance() > 0) {
+        m_environmentSource = int(m_power.size());
+        m_power.push_back(scene.environment->integral() * (kPi * m_sceneRadius * m_sceneRadius));
+        m_environmentWeight = 0.25 * double(scene.environment->integral().luminance());
+    }
     double sum = 0.0;
     for (const Rgb& p : m_power) {
         sum += std::max(0.0f, p.luminance());
@@ -55,7 +60,7 @@ LightSampler::LightSampler(const Scene& scene) : m_scene(scene) {
     }
     if (m_emitterPower > 0)
         for (double& c : m_emitterCdf) c /= m_emitterPower;
-    const size_t groups = scene.lights.size() + (m_emitterPower > 0 ? 1 : 0);
+    const size_t groups = scene.lights.size() + (m_emitterPower > 0 ? 1 : 0) + (m_environmentSource >= 0 ? 1 : 0);
     m_spatialChoice = groups >= 2 && scene.lights.size() <= kMaxSpatialChoiceLights;
 }
 
@@ -88,7 +93,8 @@ double LightSampler::directWeights(const Vec3& x, double* w) const {
         double d2 = std::max(double(lengthSquared(out)), m_emitterArea / kPi);
         group = m_emitterPower / (kPi * std::max(d2, 1e-30));
     }
-    return sum + group;
+    w[m_scene.lights.size() + 1] = m_environmentWeight;
+    return sum + group + m_environmentWeight;
 }
 
 size_t LightSampler::chooseEmitter(double u) const {
@@ -100,11 +106,12 @@ size_t LightSampler::chooseEmitter(double u) const {
 
 float LightSampler::directChoiceProbability(size_t i, const Vec3& x) const {
     if (!m_spatialChoice) return sourceProbability(i);
-    double w[kMaxSpatialChoiceLights + 1];
+    double w[kMaxSpatialChoiceLights + 2];
     const double sum = directWeights(x, w);
     if (!(sum > 0)) return 0.0f;
     const size_t lights = m_scene.lights.size();
     if (i < lights) return float(w[i] / sum);
+    if (int(i) == m_environmentSource) return float(w[lights + 1] / sum);
     return float(w[lights] / sum * emitterShare(i - lights));
 }
 
@@ -130,12 +137,12 @@ DirectLightSample LightSampler::sampleDirect(const Vec3& x, Rng& rng) const {
         i = chooseSource(u);
         pick = sourceProbability(i);
     } else {
-        double w[kMaxSpatialChoiceLights + 1];
+        double w[kMaxSpatialChoiceLights + 2];
         const double sum = directWeights(x, w);
         if (!(sum > 0)) return s;  // no source can reach x
         const size_t lights = m_scene.lights.size();
         double target = double(u) * sum, below = 0;
-        i = lights;  // the emitters, unless a light's interval holds the target
+        i = lights;  // the emitters or the environment, unless a light's interval holds the target
         for (size_t k = 0; k < lights; ++k) {
             if (w[k] > 0 && target < below + w[k]) {
                 i = k;
@@ -143,8 +150,13 @@ DirectLightSample LightSampler::sampleDirect(const Vec3& x, Rng& rng) const {
             }
             below += w[k];
         }
+        const bool environment =
+            i == lights && w[lights + 1] > 0 && (target >= below + w[lights] || !(w[lights] > 0));
         if (i < lights) {
             pick = float(w[i] / sum);
+        } else if (environment) {
+            i = size_t(m_environmentSource);
+            pick = float(w[lights + 1] / sum);
         } else if (w[lights] > 0) {
             size_t e = chooseEmitter(std::clamp((target - below) / w[lights], 0.0, std::nextafter(1.0, 0.0)));
             i = lights + e;
@@ -158,6 +170,17 @@ DirectLightSample LightSampler::sampleDirect(const Vec3& x, Rng& rng) const {
         }
     }
     s.source = int(i);
+    if (int(i) == m_environmentSource) {
+        const EnvironmentSample es = m_scene.environment->sample(u1, u2);
+        if (!(es.pdf > 0)) return DirectLightSample{};
+        s.wi = es.wi;
+        s.distance = kInfinity;
+        s.point = x + es.wi;
+        s.normal = -es.wi;
+        s.incident = es.radiance;
+        s.pdf = pick * es.pdf;
+        return s;
+    }
     if (i < m_scene.lights.size()) {
         const Light& l = m_scene.lights[i];
         s.delta = true;
@@ -197,7 +220,7 @@ DirectLightSample LightSampler::sampleDirect(const Vec3& x, Rng& rng) const {
 }
 
 float LightSampler::directPdf(size_t source, const Vec3& x, const Vec3& y) const {
-    if (source < m_scene.lights.size()) return 0.0f;
+    if (source < m_scene.lights.size() || int(source) == m_environmentSource) return 0.0f;
     const EmissiveTriangle& e = m_scene.emitters[source - m_scene.lights.size()];
     Vec3 n = normalize(m_scene.meshes[e.mesh].geometricNormal(e.triangle));
     Vec3 toLight = y - x;
@@ -205,6 +228,11 @@ float LightSampler::directPdf(size_t source, const Vec3& x, const Vec3& y) const
     float cosLight = -dot(toLight, n) / std::sqrt(d2);
     if (!(cosLight > 0)) return 0.0f;
     return directChoiceProbability(source, x) * d2 / (cosLight * e.area);
+}
+
+float LightSampler::environmentPdf(const Vec3& x, const Vec3& wi) const {
+    if (m_environmentSource < 0) return 0.0f;
+    return directChoiceProbability(size_t(m_environmentSource), x) * m_scene.environment->pdf(wi);
 }
 
 EmittedPhoton LightSampler::sample(Rng& rng) const {
@@ -240,6 +268,15 @@ EmittedPhoton LightSampler::sample(Rng& rng) const {
                 break;
             }
         }
+    } else if (int(i) == m_environmentSource) {
+        const EnvironmentSample es = m_scene.environment->sample(u1, u2);
+        const Vec2 disk = sampleConcentricDisk(rng.uniform(), rng.uniform());
+        const Frame f(-es.wi);
+        ph.ray.o = m_sceneCenter + es.wi * (1.01f * m_sceneRadius) + (f.s * disk.x + f.t * disk.y) * m_sceneRadius;
+        ph.ray.d = -es.wi;
+        ph.environment = true;
+        // L (pi R^2) / pdf(wi): the disc's area over the pdf of the direction.
+        power = es.pdf > 0 ? es.radiance * (kPi * m_sceneRadius * m_sceneRadius / es.pdf) : Rgb(0.0f);
     } else {
         const EmissiveTriangle& e = m_scene.emitters[i - m_scene.lights.size()];
         const TriangleMesh& mesh = m_scene.meshes[e.mesh];

@@ -1,9 +1,16 @@
 #pragma once
-// Light sampling. Photon emission: picks a light (point, spot, directional or one emissive
-// triangle) with probability proportional to its power and samples an emitted ray (the photon
-// tracer). Next-event estimation (the reference path tracer, PPB's shadow rays): a source chosen
-// by what it can send to the shading point (directChoiceProbability), then a point on it. Sources
-// are indexed lights first (Scene::lights), then Scene::emitters.
+// Light sampling. Photon emission: picks a light (point, spot, directional, one emissive
+// triangle or the environment) with probability proportional to its power and samples an emitted
+// ray (the photon tracer). Next-event estimation (the reference path tracer, PPB's shadow rays): a
+// source chosen by what it can send to the shading point (directChoiceProbability), then a point
+// (or, for the environment, a direction) on it. Sources are indexed lights first (Scene::lights),
+// then Scene::emitters, then the environment (Scene::environment, when it has any radiance).
+//
+// The environment's photons leave a disc of the scene's bounding-sphere radius R, centred on the
+// sphere's centre and pushed out past the sphere along the sampled direction wi, facing -wi (the
+// direction they travel): a uniform point on the disc and wi ~ EnvironmentLight::sample, so a
+// photon carries L(wi) pi R^2 / pdf(wi) and the total power is pi R^2 x the integral of L: every
+// point of the sphere receives each direction's parallel light, unbiased.
 #include <unordered_map>
 #include <vector>
 
@@ -18,24 +25,26 @@ namespace tyndall {
 struct EmittedPhoton {
     Ray ray;
     Rgb power;
-    /// Index into Scene::lights for point/spot/directional; -1 for an area light.
+    /// Index into Scene::lights for point/spot/directional; -1 for an area light or the environment.
     int light = -1;
     /// Area lights: the emitting mesh (the path starts in its exterior medium); else -1.
     int emitterMesh = -1;
+    /// From the environment: starts outside the scene's bounds, in the global medium.
+    bool environment = false;
 };
 
 /// A light point chosen for next-event estimation from a shading point x. The estimate of the
 /// light arriving at x along `wi` is incident * (visibility, transmittance) / pdf.
 struct DirectLightSample {
     Vec3 wi;             ///< unit direction from x toward the light
-    float distance = 0;  ///< from x to `point`; +infinity for directional lights
+    float distance = 0;  ///< from x to `point`; +infinity for directional lights and the environment
     Vec3 point;          ///< light position, or the point on the emissive triangle
     Vec3 normal;         ///< area lights: the triangle's unit front (emitting) normal
-    /// Area lights: emitted radiance Le (W m^-2 sr^-1), zero when x is behind the triangle.
-    /// Point/spot: I * falloff / distance^2; directional: the irradiance E (both W m^-2).
+    /// Area lights and the environment: radiance (W m^-2 sr^-1), zero when x is behind the
+    /// triangle. Point/spot: I * falloff / distance^2; directional: the irradiance E (both W m^-2).
     Rgb incident;
-    /// Area lights: solid-angle pdf at x of this direction (choice probability included);
-    /// delta lights (point, spot, directional): the choice probability alone.
+    /// Area lights and the environment: solid-angle pdf at x of this direction (choice probability
+    /// included); delta lights (point, spot, directional): the choice probability alone.
     float pdf = 0;
     bool delta = false;  ///< point, spot or directional: no other strategy can reach it
     int source = -1;     ///< the chosen source index
@@ -51,6 +60,9 @@ public:
     /// Emitted power of source `i` (lights first, then Scene::emitters).
     Rgb sourcePower(size_t i) const { return m_power[i]; }
     size_t sourceCount() const { return m_power.size(); }
+
+    /// The source index of the environment, or -1 when the scene has none (or a black one).
+    int environmentSource() const { return m_environmentSource; }
 
     /// Power of one light as emitted into the scene (spot cone integrated, directional over the
     /// disk that covers the scene's bounding sphere).
@@ -75,6 +87,8 @@ public:
     /// rays there, and a dim light near x is not starved by a bright far one (power alone spent
     /// 3/4 of the caustic box's shadow rays on its spot outside the spot's cone). Otherwise
     /// (one source, or more lights than that) sourceProbability(i), the power-proportional choice.
+    /// The environment's weight is the mean over orientations of the irradiance it sends to a
+    /// plane, (1/4) x the integral of its luminance over the sphere (pi L for a constant L).
     float directChoiceProbability(size_t i, const Vec3& x) const;
     /// Beyond this many point, spot and directional lights the choice is by power (the per-point
     /// weights cost one evaluation per light).
@@ -83,14 +97,17 @@ public:
     /// x, choice included); for MIS when a scattered path hits that emitter. 0 for delta lights
     /// and when x is behind the triangle.
     float directPdf(size_t source, const Vec3& x, const Vec3& y) const;
+    /// The pdf sampleDirect(x) has of choosing the environment in direction `wi` (solid angle,
+    /// choice included); 0 without an environment. For MIS when a scattered path escapes.
+    float environmentPdf(const Vec3& x, const Vec3& wi) const;
 
 private:
     /// Le at barycentrics b of an emitter: the material's emission times its emissiveTexture there
     /// (the source pmf follows the untextured power; the texture weights the sample, unbiased).
     Rgb emittedRadiance(const EmissiveTriangle& e, Vec2 b) const;
 
-    /// The spatial choice's weights at x: w[k] for light k, w[lights] for all emitters together;
-    /// returns their sum.
+    /// The spatial choice's weights at x: w[k] for light k, w[lights] for all emitters together,
+    /// w[lights + 1] for the environment; returns their sum.
     double directWeights(const Vec3& x, double* w) const;
     /// Emitter `e` (index into Scene::emitters) chosen by power among the emitters from u in [0, 1).
     size_t chooseEmitter(double u) const;
@@ -103,6 +120,8 @@ private:
     std::vector<double> m_emitterCdf;  // over luminance of the emitters' power, normalised
     double m_emitterPower = 0;         // luminance, summed
     double m_emitterArea = 0;
+    int m_environmentSource = -1;
+    double m_environmentWeight = 0;  // the spatial choice's weight of the environment
     Bounds3 m_emitterBounds;
     Rgb m_totalPower;
     Vec3 m_sceneCenter;

@@ -132,7 +132,14 @@ void Scene::validate() const {
         if (l.type == LightType::Spot && !(l.cosOuterAngle < l.cosInnerAngle || l.cosInnerAngle == 1.0f))
             fail(at + "spot outer cone must be wider than the inner cone");
     }
-    if (lights.empty() && emitters.empty()) fail("has no lights and no emissive surfaces: the image would be black");
+    if (environment) {
+        if (!(std::isfinite(environment->scale()) && environment->scale() >= 0))
+            fail("environment '" + environment->name() + "': scale must be finite and >= 0");
+        if (!std::isfinite(environment->rotation()))
+            fail("environment '" + environment->name() + "': rotation must be finite");
+    }
+    if (lights.empty() && emitters.empty() && !environment)
+        fail("has no lights, no emissive surfaces and no environment: the image would be black");
     if (!isFinite(camera.position) || !isFinite(camera.forward)) fail("camera has a non-finite position or direction");
 }
 

@@ -12,10 +12,12 @@
 // transmissive materials (a glass ball in fog holds no fog) and = exterior for the others (which
 // never let a path through, so their interior is never entered).
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/camera.h"
+#include "core/environment_light.h"
 #include "core/light.h"
 #include "core/material.h"
 #include "core/medium.h"
@@ -67,7 +69,10 @@ struct Scene {
     std::vector<Medium> media;
     std::vector<Light> lights;
     Camera camera;
-    MediumId globalMedium = kVacuum;  ///< fills space not inside any medium-bounding mesh
+    MediumId globalMedium = kVacuum;  ///< fills space not inside any medium-bounding mesh (clipped to `bounds`)
+    /// Light from infinitely far away (core/environment_light.h); none = black beyond the scene.
+    /// Paths that leave the scene's bounds reach it unattenuated: the global medium ends there.
+    std::optional<EnvironmentLight> environment;
     /// Images the materials' TextureRefs index; null when no material is textured. Shared, so a
     /// copied Scene reads the same TextureSystem.
     std::shared_ptr<TextureStore> textures;

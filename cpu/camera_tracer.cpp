@@ -192,6 +192,8 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
     Image radiance(w, h);
     if (layers) *layers = SecondaryLayers{Image(w, h), Image(w, h)};
     tbb::enumerable_thread_specific<ThreadScratch> scratch;
+    // The environment, where paths that leave the scene arrive (with the emission: one batch).
+    const EnvironmentLight* environment = emission && m_scene.environment ? &*m_scene.environment : nullptr;
 
     // Tiles of kTile x kTile pixels, row by row inside: neighbouring paths reuse each other's beam
     // candidates (BeamQueryCache) and surface-photon cells.
@@ -208,7 +210,16 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
             const uint64_t pixel = uint64_t(y) * w + x;
             const PrimaryHit& ph = (*primary.hits)[pixel];
             Rgb throughput = ph.throughput, L, Lmedia, Lsurface;
-            if (!ph.surface || throughput.isBlack()) continue;
+            if (!ph.surface) {
+                // Straight from the camera to the environment: its visible background.
+                if (environment && environment->visible() && !throughput.isBlack()) {
+                    L = throughput * environment->eval(primary.segments.rays[pixel].dir);
+                    radiance.at(x, y) = L;
+                    if (layers) layers->surface.at(x, y) = L;
+                }
+                continue;
+            }
+            if (throughput.isBlack()) continue;
             Rng rng = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::CameraPath);
             // Shadow rays draw from their own stream, so the path's other draws do not move; one
             // stream per path, so a path's shadow-ray vertices (a plastic, then the diffuse end)
@@ -218,6 +229,7 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
             SurfaceHit hit = ph.hit;
             Vec3 dir = primary.segments.rays[pixel].dir;
             float pathLength = hit.t;
+            bool straight = true;  // no reflection or refraction yet (Interface crossings are none)
 
             for (int depth = 0;;) {
                 const TriangleMesh& mesh = m_scene.meshes[hit.mesh];
@@ -333,6 +345,7 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                 }
                 throughput *= ev.weight;
                 medium = ev.medium;
+                straight = straight && mat.type == MaterialType::Interface;
                 Ray ray{m_rt.offsetOrigin(hit.p, hit.t, hit.ng, ev.d), ev.d};
                 dir = ray.d;
                 if (++depth > m_settings.maxCameraBounces) break;
@@ -355,7 +368,16 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                     throughput *=
                         med.homogeneous() ? med.transmittance(seg.tMax) : Rgb(storedTransmittance(ff, nff, seg.tMax));
                 }
-                if (!surface || throughput.isBlack()) break;
+                if (!surface) {
+                    // Left the scene: the environment (hidden from straight paths when not visible).
+                    if (environment && (!straight || environment->visible()) && !throughput.isBlack()) {
+                        const Rgb Le = throughput * environment->eval(dir);
+                        L += Le;
+                        Lsurface += Le;
+                    }
+                    break;
+                }
+                if (throughput.isBlack()) break;
             }
             radiance.at(x, y) = L;
             if (layers) {

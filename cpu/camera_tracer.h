@@ -12,7 +12,10 @@
 //                                           divided by its kernel's coverage, cpu/surface_boundary.h)
 //                                           and, with --direct-light on,
 //                                           a shadow ray to a light (cpu/direct_light.h) for the
-//                                           light that arrives there without scattering
+//                                           light that arrives there without scattering; a path
+//                                           that leaves the scene adds the environment's radiance
+//                                           (Scene::environment; one straight from the camera only
+//                                           when it is visible)
 // PassRenderer::traceCamera runs both. The camera is read from the scene at each tracePrimary call, so a camera
 // that moves between passes (the viewer's reset) is followed, the medium it sits in included.
 //

@@ -20,9 +20,11 @@ Rgb DirectLight::shadowTransmittance(const Vec3& origin, const DirectLightSample
     // float rounding of an oblique hit still finds that triangle first (it did at cos 0.6, 2.4 units
     // away), reaching it is arriving.
     const Vec3 target = light.delta ? light.point : m_rt.offsetOrigin(light.point, light.normal, -d);
-    const EmissiveTriangle* emitter = !light.delta && light.source >= int(scene.lights.size())
-                                          ? &scene.emitters[size_t(light.source) - scene.lights.size()]
-                                          : nullptr;
+    const EmissiveTriangle* emitter =
+        !light.delta && light.source >= int(scene.lights.size()) &&
+                light.source < int(scene.lights.size() + scene.emitters.size())
+            ? &scene.emitters[size_t(light.source) - scene.lights.size()]
+            : nullptr;
     Ray ray{origin, d, 0.0f, finite ? dot(target - origin, d) : kInfinity};
     Rgb tr(1.0f);
     for (int crossing = 0; crossing <= kMaxInterfaceCrossings; ++crossing) {

@@ -116,7 +116,9 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
     float beamRadius, surfaceRadius;
     m_radii.radiiOf(globalPath, &beamRadius, &surfaceRadius);
 
-    MediumId medium = e.light >= 0 ? m_lightMedium[e.light] : m_scene.meshes[e.emitterMesh].exteriorMedium;
+    MediumId medium = e.environment ? m_scene.globalMedium
+                      : e.light >= 0 ? m_lightMedium[e.light]
+                                     : m_scene.meshes[e.emitterMesh].exteriorMedium;
     // The ray is o + t d, t in (0, infinity), as every emitted and scattered ray is.
     Vec3 o = e.ray.o, d = e.ray.d;
     // Area-light photons start on their triangle: nudge them off it along the emitted direction.
@@ -127,7 +129,9 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
     bool deltaPath = e.light >= 0;
     bool direct = true;
     // Path distance from the light at o (the photon cone, cpu/beam_cone.h).
-    double travelled = e.light < 0                                                ? m_emitterStart[e.emitterMesh]
+    // Parallel light (directional, the environment) has no cone: it starts infinitely far away.
+    double travelled = e.environment                                              ? kInfinity
+                       : e.light < 0                                              ? m_emitterStart[e.emitterMesh]
                        : m_scene.lights[e.light].type == LightType::Directional ? kInfinity
                                                                                   : 0.0;
 

@@ -1,5 +1,6 @@
 #pragma once
-// Photon tracing (PPB step 1): emits the pass's photon paths from the lights and follows them
+// Photon tracing (PPB step 1): emits the pass's photon paths from the lights (the environment's
+// from a disc outside the scene's bounding sphere, core/light_sampler.h) and follows them
 // through specular and diffuse surfaces and through media, storing a photon beam for every
 // medium segment (long beams: each reaches the next surface, with analytic or stored-distance
 // transmittance) and a surface photon at every diffuse hit (with --direct-light on, none for a path

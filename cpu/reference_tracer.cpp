@@ -157,7 +157,17 @@ Rgb ReferenceTracer::radiance(Ray ray, MediumId medium, Rng& rng) const {
                 if (beta.isBlack()) break;
             }
         }
-        if (!surface) break;
+        if (!surface) {
+            // The environment: hidden from paths straight from the camera when not visible; MIS
+            // against next-event estimation where the last vertex could have sampled it.
+            const EnvironmentLight* env = m_scene.environment ? &*m_scene.environment : nullptr;
+            if (env && (vertices > 0 || env->visible())) {
+                float mis = 1.0f;
+                if (nee && !afterSpecular) mis = powerHeuristic(lastPdf, m_lights.environmentPdf(lastVertex, ray.d));
+                L += beta * env->eval(ray.d) * mis;
+            }
+            break;
+        }
 
         const TriangleMesh& mesh = m_scene.meshes[hit.mesh];
         const Material& mat = m_scene.materials[mesh.material];

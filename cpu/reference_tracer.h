@@ -44,7 +44,10 @@
 // Deterministic: sample s of pixel p draws everything (jitter, lens, path) from
 // Rng::forKey(seed, s, p, ReferencePath), so any thread count gives the same image.
 // Paths are terminated by Russian roulette after `rouletteDepth` scattering vertices and cut at
-// `maxDepth` (no environment light: rays that leave the scene carry nothing).
+// `maxDepth`. Paths that leave the scene (the global medium ends at the scene's bounds) see the
+// environment, if any: weighted by MIS against its light samples after a diffuse, glossy or medium
+// vertex, fully after the camera or a mirror or glass event, and not at all straight from the
+// camera when it is not visible.
 #include <cstdint>
 #include <functional>
 #include <nlohmann/json_fwd.hpp>

@@ -3,7 +3,9 @@
 // the pdf integrating to 1, the samples' histogram over the texels against luminance x solid angle
 // (chi-square, with the texel solid angles and the mapping computed here, not by the light), the
 // pdf of a sample equal to pdf(direction), the pdf proportional to the luminance seen, a constant
-// map's uniform 1 / (4 pi), an EXR written here read back, and bad texels.
+// map's uniform 1 / (4 pi), an EXR written here read back, and bad texels. Beside a point light in
+// the LightSampler: the shadow-ray estimate of the irradiance at a point against I cos / d^2 + pi L,
+// and environmentPdf equal to the pdf of its samples.
 #include "core/environment_light.h"
 
 #include <gtest/gtest.h>
@@ -14,6 +16,7 @@
 
 #include "core/error.h"
 #include "core/image_io.h"
+#include "core/light_sampler.h"
 #include "core/rng.h"
 #include "tests/test_util.h"
 
@@ -229,6 +232,43 @@ TEST(EnvironmentLight, ReadsAnExrWrittenHereAndRejectsBadTexels) {
     EXPECT_EQ(L.r, 0.0f);
     EXPECT_EQ(L.g, 2.0f);
     EXPECT_EQ(L.b, 0.0f);
+}
+
+TEST(EnvironmentLight, LightSamplerEstimatesPointPlusEnvironmentIrradiance) {
+    // A point light of intensity I at distance d above x and a constant environment L: the upward
+    // irradiance at x is I / d^2 + pi L (nothing occludes in the sampler alone).
+    Scene s;
+    s.name = "point and sky";
+    s.source = "<test>";
+    Light point;
+    point.name = "point";
+    point.position = {0.3f, 2.0f, 0.0f};
+    point.intensity = Rgb(4.0f);
+    s.lights.push_back(point);
+    s.environment = EnvironmentLight::constant(Rgb(0.25f));
+    s.finalize();
+    LightSampler lights(s);
+    ASSERT_EQ(lights.environmentSource(), 1);
+    const Vec3 x(0.0f, 0.0f, 0.0f), n(0.0f, 1.0f, 0.0f);
+    const Vec3 toLight = point.position - x;
+    const double closedForm = 4.0 * dot(normalize(toLight), n) / lengthSquared(toLight) + M_PI * 0.25;
+    Rng rng(5, 5);
+    double sum = 0;
+    const int count = 200000;
+    int environmentSamples = 0;
+    for (int k = 0; k < count; ++k) {
+        DirectLightSample ls = lights.sampleDirect(x, rng);
+        ASSERT_GT(ls.pdf, 0.0f);
+        sum += ls.incident.g * std::max(0.0f, dot(ls.wi, n)) / ls.pdf;
+        if (ls.source == 1) {
+            ++environmentSamples;
+            EXPECT_FALSE(ls.delta);
+            EXPECT_NEAR(lights.environmentPdf(x, ls.wi), ls.pdf, 1e-6f * ls.pdf);
+        }
+    }
+    EXPECT_GT(environmentSamples, count / 10);
+    // The estimator's standard deviation is below 2x its mean here: 5 standard errors.
+    EXPECT_NEAR(sum / count, closedForm, 5 * 2 * closedForm / std::sqrt(double(count)));
 }
 
 }  // namespace

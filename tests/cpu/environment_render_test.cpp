@@ -1,0 +1,299 @@
+// The environment light in the renderers: the white furnace (a constant environment of radiance L
+// round a convex diffuse sphere of albedo a: the sphere reads a L, the background L) through PPB
+// with shadow rays and through the reference path tracer with MIS; photons from the environment
+// alone (shadow rays off) giving an open plane its closed-form irradiance pi L; and PPB against the
+// path tracer under a non-uniform map with a sun (written here as an EXR and read back), on a
+// diffuse floor and sphere, through a glass sphere and a mirror, and in fog filling the scene.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "core/environment_light.h"
+#include "core/image_io.h"
+#include "cpu/embree_scene.h"
+#include "cpu/pass_renderer.h"
+#include "cpu/reference_tracer.h"
+#include "loading/mesh_builders.h"
+#include "tests/cpu/reference_fixtures.h"
+#include "tests/test_util.h"
+
+namespace tyndall {
+namespace {
+
+constexpr int kMiss = -3;  // every ray of the pixel leaves the scene
+
+/// For each pixel of a size x size image, the mesh all its pinhole rays (centre and corners) hit,
+/// kMiss where all of them miss, -1 where they disagree.
+std::vector<int> pixelClasses(const Scene& scene, int size) {
+    EmbreeScene rt(scene);
+    std::vector<int> out(size_t(size) * size, -1);
+    const float corners[5][2] = {{0.5f, 0.5f}, {0.0f, 0.0f}, {1.0f, 0.0f}, {0.0f, 1.0f}, {1.0f, 1.0f}};
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            int cls = -2;
+            for (const auto& c : corners) {
+                Ray ray = scene.camera.generateRay(float(x) + c[0], float(y) + c[1], size, size, {0.5f, 0.5f});
+                SurfaceHit hit;
+                int k = rt.intersect(ray, &hit) ? hit.mesh : kMiss;
+                cls = cls == -2 || cls == k ? k : -1;
+            }
+            out[size_t(y) * size + x] = cls;
+        }
+    return out;
+}
+
+double meanOver(const Image& img, const std::vector<int>& classes, int cls) {
+    double sum = 0;
+    int n = 0;
+    for (size_t i = 0; i < img.pixels.size(); ++i)
+        if (classes[i] == cls) sum += img.pixels[i].r + img.pixels[i].g + img.pixels[i].b, ++n;
+    return n ? sum / (3.0 * n) : 0.0;
+}
+
+/// PPB settings with constant radii (passes independent and alike: the spread of batch means is
+/// their standard error).
+RenderSettings ppbSettings(int size, uint32_t photons, const char* directLight) {
+    RenderSettings ps;
+    ps.width = ps.height = size;
+    ps.photonsPerPass = photons;
+    ps.seed = 41;
+    ps.directLight = directLight;
+    ps.radius = 0.02f;
+    ps.surfaceRadius = 0.04f;
+    ps.radiusOffset = 1000000000000ull;
+    return ps;
+}
+
+struct Estimate {
+    double mean = 0, se = 0;
+};
+
+/// Per class: the PPB mean over `batches` batches of `passes` passes and its standard error.
+std::vector<Estimate> ppbRegions(const Scene& scene, const RenderSettings& ps, int batches, int passes,
+                                 const std::vector<int>& classes, const std::vector<int>& wanted, Image* mean) {
+    PassRenderer renderer(scene, ps);
+    std::vector<std::vector<double>> m(wanted.size());
+    Image sum(ps.width, ps.height);
+    for (int b = 0; b < batches; ++b) {
+        Image img = test::renderPpbPasses(renderer, uint64_t(b) * passes, passes);
+        sum += img;
+        for (size_t k = 0; k < wanted.size(); ++k) m[k].push_back(meanOver(img, classes, wanted[k]));
+    }
+    if (mean) {
+        for (Rgb& p : sum.pixels) p *= 1.0f / float(batches);
+        *mean = sum;
+    }
+    std::vector<Estimate> out;
+    for (const auto& v : m) {
+        test::MeanVar mv = test::meanVar(v);
+        out.push_back({mv.mean, std::sqrt(mv.var / double(v.size()))});
+    }
+    return out;
+}
+
+std::vector<Estimate> referenceRegions(const Scene& scene, int size, uint32_t spp, const std::vector<int>& classes,
+                                       const std::vector<int>& wanted, Image* mean) {
+    ReferenceSettings rs;
+    rs.width = rs.height = size;
+    rs.samplesPerPixel = spp;
+    rs.seed = 13;
+    EmbreeScene rt(scene);
+    ReferenceImage ref = ReferenceTracer(rt, rs).render();
+    if (mean) *mean = ref.mean;
+    std::vector<Estimate> out;
+    for (int cls : wanted) {
+        double var = 0;
+        int n = 0;
+        for (size_t i = 0; i < classes.size(); ++i)
+            if (classes[i] == cls) {
+                const Rgb& v = ref.varianceOfMean.pixels[i];
+                var += (v.r + v.g + v.b) / 9.0 * 3.0;  // the channel mean's variance, channels taken as correlated
+                ++n;
+            }
+        out.push_back({meanOver(ref.mean, classes, cls), n ? std::sqrt(var) / n : 0.0});
+    }
+    return out;
+}
+
+Material diffuse(const char* name, Rgb albedo) {
+    Material m;
+    m.name = name;
+    m.albedo = albedo;
+    return m;
+}
+
+// ---- 1. The white furnace ----
+
+Scene furnaceScene(float albedo, float radiance) {
+    Scene s;
+    s.name = "env-furnace";
+    s.source = "<test>";
+    s.materials.push_back(diffuse("grey", Rgb(albedo)));
+    s.meshes.push_back(makeSphere("ball", Vec3(0.0f), 0.5f, 4, 0));
+    s.environment = EnvironmentLight::constant(Rgb(radiance));
+    s.camera = Camera::lookAt({0.3f, 0.4f, 2.2f}, {0, 0, 0}, {0, 1, 0}, 0.6f);
+    s.finalize();
+    s.validate();
+    return s;
+}
+
+TEST(EnvironmentRender, WhiteFurnaceSphereReadsAlbedoTimesRadianceInPpbAndThePathTracer) {
+    const float a = 0.7f, L = 1.5f;
+    Scene s = furnaceScene(a, L);
+    const int size = 24;
+    std::vector<int> classes = pixelClasses(s, size);
+    Image ppbMean, refMean;
+    // Photons play no part (a convex sphere's first hits are shadow rays' and its photons leave it).
+    std::vector<Estimate> ppb = ppbRegions(s, ppbSettings(size, 200, "on"), 8, 32, classes, {0, kMiss}, &ppbMean);
+    std::vector<Estimate> ref = referenceRegions(s, size, 128, classes, {0, kMiss}, &refMean);
+    std::printf("sphere: PPB %.5f +- %.5f, reference %.5f +- %.5f (closed form %.5f); background %.5f, %.5f\n",
+                ppb[0].mean, ppb[0].se, ref[0].mean, ref[0].se, double(a * L), ppb[1].mean, ref[1].mean);
+    EXPECT_LT(ppb[0].se, 0.01 * a * L) << "too noisy to test";
+    EXPECT_LT(ref[0].se, 0.01 * a * L) << "too noisy to test";
+    // A convex sphere sees only the environment: a L, within 4 standard errors (the sphere's
+    // facets make the shading normals' cosine differ from the true sphere's by well under 1%).
+    EXPECT_NEAR(ppb[0].mean, a * L, 4 * ppb[0].se + 0.005 * a * L);
+    EXPECT_NEAR(ref[0].mean, a * L, 4 * ref[0].se + 0.005 * a * L);
+    EXPECT_NEAR(ppb[1].mean, L, 1e-5);  // the background: the environment itself, exactly
+    EXPECT_NEAR(ref[1].mean, L, 1e-5);
+    if (HasFailure()) {
+        test::writeEvidence("env_furnace_ppb", ppbMean);
+        test::writeEvidence("env_furnace_reference", refMean);
+    }
+}
+
+TEST(EnvironmentRender, HiddenEnvironmentStillLightsTheSphere) {
+    Scene s = furnaceScene(0.5f, 1.0f);
+    s.environment->setVisible(false);
+    const int size = 16;
+    std::vector<int> classes = pixelClasses(s, size);
+    std::vector<Estimate> ppb = ppbRegions(s, ppbSettings(size, 1000, "on"), 4, 4, classes, {0, kMiss}, nullptr);
+    std::vector<Estimate> ref = referenceRegions(s, size, 64, classes, {0, kMiss}, nullptr);
+    EXPECT_EQ(ppb[1].mean, 0.0);
+    EXPECT_EQ(ref[1].mean, 0.0);
+    EXPECT_NEAR(ppb[0].mean, 0.5, 4 * ppb[0].se + 0.01);
+    EXPECT_NEAR(ref[0].mean, 0.5, 4 * ref[0].se + 0.01);
+}
+
+// ---- 2. Photons from the environment on an open plane ----
+
+TEST(EnvironmentRender, PhotonsAloneGiveAnOpenPlaneTheIrradiancePiL) {
+    // A 2 x 2 horizontal sheet of albedo a under a constant environment L, shadow rays off: every
+    // point of it receives E = pi L on each side, all by photons (leaving a disc as wide as the
+    // scene's bounding sphere), so it reads a E / pi = a L. The central pixels only (the kernel
+    // stays on the sheet there).
+    const float a = 0.6f, L = 2.0f;
+    Scene s;
+    s.name = "env-plane";
+    s.source = "<test>";
+    s.materials.push_back(diffuse("grey", Rgb(a)));
+    s.meshes.push_back(makeQuad("sheet", {-1, 0, 1}, {2, 0, 0}, {0, 0, -2}, 0));
+    s.environment = EnvironmentLight::constant(Rgb(L));
+    s.camera = Camera::lookAt({0, 1.5f, 0.3f}, {0, 0, 0}, {0, 1, 0}, 0.5f);
+    s.finalize();
+    s.validate();
+    const int size = 16;
+    std::vector<int> classes = pixelClasses(s, size);
+    for (int& c : classes) c = c == 0 ? 0 : -1;
+    std::vector<Estimate> ppb = ppbRegions(s, ppbSettings(size, 20000, "off"), 8, 4, classes, {0}, nullptr);
+    std::printf("sheet: PPB photons only %.5f +- %.5f (closed form %.5f)\n", ppb[0].mean, ppb[0].se, double(a * L));
+    EXPECT_LT(ppb[0].se, 0.01 * a * L) << "too noisy to test";
+    EXPECT_NEAR(ppb[0].mean, a * L, 4 * ppb[0].se + 0.01 * a * L);
+}
+
+// ---- 3. PPB against the path tracer under a map with a sun ----
+
+/// A 64 x 32 sky: brighter overhead, a dim ground, a warm sun 30x the sky at about 40 degrees
+/// elevation; written to an EXR and read back as a user's file would be.
+EnvironmentLight sunnySky() {
+    Image img(64, 32);
+    for (int j = 0; j < img.height; ++j)
+        for (int i = 0; i < img.width; ++i) {
+            const float up = 1.0f - float(j) / 16.0f;  // 1 at the zenith, 0 at the horizon
+            img.at(i, j) = j < 16 ? Rgb(0.35f + 0.3f * up, 0.45f + 0.35f * up, 0.7f + 0.4f * up) : Rgb(0.15f, 0.12f, 0.1f);
+        }
+    for (int j = 7; j <= 8; ++j)
+        for (int i = 40; i <= 41; ++i) img.at(i, j) = Rgb(30.0f, 27.0f, 22.0f);
+    const std::string path = test::outputDir() + "/environment_render_sky.exr";
+    writeImage(path, img);
+    EnvironmentLight env = EnvironmentLight::fromFile(path);
+    env.setRotation(25.0f);
+    return env;
+}
+
+Scene sunnyScene(bool fog) {
+    Scene s;
+    s.name = fog ? "env-sun-fog" : "env-sun";
+    s.source = "<test>";
+    s.materials.push_back(diffuse("floor", Rgb(0.6f)));
+    s.materials.push_back(diffuse("ball", Rgb(0.7f, 0.35f, 0.25f)));
+    Material glass;
+    glass.name = "glass";
+    glass.type = MaterialType::Dielectric;
+    glass.ior = 1.5f;
+    glass.albedo = Rgb(1.0f);
+    s.materials.push_back(glass);
+    Material mirror;
+    mirror.name = "mirror";
+    mirror.type = MaterialType::Mirror;
+    mirror.albedo = Rgb(0.9f);
+    s.materials.push_back(mirror);
+    s.meshes.push_back(makeQuad("floor", {-1.5f, 0, 1.5f}, {3, 0, 0}, {0, 0, -3}, 0));
+    s.meshes.push_back(makeSphere("ball", {-0.45f, 0.35f, 0.0f}, 0.35f, 3, 1));
+    s.meshes.push_back(makeSphere("glass ball", {0.45f, 0.35f, 0.1f}, 0.3f, 3, 2));
+    s.meshes.push_back(makeQuad("mirror", {-0.8f, 0.05f, -0.9f}, {1.6f, 0, 0}, {0, 0.9f, 0}, 3));
+    if (fog) {
+        Medium m;
+        m.name = "fog";
+        m.sigmaS = Rgb(0.25f);
+        m.sigmaA = Rgb(0.03f);
+        m.g = 0.4f;
+        s.media.push_back(m);
+        s.globalMedium = 0;
+    }
+    s.environment = sunnySky();
+    s.camera = Camera::lookAt({0.2f, 1.3f, 2.6f}, {0, 0.25f, -0.1f}, {0, 1, 0}, 0.75f);
+    s.finalize();
+    s.validate();
+    return s;
+}
+
+/// `glassNoise`: the standard error allowed in the glass ball's region relative to its mean (the
+/// sun's caustic on the floor seen through it and the sun's refraction in it are the noisiest
+/// parts of both renderers); 3% elsewhere.
+void comparePpbWithReference(const Scene& s, const char* name, uint32_t photons, int passes, uint32_t spp,
+                             double bias, double glassNoise) {
+    const int size = 24;
+    std::vector<int> classes = pixelClasses(s, size);
+    const std::vector<int> regions = {0, 1, 2, 3, kMiss};
+    const char* names[] = {"floor", "ball", "glass ball", "mirror", "sky"};
+    Image ppbMean, refMean;
+    std::vector<Estimate> ppb = ppbRegions(s, ppbSettings(size, photons, "on"), 8, passes, classes, regions, &ppbMean);
+    std::vector<Estimate> ref = referenceRegions(s, size, spp, classes, regions, &refMean);
+    for (size_t k = 0; k < regions.size(); ++k) {
+        const double se = std::sqrt(ppb[k].se * ppb[k].se + ref[k].se * ref[k].se);
+        std::printf("%s, %s: PPB %.5f +- %.5f, reference %.5f +- %.5f\n", name, names[k], ppb[k].mean, ppb[k].se,
+                    ref[k].mean, ref[k].se);
+        EXPECT_GT(ref[k].mean, 0.02) << names[k];
+        EXPECT_LT(se, (regions[k] == 2 ? glassNoise : 0.03) * ref[k].mean) << names[k] << ": too noisy to test";
+        // 4 standard errors plus the surface kernel's and the beams' bias.
+        EXPECT_NEAR(ppb[k].mean / ref[k].mean, 1.0, 4 * se / ref[k].mean + bias) << names[k];
+    }
+    if (::testing::Test::HasFailure()) {
+        test::writeEvidence(std::string(name) + "_ppb", ppbMean);
+        test::writeEvidence(std::string(name) + "_reference", refMean);
+    }
+}
+
+TEST(EnvironmentRender, SunnyMapPpbAgreesWithThePathTracerOnDiffuseGlassAndMirror) {
+    comparePpbWithReference(sunnyScene(false), "env_sun", 8000, 16, 1024, 0.03, 0.05);
+}
+
+TEST(EnvironmentRender, SunnyMapInFogPpbAgreesWithThePathTracer) {
+    comparePpbWithReference(sunnyScene(true), "env_sun_fog", 8000, 8, 512, 0.04, 0.06);
+}
+
+}  // namespace
+}  // namespace tyndall
