@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <regex>
 
@@ -212,6 +213,17 @@ void checkOutputWritable(const std::string& path) {
         if (!probe) throw Error("output '" + path + "': cannot be written (permissions?)");
     }
     if (!existed) fs::remove(p, ec);
+}
+
+void addTwinOption(CLI::App* cmd, TwinRegion& region) {
+    static const std::map<std::string, TwinRegion> regions = {{"support", TwinRegion::Support},
+                                                              {"domain", TwinRegion::Domain}};
+    cmd->add_option("--twin", region,
+                    "Where the homogeneous twin's medium sits: support (a box around the grid's voxels, at the "
+                    "grid's mean over that box; clear air outside) or domain (all space the grid's medium fills, at "
+                    "its mean over its active voxels)")
+        ->transform(CLI::CheckedTransformer(regions))
+        ->default_str("support");
 }
 
 ThreadLimit::ThreadLimit(int threads) {

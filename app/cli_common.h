@@ -8,6 +8,7 @@
 #include "core/image_io.h"
 #include "core/scene.h"
 #include "core/settings.h"
+#include "loading/homogeneous_twin.h"
 
 namespace tyndall::app {
 
@@ -38,6 +39,10 @@ void addPpbOptions(CLI::App* cmd, CommonOptions& o);
 void addSimdOption(CLI::App* cmd, CommonOptions& o);
 /// --direct-light on|off and --surface-boundary on|off (part of addPpbOptions; bench adds them alone).
 void addDirectLightOption(CLI::App* cmd, CommonOptions& o);
+
+/// Adds --twin support|domain: where the homogeneous twin's medium sits (loading/homogeneous_twin.h);
+/// `tyndall compare` and the viewer's --compare.
+void addTwinOption(CLI::App* cmd, TwinRegion& region);
 
 /// Parses --size into the settings and validates them; throws Error naming the bad option.
 void finishOptions(CommonOptions& o);

@@ -14,6 +14,7 @@
 #include "app/label_text.h"
 #include "core/accumulator.h"
 #include "loading/default_smoke_scene.h"
+#include "loading/homogeneous_twin.h"
 #include "core/error.h"
 #include "cpu/progressive_render.h"
 #include "hybrid/pass_scheduler.h"
@@ -23,7 +24,8 @@ namespace tyndall::app {
 namespace {
 struct CompareOptions {
     CommonOptions common;
-    float density = -1.0f;  // < 0: each grid's mean over its active region
+    float density = -1.0f;  // < 0: each grid's mean over the twin's region
+    TwinRegion twin = TwinRegion::Support;
 };
 
 struct Half {
@@ -104,7 +106,8 @@ void addCompareCommand(CLI::App& app, int& exitCode) {
                     "Primary-beam splatting on OpenGL: auto, on or off (as for `tyndall render`)")
         ->capture_default_str();
     CLI::Option* density = cmd->add_option(
-        "--density", o->density, "Density of the homogeneous twin (default: each grid's mean over its active voxels)");
+        "--density", o->density, "Density of the homogeneous twin (default: each grid's mean over the twin's region)");
+    addTwinOption(cmd, o->twin);
     cmd->callback([o, density, &exitCode]() {
         CommonOptions& c = o->common;
         finishOptions(c);
@@ -124,7 +127,8 @@ void addCompareCommand(CLI::App& app, int& exitCode) {
         if (c.scene.empty()) scene = makeDefaultSmokeScene();
         scene.validate();
         std::vector<float> used;
-        Scene twin = makeHomogeneousTwin(scene, o->density, &used);
+        const TwinRegion region = o->twin;
+        Scene twin = makeHomogeneousTwin(scene, o->density, &used, region);
         twin.validate();
 
         ThreadLimit threads(c.settings.threads);
@@ -146,7 +150,8 @@ void addCompareCommand(CLI::App& app, int& exitCode) {
         ImageMetadata meta = {{"Software", "tyndall compare"},
                               {"tyndall:scene", scene.source},
                               {"tyndall:settings", settings.dump()},
-                              {"tyndall:twin_density", densities}};
+                              {"tyndall:twin_density", densities},
+                              {"tyndall:twin_region", twinRegionName(region)}};
         auto withHalf = [&](const char* half, uint64_t passes) {
             ImageMetadata m = meta;
             m.push_back({"tyndall:half", half});
@@ -170,9 +175,10 @@ void addCompareCommand(CLI::App& app, int& exitCode) {
                                                       : std::to_string(het.passes) + " and " +
                                                             std::to_string(hom.passes) + " passes (twin stopped early)";
         std::printf(
-            "compared %s: %s; heterogeneous %.3f s/pass (%s), homogeneous (density %s) %.3f "
+            "compared %s: %s; heterogeneous %.3f s/pass (%s), homogeneous (density %s, twin region %s) %.3f "
             "s/pass (%s) (ratio %.2f)%s -> %s, %s, %s\n",
             scene.name.c_str(), passes.c_str(), hetPerPass, het.hybrid ? "hybrid" : "CPU", densities.c_str(),
+            twinRegionName(region),
             homPerPass, hom.hybrid ? "hybrid" : "CPU", hetPerPass / std::max(homPerPass, 1e-12),
             interruptRequested() ? " [interrupted]" : "", c.output.c_str(), hetPath.c_str(), homPath.c_str());
         exitCode = interruptRequested() ? 130 : 0;

@@ -18,6 +18,7 @@ struct ViewCommandOptions {
     std::string script, stats, saveStem = "tyndall-view";
     bool compare = false;
     float density = -1.0f;
+    TwinRegion twin = TwinRegion::Support;
     int previewScale = 4, previewPhotons = 16;
 };
 }  // namespace
@@ -41,6 +42,7 @@ void addViewCommand(CLI::App& app, int& exitCode) {
                   "Show the scene's density-grid media next to their homogeneous twins (as `tyndall compare`)");
     CLI::Option* density =
         cmd->add_option("--density", o->density, "--compare: density of the homogeneous twin (default: each grid's mean)");
+    addTwinOption(cmd, o->twin);
     cmd->add_option("--preview-scale", o->previewScale, "Preview passes render at 1/N of the resolution per axis")
         ->check(CLI::Range(1, 16))
         ->capture_default_str();
@@ -56,6 +58,7 @@ void addViewCommand(CLI::App& app, int& exitCode) {
         finishOptions(c);
         if (!(o->exposure > 0) || !std::isfinite(o->exposure)) throw Error("--exposure must be a positive number");
         if (density->count() > 0 && !o->compare) throw Error("--density needs --compare");
+        if (cmd->get_option("--twin")->count() > 0 && !o->compare) throw Error("--twin needs --compare");
         if (density->count() > 0 && !(o->density >= 0 && std::isfinite(o->density)))
             throw Error("--density must be a finite number >= 0");
         ViewerOptions v;
@@ -69,7 +72,7 @@ void addViewCommand(CLI::App& app, int& exitCode) {
                 v.cameras = {v.scene.camera};
             }
             v.scene.validate();
-            v.twin = makeHomogeneousTwin(v.scene, o->density);
+            v.twin = makeHomogeneousTwin(v.scene, o->density, nullptr, o->twin);
             v.twin.validate();
         }
         v.settings = c.settings;

@@ -17,6 +17,7 @@
 #include "core/error.h"
 #include "cpu/beam_splat_simd.h"
 #include "loading/default_smoke_scene.h"
+#include "loading/homogeneous_twin.h"
 
 namespace tyndall::bench {
 namespace {
@@ -176,7 +177,8 @@ void printGridMediaStudy(const StageOptions& o, const Scene& scene, double fogPa
     for (const Medium& m : het.media) anyGrid |= !m.homogeneous();
     if (!anyGrid) return;
     std::vector<float> twinDensity;
-    Scene twin = makeHomogeneousTwin(het, -1.0f, &twinDensity);
+    // The twin fills the grid medium's whole domain: the baseline covers the same extent of medium.
+    Scene twin = makeHomogeneousTwin(het, -1.0f, &twinDensity, TwinRegion::Domain);
     PassRenderer hetRenderer(het, s), twinRenderer(twin, s);
     std::printf("heterogeneous media (%s)\n", builtIn ? "built-in smoke scene; baseline: the fog scene above"
                                                       : "this scene's grids; baseline: their homogeneous twin");

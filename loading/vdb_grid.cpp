@@ -66,6 +66,7 @@ struct VdbDensityGrid::Impl {
     MajorantGrid majorants;
     float maxDensity = 0;
     float meanDensity = 0;
+    double integratedDensity = 0;  // sum of the positive values x voxel volume x scale
     uint64_t activeVoxels = 0;
     int majorantBlock = 0;
     bool hasDense = false;
@@ -124,7 +125,7 @@ std::shared_ptr<const VdbDensityGrid> makeVdbDensityGrid(openvdb::FloatGrid::Con
 
     // One sweep over every stored value (active or not: trilinear sampling reads both).
     bool negative = grid->background() < 0.0f;
-    double activeSum = 0;
+    double activeSum = 0, positiveSum = 0;
     float maxValue = 0;
     openvdb::CoordBBox box;
     for (auto it = grid->tree().cbeginValueAll(); it; ++it) {
@@ -136,6 +137,7 @@ std::shared_ptr<const VdbDensityGrid> makeVdbDensityGrid(openvdb::FloatGrid::Con
         }
         if (v < 0) negative = true;
         if (!(v > 0)) continue;
+        positiveSum += double(v) * double(it.getVoxelCount());
         openvdb::CoordBBox b;
         it.getBoundingBox(b);
         box.expand(b);
@@ -153,6 +155,8 @@ std::shared_ptr<const VdbDensityGrid> makeVdbDensityGrid(openvdb::FloatGrid::Con
     impl->grid = grid;
     impl->maxDensity = maxValue * scale;
     impl->meanDensity = impl->activeVoxels > 0 ? float(activeSum / double(impl->activeVoxels)) * scale : 0.0f;
+    // Each voxel's trilinear hat integrates to one index-space voxel.
+    impl->integratedDensity = positiveSum * double(scale) * std::abs(double(det));
     impl->empty = box.empty();
     if (impl->empty) return std::make_shared<const VdbDensityGrid>(std::move(impl));
     impl->positiveBox = box;
@@ -351,6 +355,9 @@ float VdbDensityGrid::maxDensity() const {
 }
 float VdbDensityGrid::meanDensity() const {
     return m_impl->meanDensity;
+}
+double VdbDensityGrid::integratedDensity() const {
+    return m_impl->integratedDensity;
 }
 const std::string& VdbDensityGrid::label() const {
     return m_impl->label;

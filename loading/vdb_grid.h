@@ -81,6 +81,8 @@ public:
     const MajorantGrid* majorantGrid() const override;
     float maxDensity() const override;
     float meanDensity() const override;
+    /// Exact for the trilinear field: the sum of the positive voxel values x voxel volume x scale.
+    double integratedDensity() const override;
     bool denseVolume(DensityVolume* out, size_t maxVoxels) const override;
 
     /// "file 'x' grid 'density'" or the label given to fromDense.

@@ -19,6 +19,7 @@
 #include "app/label_text.h"
 #include "loading/default_scene.h"
 #include "loading/default_smoke_scene.h"
+#include "loading/homogeneous_twin.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "tests/test_util.h"
@@ -32,7 +33,7 @@ TEST(HomogeneousTwin, KeepsAlbedoAndGAndUsesTheMeanDensity) {
     const Medium& grid = smoke.media[smoke.globalMedium];
     ASSERT_FALSE(grid.homogeneous());
     std::vector<float> used;
-    Scene twin = makeHomogeneousTwin(smoke, -1.0f, &used);
+    Scene twin = makeHomogeneousTwin(smoke, -1.0f, &used, TwinRegion::Domain);
     const Medium& hom = twin.media[twin.globalMedium];
     ASSERT_TRUE(hom.homogeneous());
     ASSERT_EQ(used.size(), 1u);
@@ -48,7 +49,7 @@ TEST(HomogeneousTwin, KeepsAlbedoAndGAndUsesTheMeanDensity) {
     EXPECT_EQ(twin.meshes.size(), smoke.meshes.size());
     EXPECT_EQ(twin.lights.size(), smoke.lights.size());
     // An explicit density.
-    Scene fixed = makeHomogeneousTwin(smoke, 0.5f);
+    Scene fixed = makeHomogeneousTwin(smoke, 0.5f, nullptr, TwinRegion::Domain);
     EXPECT_NEAR(fixed.media[fixed.globalMedium].sigmaS.r, grid.sigmaS.r * 0.5f, 1e-6f);
     // Nothing to compare in a scene without grids.
     EXPECT_THROW(makeHomogeneousTwin(makeDefaultScene()), Error);
