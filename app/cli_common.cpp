@@ -9,6 +9,7 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <regex>
 
 #include "loading/default_scene.h"
@@ -113,21 +114,79 @@ void addPpbOptions(CLI::App* cmd, CommonOptions& o) {
     addDirectLightOption(cmd, o);
 }
 
+namespace {
+/// An on|off option read into a bool (the text forms are core's: onOffFromText).
+void addOnOffOption(CLI::App* cmd, const std::string& name, bool& target, const std::string& help) {
+    cmd->add_option_function<std::string>(
+           name,
+           [&target, name](const std::string& text) {
+               std::optional<bool> on = onOffFromText(text);
+               if (!on) throw CLI::ValidationError(name, "expected on or off, got '" + text + "'");
+               target = *on;
+           },
+           help)
+        ->type_name("TEXT")
+        ->default_str(onOffText(target));
+}
+
+/// The command-line option that sets each render setting (SettingError::key).
+const std::pair<const char*, const char*> kOptionKeys[] = {
+    {"--passes", "passes"},
+    {"--time", "time"},
+    {"--photons", "photons"},
+    {"--alpha", "alpha"},
+    {"--radius", "radius"},
+    {"--surface-radius", "surface_radius"},
+    {"--radius-offset", "radius_offset"},
+    {"--planned-paths", "planned_paths"},
+    {"--photon-angle", "photon_angle"},
+    {"--free-flights", "free_flights"},
+    {"--seed", "seed"},
+    {"--threads", "threads"},
+    {"--gpu", "gpu"},
+    {"--memory", "memory"},
+    {"--simd", "simd"},
+    {"--direct-light", "direct_light"},
+    {"--surface-boundary", "surface_boundary"}};
+
+/// settings.validate(), its errors naming the command-line option.
+void validateOptions(const RenderSettings& settings) {
+    try {
+        settings.validate();
+    } catch (const SettingError& e) {
+        std::string option = e.key == "size" ? "--size" : "the " + e.key + " setting";
+        for (const auto& [flag, key] : kOptionKeys)
+            if (e.key == key) option = flag;
+        throw Error(option + " " + e.problem);
+    }
+}
+}  // namespace
+
+void addGpuOption(CLI::App* cmd, CommonOptions& o, const std::string& help) {
+    cmd->add_option_function<std::string>(
+           "--gpu",
+           [&o](const std::string& text) {
+               std::optional<GpuMode> mode = gpuModeFromText(text);
+               if (!mode) throw CLI::ValidationError("--gpu", "expected auto, on or off, got '" + text + "'");
+               o.settings.gpu = *mode;
+           },
+           help)
+        ->type_name("TEXT")
+        ->default_str(gpuModeText(o.settings.gpu));
+}
+
 void addDirectLightOption(CLI::App* cmd, CommonOptions& o) {
-    cmd->add_option("--direct-light", o.settings.directLight,
-                    "on|off: direct light on diffuse surfaces by shadow rays; off = surface photons only "
-                    "(docs/algorithm.md)")
-        ->capture_default_str();
-    cmd->add_option("--surface-boundary", o.settings.surfaceBoundary,
-                    "on|off: divide the surface photon kernel by the part of its disc that lies on the "
-                    "surface, so edges and corners are not darkened; off = the plain kernel (docs/algorithm.md)")
-        ->capture_default_str();
+    addOnOffOption(cmd, "--direct-light", o.settings.directLight,
+                   "on|off: direct light on diffuse surfaces by shadow rays; off = surface photons only "
+                   "(docs/algorithm.md)");
+    addOnOffOption(cmd, "--surface-boundary", o.settings.surfaceBoundary,
+                   "on|off: divide the surface photon kernel by the part of its disc that lies on the "
+                   "surface, so edges and corners are not darkened; off = the plain kernel (docs/algorithm.md)");
 }
 
 void addSimdOption(CLI::App* cmd, CommonOptions& o) {
-    cmd->add_option("--simd", o.settings.simd,
-                    "on|off: the CPU beam splat's SIMD kernel; off runs the scalar estimator (its definition)")
-        ->capture_default_str();
+    addOnOffOption(cmd, "--simd", o.settings.simd,
+                   "on|off: the CPU beam splat's SIMD kernel; off runs the scalar estimator (its definition)");
 }
 
 void finishOptions(CommonOptions& o) {
@@ -137,29 +196,12 @@ void finishOptions(CommonOptions& o) {
     o.settings.width = std::stoi(m[1]);
     o.settings.height = std::stoi(m[2]);
     if (!(o.exposure > 0) || !std::isfinite(o.exposure)) throw Error("--exposure must be a positive number");
-    o.settings.validate();
+    validateOptions(o.settings);
 }
 
 namespace {
 /// The render settings given explicitly on the command line, as RenderSettings JSON keys.
 nlohmann::json explicitSettings(const CommonOptions& o) {
-    static const std::pair<const char*, const char*> kOptionKeys[] = {{"--passes", "passes"},
-                                                                      {"--time", "time"},
-                                                                      {"--photons", "photons"},
-                                                                      {"--alpha", "alpha"},
-                                                                      {"--radius", "radius"},
-                                                                      {"--surface-radius", "surface_radius"},
-                                                                      {"--radius-offset", "radius_offset"},
-                                                                      {"--planned-paths", "planned_paths"},
-                                                                      {"--photon-angle", "photon_angle"},
-                                                                      {"--free-flights", "free_flights"},
-                                                                      {"--seed", "seed"},
-                                                                      {"--threads", "threads"},
-                                                                      {"--gpu", "gpu"},
-                                                                      {"--memory", "memory"},
-                                                                      {"--simd", "simd"},
-                                                                      {"--direct-light", "direct_light"},
-                                                                      {"--surface-boundary", "surface_boundary"}};
     nlohmann::json all = o.settings.toJson(), given = nlohmann::json::object();
     auto isGiven = [&](const char* name) {
         const CLI::Option* opt = o.command ? o.command->get_option_no_throw(name) : nullptr;
@@ -193,7 +235,7 @@ Scene loadScene(CommonOptions& o, std::vector<std::string>* cameraNames, std::ve
     // options given.
     RenderSettings fromScene = RenderSettings::fromJson(file.render, file.renderWhere, o.settings);
     o.settings = RenderSettings::fromJson(explicitSettings(o), "command line", fromScene);
-    o.settings.validate();
+    validateOptions(o.settings);
     if (cameraNames) *cameraNames = file.cameras;
     if (cameras) *cameras = file.cameraViews;
     return std::move(file.scene);

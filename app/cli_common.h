@@ -35,6 +35,8 @@ void addSceneAndOutputOptions(CLI::App* cmd, CommonOptions& o, const std::string
 /// Adds the PPB options: --passes --time --photons --alpha --radius --surface-radius.
 void addPpbOptions(CLI::App* cmd, CommonOptions& o);
 
+/// Adds --gpu auto|on|off (RenderSettings::gpu) with `help`.
+void addGpuOption(CLI::App* cmd, CommonOptions& o, const std::string& help);
 /// Adds --simd on|off (RenderSettings::simd); part of addPpbOptions.
 void addSimdOption(CLI::App* cmd, CommonOptions& o);
 /// --direct-light on|off and --surface-boundary on|off (part of addPpbOptions; bench adds them alone).
@@ -44,7 +46,8 @@ void addDirectLightOption(CLI::App* cmd, CommonOptions& o);
 /// `tyndall compare` and the viewer's --compare.
 void addTwinOption(CLI::App* cmd, TwinRegion& region);
 
-/// Parses --size into the settings and validates them; throws Error naming the bad option.
+/// Parses --size into the settings and validates them; throws Error naming the bad option (a
+/// value out of range from the scene's render block is named by the option that sets it).
 void finishOptions(CommonOptions& o);
 /// The scene named on the command line (or the built-in default), finalized and validated, with
 /// the camera --camera selects. The scene file's "render" block replaces the settings' defaults;

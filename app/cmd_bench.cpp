@@ -63,7 +63,7 @@ void printPhotonStage(const PassRenderer& renderer, int passes) {
 
 void printPasses(const PassRenderer& renderer, int passes) {
     const RenderSettings& s = renderer.settings();
-    std::printf("full passes (CPU only, --simd %s)\n", s.simd.c_str());
+    std::printf("full passes (CPU only, --simd %s)\n", onOffText(s.simd));
     PassRate pr = measurePasses(renderer, passes);
     const double perPass = 1.0 / pr.passesPerSecond;
     const double pixels = double(s.width) * s.height * pr.passes;

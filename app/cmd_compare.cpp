@@ -102,9 +102,7 @@ void addCompareCommand(CLI::App& app, int& exitCode) {
         "same passes and photons; writes one labelled side-by-side image plus one EXR per half");
     addSceneAndOutputOptions(cmd, o->common, "compare.png");
     addPpbOptions(cmd, o->common);
-    cmd->add_option("--gpu", o->common.settings.gpu,
-                    "Primary-beam splatting on OpenGL: auto, on or off (as for `tyndall render`)")
-        ->capture_default_str();
+    addGpuOption(cmd, o->common, "Primary-beam splatting on OpenGL: auto, on or off (as for `tyndall render`)");
     CLI::Option* density = cmd->add_option(
         "--density", o->density, "Density of the homogeneous twin (default: each grid's mean over the twin's region)");
     addTwinOption(cmd, o->twin);
@@ -132,7 +130,7 @@ void addCompareCommand(CLI::App& app, int& exitCode) {
         twin.validate();
 
         ThreadLimit threads(c.settings.threads);
-        PassScheduler scheduler(parseGpuMode(c.settings.gpu));
+        PassScheduler scheduler(c.settings.gpu);
         // Ctrl-C ends the heterogeneous half (written at once); its twin still renders as many
         // passes, unless Ctrl-C comes again; a third quits.
         installInterruptHandler(3);

@@ -195,10 +195,10 @@ void runRender(RenderOptions& o, CLI::App* cmd, int& exitCode) {
     const bool rounds = o.aov || ranks.distributed();
     std::unique_ptr<PassScheduler> scheduler;
     if (!rounds) {
-        scheduler = std::make_unique<PassScheduler>(parseGpuMode(s.gpu));
+        scheduler = std::make_unique<PassScheduler>(s.gpu);
         scheduler->bind(scene);
         if (!scheduler->notice().empty()) std::fprintf(stderr, "tyndall: %s\n", scheduler->notice().c_str());
-    } else if (s.gpu == "on") {
+    } else if (s.gpu == GpuMode::On) {
         throw Error("--gpu on: --aov and mpirun renders splat on the CPU (use --gpu auto or off)");
     }
 
@@ -286,10 +286,9 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
     CLI::App* cmd = app.add_subcommand("render", "Render a scene with progressive photon beams");
     addSceneAndOutputOptions(cmd, o->common, "tyndall.png");
     addPpbOptions(cmd, o->common);
-    cmd->add_option("--gpu", o->common.settings.gpu,
-                    "Primary-beam splatting on OpenGL: auto (a hardware GPU when there is one, else the CPU), "
-                    "on (OpenGL or fail; llvmpipe counts), off (CPU only, never touches OpenGL)")
-        ->capture_default_str();
+    addGpuOption(cmd, o->common,
+                 "Primary-beam splatting on OpenGL: auto (a hardware GPU when there is one, else the CPU), "
+                 "on (OpenGL or fail; llvmpipe counts), off (CPU only, never touches OpenGL)");
     cmd->add_option("--checkpoint", o->checkpoint,
                     "Save the render's state to FILE every --checkpoint-every seconds, on Ctrl-C/SIGTERM and at the "
                     "end (atomically: a kill leaves the old or the new file) (default: none, no checkpoints)");

@@ -31,8 +31,7 @@ void addViewCommand(CLI::App& app, int& exitCode) {
     CommonOptions& c = o->common;
     addSceneAndOutputOptions(cmd, c, "");
     addPpbOptions(cmd, c);
-    cmd->add_option("--gpu", c.settings.gpu, "Primary-beam splatting on OpenGL: auto, on or off (as for `tyndall render`)")
-        ->capture_default_str();
+    addGpuOption(cmd, c, "Primary-beam splatting on OpenGL: auto, on or off (as for `tyndall render`)");
     cmd->add_option("--exposure", o->exposure, "Display exposure (also + / - and the panel)")->capture_default_str();
     cmd->add_option("--script", o->script, "Scripted input (tests, benchmarks; format in docs/viewer.md)")
         ->check(CLI::ExistingFile);
@@ -76,7 +75,7 @@ void addViewCommand(CLI::App& app, int& exitCode) {
             v.twin.validate();
         }
         v.settings = c.settings;
-        v.gpu = parseGpuMode(c.settings.gpu);
+        v.gpu = c.settings.gpu;
         v.exposure = o->exposure;
         v.script = o->script;
         v.statsPath = o->stats;

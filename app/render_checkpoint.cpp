@@ -85,9 +85,9 @@ RenderRecord readRecord(const Checkpoint& c, const std::string& where) {
         r.sceneHash = std::stoull(j.at("scene_hash").get<std::string>(), nullptr, 16);
         r.settings = RenderSettings::fromJson(j.at("settings"), where + ": settings");
         // Checkpoints from before --direct-light rendered with surface photons alone.
-        if (!j.at("settings").contains("direct_light")) r.settings.directLight = "off";
+        if (!j.at("settings").contains("direct_light")) r.settings.directLight = false;
         // ... and from before --surface-boundary with the plain kernel.
-        if (!j.at("settings").contains("surface_boundary")) r.settings.surfaceBoundary = "off";
+        if (!j.at("settings").contains("surface_boundary")) r.settings.surfaceBoundary = false;
         r.output = j.at("output").get<std::string>();
         r.exposure = j.at("exposure").get<float>();
         r.aov = j.at("aov").get<bool>();

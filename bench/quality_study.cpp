@@ -25,8 +25,8 @@ using app::processCpuSeconds;
 RenderSettings withLegacyDefaults(RenderSettings s, const Scene& scene) {
     s = withSceneRelativeRadii(s, scene);
     s.photonAngle = 0;
-    s.directLight = "off";
-    s.surfaceBoundary = "off";
+    s.directLight = false;
+    s.surfaceBoundary = false;
     return s;
 }
 
@@ -156,7 +156,7 @@ Curve studyRow(const Scene& scene, const Variant& v, const Reference& ref, uint6
                 "photon angle %.3g, direct light %s, boundary %s)\n",
                 scene.name.c_str(), v.label.c_str(), passesDone, cpu, 100 * e.relRmse, 100 * e.relRmse99,
                 100 * e.relBias, rEnd / fp.beam(1.0), r.radius, r.surfaceRadius, (unsigned long long)r.radiusOffset,
-                r.photonAngle, r.directLight.c_str(), r.surfaceBoundary.c_str());
+                r.photonAngle, onOffText(r.directLight), onOffText(r.surfaceBoundary));
     std::fflush(stdout);
     return curve;
 }

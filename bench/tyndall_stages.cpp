@@ -135,8 +135,8 @@ void printSimdStudy(const Scene& scene, const PassRenderer& renderer, int passes
     printRate("SIMD splat", sr.simdEvalsPerSecond / 1e6, "M evals/s",
               ratio(sr.simdEvalsPerSecond, sr.scalarEvalsPerSecond, "scalar") + " (target >= 4x)");
     RenderSettings scalarSettings = renderer.settings(), simdSettings = renderer.settings();
-    scalarSettings.simd = "off";
-    simdSettings.simd = "on";
+    scalarSettings.simd = false;
+    simdSettings.simd = true;
     PassRenderer scalarRenderer(scene, scalarSettings), simdRenderer(scene, simdSettings);
     PassRate scalarPasses, simdPasses;
     measurePassesAlternating(scalarRenderer, simdRenderer, passes, &scalarPasses, &simdPasses);

@@ -7,29 +7,51 @@
 
 namespace tyndall {
 
+const char* gpuModeText(GpuMode mode) {
+    switch (mode) {
+        case GpuMode::On: return "on";
+        case GpuMode::Off: return "off";
+        case GpuMode::Auto: break;
+    }
+    return "auto";
+}
+
+std::optional<GpuMode> gpuModeFromText(std::string_view text) {
+    if (text == "auto") return GpuMode::Auto;
+    if (text == "on") return GpuMode::On;
+    if (text == "off") return GpuMode::Off;
+    return std::nullopt;
+}
+
+const char* onOffText(bool on) { return on ? "on" : "off"; }
+
+std::optional<bool> onOffFromText(std::string_view text) {
+    if (text == "on") return true;
+    if (text == "off") return false;
+    return std::nullopt;
+}
+
+SettingError::SettingError(std::string k, std::string p)
+    : Error("render setting '" + k + "' " + p), key(std::move(k)), problem(std::move(p)) {}
+
 void RenderSettings::validate() const {
-    auto fail = [](const std::string& m) { throw Error(m); };
+    auto fail = [](const char* key, const std::string& problem) { throw SettingError(key, problem); };
     if (width <= 0 || height <= 0 || width > 16384 || height > 16384)
-        fail("--size: width and height must be in 1..16384 (got " + std::to_string(width) + "x" + std::to_string(height) + ")");
-    if (!(alpha > 0.0 && alpha < 1.0)) fail("--alpha must lie strictly between 0 and 1 (got " + std::to_string(alpha) + ")");
-    if (passes == 0 && timeBudget <= 0) fail("--passes must be positive");
-    if (!(timeBudget >= 0) || !std::isfinite(timeBudget)) fail("--time must be a non-negative number of seconds");
-    if (photonsPerPass == 0) fail("--photons must be positive");
-    if (!(radius >= 0) || !std::isfinite(radius)) fail("--radius must be >= 0 (0 = automatic)");
-    if (!(surfaceRadius >= 0) || !std::isfinite(surfaceRadius)) fail("--surface-radius must be >= 0 (0 = automatic)");
+        fail("size", "must be in 1..16384 per side (got " + std::to_string(width) + "x" + std::to_string(height) + ")");
+    if (!(alpha > 0.0 && alpha < 1.0)) fail("alpha", "must lie strictly between 0 and 1 (got " + std::to_string(alpha) + ")");
+    if (passes == 0 && timeBudget <= 0) fail("passes", "must be positive");
+    if (!(timeBudget >= 0) || !std::isfinite(timeBudget)) fail("time", "must be a non-negative number of seconds");
+    if (photonsPerPass == 0) fail("photons", "must be positive");
+    if (!(radius >= 0) || !std::isfinite(radius)) fail("radius", "must be >= 0 (0 = automatic)");
+    if (!(surfaceRadius >= 0) || !std::isfinite(surfaceRadius)) fail("surface_radius", "must be >= 0 (0 = automatic)");
     if (!(photonAngle >= 0 || photonAngle == kAutoPhotonAngle) || !std::isfinite(photonAngle))
-        fail("--photon-angle must be >= 0 radians (0 = off) or automatic");
-    if (threads < 0) fail("--threads must be >= 0 (0 = all cores)");
-    if (maxPhotonBounces <= 0 || maxCameraBounces <= 0) fail("bounce limits must be positive");
-    if (freeFlightSamples < 1 || freeFlightSamples > 64) fail("--free-flights must be in 1..64");
+        fail("photon_angle", "must be >= 0 radians (0 = off) or automatic");
+    if (threads < 0) fail("threads", "must be >= 0 (0 = all cores)");
+    if (maxPhotonBounces <= 0) fail("max_photon_bounces", "must be positive");
+    if (maxCameraBounces <= 0) fail("max_camera_bounces", "must be positive");
+    if (freeFlightSamples < 1 || freeFlightSamples > 64) fail("free_flights", "must be in 1..64");
     if (memoryMiB < 64 || memoryMiB > (uint64_t(1) << 30))
-        fail("--memory must be in 64..2^30 MiB (got " + std::to_string(memoryMiB) + ")");
-    if (gpu != "auto" && gpu != "on" && gpu != "off") fail("--gpu must be auto, on or off (got '" + gpu + "')");
-    if (simd != "on" && simd != "off") fail("--simd must be on or off (got '" + simd + "')");
-    if (directLight != "on" && directLight != "off")
-        fail("--direct-light must be on or off (got '" + directLight + "')");
-    if (surfaceBoundary != "on" && surfaceBoundary != "off")
-        fail("--surface-boundary must be on or off (got '" + surfaceBoundary + "')");
+        fail("memory", "must be in 64..2^30 MiB (got " + std::to_string(memoryMiB) + ")");
 }
 
 nlohmann::json RenderSettings::toJson() const {
@@ -49,11 +71,11 @@ nlohmann::json RenderSettings::toJson() const {
             {"max_photon_bounces", maxPhotonBounces},
             {"max_camera_bounces", maxCameraBounces},
             {"free_flights", freeFlightSamples},
-            {"gpu", gpu},
+            {"gpu", gpuModeText(gpu)},
             {"memory", memoryMiB},
-            {"simd", simd},
-            {"direct_light", directLight},
-            {"surface_boundary", surfaceBoundary}};
+            {"simd", onOffText(simd)},
+            {"direct_light", onOffText(directLight)},
+            {"surface_boundary", onOffText(surfaceBoundary)}};
 }
 
 namespace {
@@ -75,6 +97,24 @@ void read(const nlohmann::json& j, const char* key, T& out, const std::string& w
     } catch (const std::exception& e) {
         throw Error(where + "/" + key + ": " + e.what());
     }
+}
+
+void read(const nlohmann::json& j, const char* key, GpuMode& out, const std::string& where) {
+    auto it = j.find(key);
+    if (it == j.end()) return;
+    std::optional<GpuMode> mode = it->is_string() ? gpuModeFromText(it->get<std::string>()) : std::nullopt;
+    if (!mode) throw Error(where + "/" + key + ": expected \"auto\", \"on\" or \"off\"");
+    out = *mode;
+}
+
+void read(const nlohmann::json& j, const char* key, bool& out, const std::string& where) {
+    auto it = j.find(key);
+    if (it == j.end()) return;
+    std::optional<bool> on = it->is_boolean()  ? std::optional<bool>(it->get<bool>())
+                             : it->is_string() ? onOffFromText(it->get<std::string>())
+                                               : std::nullopt;
+    if (!on) throw Error(where + "/" + key + ": expected \"on\" or \"off\" (or true or false)");
+    out = *on;
 }
 }  // namespace
 

@@ -2,11 +2,38 @@
 // Render settings: a plain struct that reads and writes the same JSON (the scene file's
 // "render" block, the EXR metadata). Every field has the default listed by `tyndall --help`.
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "core/error.h"
+
 namespace tyndall {
+
+/// Where the primary media are splatted: Off never touches GL; On needs the GL splatter (an error
+/// otherwise); Auto uses it when a hardware GL context exists and the scene's media can be
+/// splatted, else the CPU twin (hybrid/pass_scheduler.h).
+enum class GpuMode { Auto, On, Off };
+
+/// The text forms of the typed settings, used only where settings meet text (the command line, a
+/// scene's "render" block, EXR metadata, checkpoints, view files): "auto" | "on" | "off", and
+/// "on" | "off" for the switches. The readers return nullopt for any other text.
+const char* gpuModeText(GpuMode mode);
+std::optional<GpuMode> gpuModeFromText(std::string_view text);
+const char* onOffText(bool on);
+std::optional<bool> onOffFromText(std::string_view text);
+
+/// A render setting out of range, thrown by RenderSettings::validate(). `key` is the setting's
+/// JSON name ("alpha", or "size" for width and height); what() reads "render setting 'alpha'
+/// <problem>", and a command line reports the option instead ("--alpha <problem>").
+class SettingError : public Error {
+public:
+    SettingError(std::string key, std::string problem);
+    std::string key;
+    std::string problem;  ///< "must lie strictly between 0 and 1 (got 1.5)"
+};
 
 struct RenderSettings {
     int width = 512;
@@ -40,28 +67,30 @@ struct RenderSettings {
     int maxPhotonBounces = 32;       ///< photon path vertices before termination
     int maxCameraBounces = 16;       ///< specular camera-path vertices before termination
     int freeFlightSamples = 4;       ///< stored free-flight distances per beam/ray (heterogeneous)
-    std::string gpu = "auto";        ///< auto | on | off
+    GpuMode gpu = GpuMode::Auto;
     /// Working-memory budget of the pass loop, MiB: image buffers plus the photon batches a pass
     /// is traced in (cpu/memory_plan.h). Sets the batch size, never the image.
     uint64_t memoryMiB = 2048;
-    /// on | off: the CPU beam rasterizer's SIMD kernel (off = the scalar definition; the two agree
-    /// to ~1e-7 relative per pixel, docs/performance.md)
-    std::string simd = "on";
-    /// on | off: direct light on diffuse surfaces by shadow rays (next-event estimation,
+    /// The CPU beam rasterizer's SIMD kernel (false = the scalar definition; the two agree to ~1e-7
+    /// relative per pixel, docs/performance.md)
+    bool simd = true;
+    /// Direct light on diffuse surfaces by shadow rays (next-event estimation,
     /// cpu/direct_light.h) instead of the surface photons that arrive straight from a light, which
     /// are then not stored (docs/algorithm.md, "Direct light by shadow rays"). off = photons only.
-    std::string directLight = "on";
-    /// on | off: the surface photon kernel divided by the part of its disc that lies on surface
+    bool directLight = true;
+    /// The surface photon kernel divided by the part of its disc that lies on surface
     /// that can hold those photons (cpu/surface_boundary.h), which removes the estimate's loss at
     /// the edges and corners of surfaces (docs/algorithm.md, "The surface kernel at edges").
-    /// off = the plain kernel.
-    std::string surfaceBoundary = "on";
+    /// false = the plain kernel.
+    bool surfaceBoundary = true;
 
-    /// Throws Error naming the option when a value is out of range.
+    /// Throws SettingError naming the setting when a value is out of range.
     void validate() const;
+    /// The typed settings as their text forms ("gpu": "auto", "simd": "on", ...).
     nlohmann::json toJson() const;
     /// Reads the keys present in `j` over the defaults; unknown keys and wrong types throw Error
-    /// naming `where` (a file and JSON path) and the key.
+    /// naming `where` (a file and JSON path) and the key. The switches read "on"/"off" or a JSON
+    /// true/false.
     static RenderSettings fromJson(const nlohmann::json& j, const std::string& where, RenderSettings base);
     static RenderSettings fromJson(const nlohmann::json& j, const std::string& where);
 };

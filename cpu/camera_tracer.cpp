@@ -47,8 +47,8 @@ Rgb gatherBeams(const Scene& scene, const PhotonMap& photons, const std::vector<
 CameraTracer::CameraTracer(const EmbreeScene& rt, const RenderSettings& settings)
     : m_rt(rt), m_scene(rt.scene()), m_settings(settings) {
     for (const Medium& m : m_scene.media) m_anyHeterogeneous |= !m.homogeneous();
-    if (settings.surfaceBoundary == "on") m_boundary = std::make_unique<SurfaceBoundary>(m_scene, m_rt);
-    if (settings.directLight == "on") {
+    if (settings.surfaceBoundary) m_boundary = std::make_unique<SurfaceBoundary>(m_scene, m_rt);
+    if (settings.directLight) {
         lightsChanged();
         // Photons from glossy and plastic surfaces (kPhotonDirect ones among them, for their
         // specular gathers) reach a diffuse gather where such a surface is in the kernel; without
@@ -59,7 +59,7 @@ CameraTracer::CameraTracer(const EmbreeScene& rt, const RenderSettings& settings
 }
 
 void CameraTracer::lightsChanged() {
-    if (m_settings.directLight != "on") return;
+    if (!m_settings.directLight) return;
     m_direct.reset();
     m_lights = std::make_unique<LightSampler>(m_scene);
     m_direct = std::make_unique<DirectLight>(m_rt, *m_lights);

@@ -71,7 +71,7 @@ PassRenderer::PassRenderer(const Scene& scene, const RenderSettings& settings, B
       m_bvhKind(beamBvh),
       m_photons(std::make_unique<PhotonTracer>(*m_rt, m_settings, m_radii)),
       m_camera(std::make_unique<CameraTracer>(*m_rt, m_settings)),
-      m_rasterizer(scene, m_settings.simd == "off" ? SplatKernel::Scalar : SplatKernel::Simd) {
+      m_rasterizer(scene, m_settings.simd ? SplatKernel::Simd : SplatKernel::Scalar) {
     for (const Material& m : scene.materials) m_anyNonDiffuse |= m.type != MaterialType::Diffuse;
 }
 

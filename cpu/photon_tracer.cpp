@@ -32,7 +32,7 @@ PhotonTracer::PhotonTracer(const EmbreeScene& rt, const RenderSettings& settings
     for (const Light& l : m_scene.lights)
         m_lightMedium.push_back(l.type == LightType::Directional ? m_scene.globalMedium : m_rt.mediumAt(l.position));
     for (const Medium& m : m_scene.media) m_anyHeterogeneous |= !m.homogeneous();
-    m_directLight = settings.directLight == "on";
+    m_directLight = settings.directLight;
     // The photon cone of an area light starts at its equivalent radius sqrt(area / 4 pi).
     for (const TriangleMesh& mesh : m_scene.meshes) {
         double area = 0;

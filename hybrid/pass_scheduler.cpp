@@ -17,13 +17,6 @@ double secondsSince(Clock::time_point t0) {
 }
 }  // namespace
 
-GpuMode parseGpuMode(const std::string& text) {
-    if (text == "auto") return GpuMode::Auto;
-    if (text == "on") return GpuMode::On;
-    if (text == "off") return GpuMode::Off;
-    throw Error("--gpu must be auto, on or off (got '" + text + "')");
-}
-
 /// One pass between its CPU stages and the accumulator.
 struct PassScheduler::Flight {
     uint64_t pass = 0;

@@ -37,14 +37,11 @@ namespace tyndall {
 class GlThread;
 class GlBeamSplatter;
 
-/// `--gpu`: off never touches GL; on needs the GL splatter (Error otherwise); auto uses it when
-/// a hardware GL context exists and the scene's media can be splatted, else the CPU, with a
-/// one-line notice (a software rasterizer such as llvmpipe would take its cores from the CPU
-/// passes and run the splat slower than the CPU twin: see docs/performance.md).
-enum class GpuMode { Off, On, Auto };
-/// "auto" | "on" | "off"; throws Error naming --gpu otherwise.
-GpuMode parseGpuMode(const std::string& text);
-
+/// GpuMode (core/settings.h) here: Off never touches GL; On needs the GL splatter (Error
+/// otherwise); Auto uses it when a hardware GL context exists and the scene's media can be
+/// splatted, else the CPU, with a one-line notice (a software rasterizer such as llvmpipe would
+/// take its cores from the CPU passes and run the splat slower than the CPU twin: see
+/// docs/performance.md).
 struct SchedulerOptions {
     int queueDepth = 1;                  ///< passes that may wait for the GL splat (>= 1)
     bool autoAcceptsSoftwareGl = false;  ///< let Auto use llvmpipe & co. (tests, benchmarks)

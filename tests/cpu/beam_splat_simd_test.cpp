@@ -222,7 +222,7 @@ TEST(BeamSplatSimd, DefaultScenePassIsIndependentOfTheThreadCount) {
     settings.height = 90;
     settings.photonsPerPass = 500;
     PassRenderer renderer(scene, settings);
-    ASSERT_EQ(renderer.settings().simd, "on");
+    ASSERT_TRUE(renderer.settings().simd);
     PhotonMap photons = renderer.tracePhotons(3);
     CameraPassResult camera = renderer.traceCamera(3, photons);
     auto splat = [&](int threads) {

@@ -239,7 +239,7 @@ RegionMeans compareRegion(const Scene& scene, int size, int mesh, uint32_t photo
                           uint32_t referenceSpp) {
     std::vector<int> meshes = test::pixelMeshes(scene, size);
     RegionMeans r;
-    auto ppb = [&](const char* directLight, double* mean, double* se) {
+    auto ppb = [&](bool directLight, double* mean, double* se) {
         RenderSettings ps;
         ps.width = ps.height = size;
         ps.photonsPerPass = photons;
@@ -261,8 +261,8 @@ RegionMeans compareRegion(const Scene& scene, int size, int mesh, uint32_t photo
         for (double v : m) var += (v - *mean) * (v - *mean) / (batches - 1);
         *se = std::sqrt(var / batches);
     };
-    ppb("on", &r.on, &r.seOn);
-    ppb("off", &r.off, &r.seOff);
+    ppb(true, &r.on, &r.seOn);
+    ppb(false, &r.off, &r.seOff);
     if (referenceSpp > 0) {
         ReferenceSettings rs;
         rs.width = rs.height = size;

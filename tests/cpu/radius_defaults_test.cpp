@@ -304,7 +304,7 @@ TEST(RadiusDefaults, SurfacePhotonsNearALightGetTheConesRadius) {
     in.height = 32;
     in.photonsPerPass = 2000;
     in.passes = 20;
-    in.directLight = "off";  // photons for the direct light too (with shadow rays none are stored)
+    in.directLight = false;  // photons for the direct light too (with shadow rays none are stored)
     // The light sits deeper than the fog's median depth, where the automatic cone stays off
     // (kConeMinLightFootprints): the angle is given, the radii automatic.
     in.photonAngle = 0.5f;

@@ -239,7 +239,7 @@ Scene blackWallRoom(MaterialType floorType = MaterialType::Diffuse) {
 
 /// The mean of `passes` passes' surface layer (photons only, no shadow rays) at n x n, the surface
 /// radius fixed at r (schedule offset 2^40), 20000 photon paths a pass, seed 3.
-Image renderSurfaceLayer(const Scene& scene, int n, float r, uint64_t passes, const std::string& boundary) {
+Image renderSurfaceLayer(const Scene& scene, int n, float r, uint64_t passes, bool boundary) {
     RenderSettings s;
     s.width = s.height = n;
     s.photonsPerPass = 20000;
@@ -249,9 +249,9 @@ Image renderSurfaceLayer(const Scene& scene, int n, float r, uint64_t passes, co
     s.surfaceRadius = r;
     s.radiusOffset = uint64_t(1) << 40;  // the radius stays r
     s.photonAngle = 0;
-    s.directLight = "off";
+    s.directLight = false;
     s.surfaceBoundary = boundary;
-    s.gpu = "off";
+    s.gpu = GpuMode::Off;
     PassRenderer renderer(scene, s, BeamBvh::Kind::FlatCurves, true);
     Accumulator acc(n, n);
     for (uint64_t pass = 0; pass < s.passes; ++pass) acc.addPass(renderer.renderPassLayers(pass).surface);
@@ -339,7 +339,7 @@ TEST(SurfaceBoundary, PlasticFloorIsRenormalisedLikeADiffuseOne) {
     const Scene scene = blackWallRoom(MaterialType::Plastic);
     const int n = 32;
     const float r = 0.1f;
-    const Image off = renderSurfaceLayer(scene, n, r, 2, "off"), on = renderSurfaceLayer(scene, n, r, 2, "on");
+    const Image off = renderSurfaceLayer(scene, n, r, 2, false), on = renderSurfaceLayer(scene, n, r, 2, true);
     // Pixels by the floor distance of their centre to the nearest wall (the floor fills the image).
     double edgeOn = 0, edgeOff = 0, middleOn = 0, middleOff = 0;
     for (int y = 0; y < n; ++y)
@@ -463,8 +463,8 @@ TEST(SurfaceBoundary, RugOnAFloorIsNotOverCounted) {
         }
     };
     Band edgeOff, middleOff, edgeOn, middleOn;
-    bands(renderSurfaceLayer(scene, n, r, 8, "off"), &edgeOff, &middleOff);
-    bands(renderSurfaceLayer(scene, n, r, 8, "on"), &edgeOn, &middleOn);
+    bands(renderSurfaceLayer(scene, n, r, 8, false), &edgeOff, &middleOff);
+    bands(renderSurfaceLayer(scene, n, r, 8, true), &edgeOn, &middleOn);
     std::printf("rug 0.1 r above the floor, band within r/2 of its rim / closed form: plain kernel's mean %.4f, "
                 "boundary without the layer probe %.4f; render off %.4f, on %.4f (middle: %.4f, %.4f)\n",
                 edgeOff.plain / edgeOff.closed, edgeOff.old / edgeOff.closed, edgeOff.render / edgeOff.closed,

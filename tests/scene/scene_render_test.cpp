@@ -30,7 +30,7 @@ constexpr uint32_t kLibrarySpp = 32;
 /// `sceneRelativeRadii`: radii of 0.5% / 2% of the scene's diagonal instead of the automatic ones.
 std::vector<double> renderLuminance(const Scene& scene, int size, int passes, uint32_t photons,
                                     const std::string& evidence, bool sceneRelativeRadii = false,
-                                    const std::string& directLight = "on") {
+                                    bool directLight = true) {
     RenderSettings rs;
     rs.directLight = directLight;
     rs.width = rs.height = size;

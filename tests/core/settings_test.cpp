@@ -1,0 +1,78 @@
+// RenderSettings' typed switches and GPU mode: the text forms written and read at the edges (scene
+// render blocks, EXR metadata, checkpoints), the older "on"/"off" text and JSON booleans read, bad
+// text refused naming the key, and validate() naming the setting by its key, not by an option.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "core/settings.h"
+
+namespace tyndall {
+namespace {
+
+TEST(Settings, TypedSwitchesRoundTripThroughTheirText) {
+    RenderSettings s;
+    s.gpu = GpuMode::Off;
+    s.simd = false;
+    s.directLight = true;
+    s.surfaceBoundary = false;
+    nlohmann::json j = s.toJson();
+    EXPECT_EQ(j.at("gpu"), "off");
+    EXPECT_EQ(j.at("simd"), "off");
+    EXPECT_EQ(j.at("direct_light"), "on");
+    EXPECT_EQ(j.at("surface_boundary"), "off");
+    RenderSettings back = RenderSettings::fromJson(j, "test");
+    EXPECT_EQ(back.gpu, GpuMode::Off);
+    EXPECT_FALSE(back.simd);
+    EXPECT_TRUE(back.directLight);
+    EXPECT_FALSE(back.surfaceBoundary);
+    for (GpuMode m : {GpuMode::Auto, GpuMode::On, GpuMode::Off}) EXPECT_EQ(gpuModeFromText(gpuModeText(m)), m);
+}
+
+TEST(Settings, SwitchesReadOnOffTextAndJsonBooleans) {
+    RenderSettings s = RenderSettings::fromJson(
+        nlohmann::json{{"simd", false}, {"direct_light", "off"}, {"surface_boundary", true}, {"gpu", "on"}}, "test");
+    EXPECT_FALSE(s.simd);
+    EXPECT_FALSE(s.directLight);
+    EXPECT_TRUE(s.surfaceBoundary);
+    EXPECT_EQ(s.gpu, GpuMode::On);
+}
+
+TEST(Settings, BadTextIsRefusedNamingTheKey) {
+    for (const auto& [key, value] : std::vector<std::pair<std::string, nlohmann::json>>{
+             {"gpu", "yes"}, {"gpu", true}, {"simd", "maybe"}, {"direct_light", 1}, {"surface_boundary", "ON"}}) {
+        try {
+            RenderSettings::fromJson(nlohmann::json{{key, value}}, "scene.json: /render");
+            ADD_FAILURE() << key << " = " << value.dump() << " was accepted";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("scene.json: /render/" + key), std::string::npos) << e.what();
+        }
+    }
+    EXPECT_FALSE(onOffFromText("true"));
+    EXPECT_FALSE(gpuModeFromText("Auto"));
+}
+
+TEST(Settings, ValidateNamesTheSettingKey) {
+    RenderSettings s;
+    s.alpha = 1.5;
+    try {
+        s.validate();
+        FAIL() << "alpha 1.5 passed";
+    } catch (const SettingError& e) {
+        EXPECT_EQ(e.key, "alpha");
+        EXPECT_EQ(std::string(e.what()).find("--"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("alpha"), std::string::npos) << e.what();
+    }
+    s = RenderSettings();
+    s.width = 0;
+    try {
+        s.validate();
+        FAIL() << "width 0 passed";
+    } catch (const SettingError& e) {
+        EXPECT_EQ(e.key, "size");
+    }
+    EXPECT_NO_THROW(RenderSettings().validate());
+}
+
+}  // namespace
+}  // namespace tyndall
