@@ -302,7 +302,7 @@ TEST(SurfaceBoundary, FloorAgainstTheClosedFormAtTheWalls) {
         double render = 0, closed = 0, expected = 0;
     };
     auto bands = [&](const std::string& boundary, Band* edge, Band* middle) {
-        const Image img = renderSurfaceLayer(scene, n, float(r), 8, boundary);
+        const Image img = renderSurfaceLayer(scene, n, float(r), 8, boundary == "on");
         for (int k = 0; k < n * n; ++k) {
             if (count[k] < sub * sub) continue;  // pixels wholly on the floor
             Band* b = wallDistance[k] < 0.5 * r ? edge : wallDistance[k] > 1.5 * r ? middle : nullptr;
