@@ -19,7 +19,7 @@ namespace {
 // BVH and grid arrays). glibc's dynamic mmap threshold makes whether they come from the heap or
 // from fresh mmaps (page-faulted anew every pass) depend on what was freed earlier: pooling the
 // largest buffers (camera_tracer.h) lowered it and tripled a 512x512 pass's page faults
-// (docs/performance.md). Fixed here instead: blocks up to glibc's 32 MiB maximum come from the
+// (CHANGELOG.md, 2026-12-02). Fixed here instead: blocks up to glibc's 32 MiB maximum come from the
 // heap, and freed heap memory up to 256 MiB stays mapped for the next pass (the peak is what the
 // memory plan bounds; this only keeps it instead of returning and faulting it in again).
 void setAllocatorForPasses() {

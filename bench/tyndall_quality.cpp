@@ -9,6 +9,7 @@
 
 #include "app/cli_common.h"
 #include "bench/quality_study.h"
+#include "bench/study_cli.h"
 #include "core/error.h"
 
 namespace tyndall::bench {
@@ -75,14 +76,5 @@ int main(int argc, char** argv) {
     tyndall::bench::Options o;
     o.common.command = &cli;
     tyndall::bench::addOptions(cli, o);
-    try {
-        cli.parse(argc, argv);
-        tyndall::bench::run(o);
-    } catch (const CLI::ParseError& e) {
-        return cli.exit(e);
-    } catch (const tyndall::Error& e) {
-        std::fprintf(stderr, "tyndall_quality: %s\n", e.what());
-        return 1;
-    }
-    return 0;
+    return tyndall::bench::runStudy(cli, argc, argv, [&o] { tyndall::bench::run(o); });
 }

@@ -14,7 +14,7 @@
 #include "bench/free_flights.h"
 #include "bench/pass_rate_targets.h"
 #include "bench/stage_studies.h"
-#include "core/error.h"
+#include "bench/study_cli.h"
 #include "cpu/beam_splat_simd.h"
 #include "loading/default_smoke_scene.h"
 #include "loading/homogeneous_twin.h"
@@ -228,14 +228,5 @@ int main(int argc, char** argv) {
     tyndall::bench::StageOptions o;
     o.common.settings.photonsPerPass = 1000;
     tyndall::bench::addOptions(cli, o);
-    try {
-        cli.parse(argc, argv);
-        tyndall::bench::run(o);
-    } catch (const CLI::ParseError& e) {
-        return cli.exit(e);
-    } catch (const tyndall::Error& e) {
-        std::fprintf(stderr, "tyndall_stages: %s\n", e.what());
-        return 1;
-    }
-    return 0;
+    return tyndall::bench::runStudy(cli, argc, argv, [&o] { tyndall::bench::run(o); });
 }

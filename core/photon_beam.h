@@ -42,6 +42,11 @@ struct SurfacePhoton {
     uint8_t flags = 0;
 };
 
+/// A surface photon counts at a gather point, and a mesh edge bounds the kernel there, only when
+/// their normals agree with the point's to this cosine: the same surface (or, with |.|, either
+/// side of it), not a neighbour meeting it at an angle.
+inline constexpr float kSurfaceNormalAgreement = 0.7f;
+
 /// Everything photon tracing produced for one pass.
 struct PhotonMap {
     uint64_t pass = 0;

@@ -265,7 +265,7 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                         E = !hasShadingNormal(hit) && skip == 0
                                 ? surfacePhotons.density(hit.p, side.nf)
                                 : surfacePhotons.gather(hit.p, side.nf, [&](const SurfacePhoton& p) {
-                                      return dot(p.normal, side.nf) < 0.7f || (p.flags & skip)
+                                      return dot(p.normal, side.nf) < kSurfaceNormalAgreement || (p.flags & skip)
                                                  ? 0.0f
                                                  : shadingCosineRatio(side, p.wi);
                                   });

@@ -55,7 +55,7 @@ struct PrimaryHit {
 
 /// Per-pixel primary hits, taken from and given back to the CameraTracer's pool: a 1080p pass's
 /// hits are 160 MB, and allocating and zeroing them anew every pass cost about 15% of its time in
-/// page faults and initialisation (perf, docs/performance.md). Given back when the last PrimaryPass
+/// page faults and initialisation (perf; CHANGELOG.md, 2026-12-02). Given back when the last PrimaryPass
 /// holding them goes; the pool keeps at most two (a pass and the one a scheduler overlaps with it).
 using PrimaryHitBuffer = std::shared_ptr<std::vector<PrimaryHit>>;
 
@@ -75,7 +75,7 @@ private:
 /// The primary stage of a pass: the splatters' input and where the secondary stage goes on.
 /// Move-only. Its segments' arrays (66 MB of rays at 1080p) go back to the CameraTracer's pool
 /// when it is destroyed, unless they were moved out first, so the next pass reuses them instead
-/// of allocating and page-faulting them anew (docs/performance.md).
+/// of allocating and page-faulting them anew (CHANGELOG.md, 2026-12-02).
 struct PrimaryPass {
     uint64_t pass = 0;
     PrimarySegments segments;

@@ -10,6 +10,7 @@
 #include "core/sampling.h"
 #include "cpu/beam_cone.h"
 #include "cpu/free_flight.h"
+#include "cpu/radius_defaults.h"
 #include "cpu/surface_scattering.h"
 
 namespace tyndall {
@@ -17,10 +18,12 @@ namespace tyndall {
 RadiusSetup RadiusSetup::resolve(const RenderSettings& settings, const Scene& scene) {
     RadiusSetup r;
     float diagonal = scene.bounds.empty() ? 1.0f : length(scene.bounds.diagonal());
-    r.beamRadius = settings.radius > 0 ? settings.radius : 0.005f * diagonal;
-    r.surfaceRadius = settings.surfaceRadius > 0 ? settings.surfaceRadius : 0.02f * diagonal;
     // Settings that were not resolved (cpu/radius_defaults.h) get the scene-relative defaults.
-    uint64_t offset = settings.radiusOffset == RenderSettings::kAutoRadiusOffset ? 1000 : settings.radiusOffset;
+    r.beamRadius = settings.radius > 0 ? settings.radius : float(RadiusDefaults::kSceneRelativeBeam) * diagonal;
+    r.surfaceRadius =
+        settings.surfaceRadius > 0 ? settings.surfaceRadius : float(RadiusDefaults::kSceneRelativeSurface) * diagonal;
+    uint64_t offset = settings.radiusOffset == RenderSettings::kAutoRadiusOffset ? RadiusDefaults::kSceneRelativeOffset
+                                                                                 : settings.radiusOffset;
     r.schedule = RadiusSchedule(settings.alpha, offset);
     // An automatic angle left unresolved is off (the scene-relative defaults had no cone).
     if (settings.photonAngle > 0) r.coneReach = double(r.beamRadius) / double(settings.photonAngle);

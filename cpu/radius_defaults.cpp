@@ -101,9 +101,11 @@ RenderSettings resolveRadiusDefaults(const RenderSettings& in, const EmbreeScene
     const double kb = RadiusDefaults::kBeamEndFootprints, ks = RadiusDefaults::kSurfaceEndFootprints;
     double diagonal = scene.bounds.empty() ? 1.0 : double(length(scene.bounds.diagonal()));
     PixelFootprint fp = measurePixelFootprint(rt, scene.camera, s.width, s.height);
-    const double beamEnd = kb * fp.beam(0.005 * diagonal / (k * kb));
-    const double surfaceEnd = std::min(ks * fp.surfaces(0.02 * diagonal / (std::sqrt(k) * ks)),
-                                       RadiusDefaults::kSurfaceEndMaxDiagonal * diagonal);
+    const double beamFallback = RadiusDefaults::kSceneRelativeBeam * diagonal / (k * kb);
+    const double surfaceFallback = RadiusDefaults::kSceneRelativeSurface * diagonal / (std::sqrt(k) * ks);
+    const double beamEnd = kb * fp.beam(beamFallback);
+    const double surfaceEnd =
+        std::min(ks * fp.surfaces(surfaceFallback), RadiusDefaults::kSurfaceEndMaxDiagonal * diagonal);
 
     double endFactor = 1.0 / k;  // beam factor at the end of the plan
     if (s.radiusOffset == RenderSettings::kAutoRadiusOffset) {
@@ -127,11 +129,15 @@ RenderSettings resolveRadiusDefaults(const RenderSettings& in, const EmbreeScene
     return s;
 }
 
+// The float products below are those of the literals they replaced (images unchanged).
+static_assert(float(RadiusDefaults::kSceneRelativeBeam) == 0.005f &&
+              float(RadiusDefaults::kSceneRelativeSurface) == 0.02f);
+
 RenderSettings withSceneRelativeRadii(RenderSettings s, const Scene& scene) {
     const float diagonal = length(scene.bounds.diagonal());
-    s.radius = 0.005f * diagonal;
-    s.surfaceRadius = 0.02f * diagonal;
-    s.radiusOffset = 1000;
+    s.radius = float(RadiusDefaults::kSceneRelativeBeam) * diagonal;
+    s.surfaceRadius = float(RadiusDefaults::kSceneRelativeSurface) * diagonal;
+    s.radiusOffset = RadiusDefaults::kSceneRelativeOffset;
     return s;
 }
 

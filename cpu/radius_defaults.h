@@ -3,7 +3,7 @@
 // radius offset kAutoRadiusOffset) resolved into plain numbers from the camera's pixel footprint
 // where the media and surfaces are (cpu/pixel_footprint.h) and the planned photon-path count.
 // The model and the measurements behind the constants: docs/algorithm.md ("Where the radius
-// sits") and docs/performance.md ("Equal-work quality").
+// sits") and docs/performance.md ("Image quality at equal time").
 //
 //   beam radius at the end of the plan    = kBeamEndFootprints    x media footprint
 //   surface radius at the end of the plan = kSurfaceEndFootprints x surface footprint, at most
@@ -32,6 +32,12 @@ struct RadiusDefaults {
     /// pixel: in coarse images (tens of pixels) 3 footprints are several percent of the scene and
     /// lose that much of the lit surfaces' light (docs/algorithm.md, "Where the radius sits").
     static constexpr double kSurfaceEndMaxDiagonal = 0.02;
+    /// The scene-relative radii of earlier versions (withSceneRelativeRadii), which also stand in
+    /// where no footprint can be measured: the first beam radius and the surface radius as
+    /// fractions of the scene's diagonal, and the radius offset.
+    static constexpr double kSceneRelativeBeam = 0.005;
+    static constexpr double kSceneRelativeSurface = 0.02;
+    static constexpr uint64_t kSceneRelativeOffset = 1000;
     /// Horizon of an open-ended render (no pass count, time not yet measured): photon paths per
     /// image pixel, about a minute of a 2-core machine at 256x256 (docs/performance.md).
     static constexpr uint64_t kOpenEndedPathsPerPixel = 100;
@@ -41,8 +47,7 @@ struct RadiusDefaults {
     /// The automatic cone is on only where the first beam radius of the plan (kStartOverEnd end
     /// radii) exceeds this many pixel footprints at the light's depth (pointLightNearTheImage's
     /// `wider`): the early passes' blur of the light's glow stays in the mean of the whole render
-    /// (docs/performance.md, "The library against the filed defaults"; the end radius was used
-    /// before, and left a light in view at 64x64 worse than the filed defaults).
+    /// (docs/algorithm.md, "The photon cone").
     static constexpr double kConeMinLightFootprints = 1.0;
 };
 
@@ -73,10 +78,11 @@ bool hasAutomaticRadii(const RenderSettings& s);
 /// for such as the viewer's "until stopped") the open-ended horizon for the image size.
 uint64_t plannedPhotonPaths(const RenderSettings& s);
 
-/// `s` with the scene-relative radii Tyndall used before the automatic ones: the first beam radius
-/// 0.5% and the surface radius 2% of the scene's diagonal, offset 1000 (the photon cone angle is
-/// left as it is). build/bench/tyndall_quality's LEGACY row, and tests whose bounds were measured with
-/// these radii rather than with the defaults of the day.
+/// `s` with the scene-relative radii Tyndall used before the automatic ones
+/// (RadiusDefaults::kSceneRelative*: the first beam radius 0.5% and the surface radius 2% of the
+/// scene's diagonal, offset 1000; the photon cone angle is left as it is). build/bench/
+/// tyndall_quality's LEGACY row, and tests whose bounds were measured with these radii rather
+/// than with the defaults of the day.
 RenderSettings withSceneRelativeRadii(RenderSettings s, const Scene& scene);
 
 /// `s` with every automatic radius setting replaced by its value for `rt`'s scene and camera

@@ -56,6 +56,7 @@
 #include <cstring>
 #include <vector>
 
+#include "core/photon_beam.h"
 #include "core/scene.h"
 #include "cpu/embree_scene.h"
 #include "cpu/surface_boundary_clearance.h"
@@ -129,8 +130,8 @@ public:
 
     static constexpr float kMinCoverage = 0.25f;
     /// The diffuse gather's normal test (camera_tracer.cpp): photons whose normal is within this
-    /// cosine of the query's count.
-    static constexpr float kNormalAgreement = 0.7f;
+    /// cosine of the query's count (core/photon_beam.h).
+    static constexpr float kNormalAgreement = kSurfaceNormalAgreement;
 
 private:
     struct HalfEdge {

@@ -47,7 +47,7 @@ uint32_t SurfacePhotonGrid::cellHash(int x, int y, int z) const {
 
 int SurfacePhotonGrid::bucketsNear(const Vec3& x, const Vec3& n, uint32_t* buckets) const {
     (void)n;  // pruning cells by the slab round the plane was measured to pay nothing (photons lie
-              // on surfaces: the cells it drops are empty anyway; docs/performance.md)
+              // on surfaces: the cells it drops are empty anyway)
     // In cell units (cells [i, i+1], 2 r_max wide): the 2x2x2 block nearest to x covers the ball
     // of radius r_max (half a cell) round it.
     const Vec3 c = (x - m_origin) / m_cellSize;
@@ -132,7 +132,7 @@ void SurfacePhotonGrid::fillRegion(Region& r) const {
 Rgb SurfacePhotonGrid::density(const Vec3& x, const Vec3& n) const {
     Rgb sum;
     forEachNear(x, n, [&](const SurfacePhoton& p, float d2) {
-        if (dot(p.normal, n) < 0.7f) return;  // same side of the surface
+        if (dot(p.normal, n) < kSurfaceNormalAgreement) return;  // same side of the surface
         sum += p.power * kernel(d2, p.radius);
     });
     return sum;

@@ -37,7 +37,7 @@ public:
     Rgb density(const Vec3& x, const Vec3& n) const;
 
     /// sum_p weight(p) Phi_p K_2D(|x - x_p|, r_p) over photons near the plane through x with normal
-    /// n, from either side (|n_p . n| >= 0.7): a glossy vertex evaluates its BSDF per photon
+    /// n, from either side (|n_p . n| >= kSurfaceNormalAgreement): a glossy vertex evaluates its BSDF per photon
     /// (weight = f(wo, p.wi)), transmission included.
     template <class Weight>
     Rgb gather(const Vec3& x, const Vec3& n, const Weight& weight) const;
@@ -133,7 +133,7 @@ template <class Weight>
 Rgb SurfacePhotonGrid::gather(const Vec3& x, const Vec3& n, const Weight& weight) const {
     Rgb sum;
     forEachNear(x, n, [&](const SurfacePhoton& p, float d2) {
-        if (std::abs(dot(p.normal, n)) < 0.7f) return;
+        if (std::abs(dot(p.normal, n)) < kSurfaceNormalAgreement) return;
         sum += weight(p) * p.power * kernel(d2, p.radius);
     });
     return sum;

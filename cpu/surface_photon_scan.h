@@ -3,7 +3,8 @@
 // 16 (AVX-512), 8 (AVX2) or 4 candidates at a time, runtime dispatch. It performs the scalar
 // test's float operations in the same order with no fused multiply-adds (compiled with
 // -ffp-contract=off), so it accepts exactly the photons the scalar test accepts, with the same d2
-// bits (test: tests/cpu/surface_photon_scan_test.cpp).
+// bits (SurfacePhotonScan.SimdAcceptsExactlyWhatTheScalarTestAccepts in
+// tests/cpu/surface_photon_grid_test.cpp).
 #include <cstddef>
 #include <cstdint>
 

@@ -32,7 +32,8 @@ std::string oneLine(const char* log) {
 }
 }  // namespace
 
-GlProgram::GlProgram(const GlFunctions& gl, const std::string& name, const std::vector<GlShaderStage>& stages)
+GlProgram::GlProgram(const GlFunctions& gl, const std::string& name, const std::vector<GlShaderStage>& stages,
+                     const char* version)
     : m_gl(gl) {
     m_id = gl.CreateProgram();
     std::vector<GLuint> shaders;
@@ -40,7 +41,7 @@ GlProgram::GlProgram(const GlFunctions& gl, const std::string& name, const std::
         for (GLuint s : shaders) gl.DeleteShader(s);
     };
     for (const GlShaderStage& stage : stages) {
-        std::string text = "#version 450 core\n";
+        std::string text = std::string(version) + "\n";
         for (const std::string& s : stage.sources) text += s + "\n";
         GLuint shader = gl.CreateShader(stage.type);
         shaders.push_back(shader);

@@ -1,6 +1,7 @@
 #pragma once
-// A linked GLSL program built from pieces: each stage is "#version 450 core" followed by the named
-// embedded sources (gpu/shaders/) or literal texts, in order (GLSL has no #include).
+// A linked GLSL program built from pieces: each stage is the version line ("#version 450 core"
+// for the splatter, "#version 330 core" for the viewer's display) followed by the named embedded
+// sources (gpu/shaders/) or literal texts, in order (GLSL has no #include).
 #include <string>
 #include <utility>
 #include <vector>
@@ -17,7 +18,8 @@ struct GlShaderStage {
 class GlProgram {
 public:
     /// Compiles and links; throws Error naming `name`, the stage and the driver's log.
-    GlProgram(const GlFunctions& gl, const std::string& name, const std::vector<GlShaderStage>& stages);
+    GlProgram(const GlFunctions& gl, const std::string& name, const std::vector<GlShaderStage>& stages,
+              const char* version = "#version 450 core");
     ~GlProgram();
     GlProgram(const GlProgram&) = delete;
     GlProgram& operator=(const GlProgram&) = delete;

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Same-session A/B timing of two tyndall binaries (e.g. an old commit's build and this one):
+# A/B timing of two or more tyndall binaries in one run (e.g. an old commit's build and this one):
 # `tyndall render` runs alternating between the variants, the order flipped every round, so load
 # on a shared machine falls on all alike. Prints, per variant, the median over the rounds of
 # wall seconds per pass (the render's own "N s" figure: the pass loop only, no start-up or EXR
@@ -8,10 +8,10 @@
 #
 #   scripts/bench-ab.sh ROUNDS PASSES "NAME=BINARY ARGS..." "NAME=BINARY ARGS..." [...]
 #
-# Example (docs/performance.md, issue 12):
+# Example (docs/performance.md, "Comparing two builds"):
 #   scripts/bench-ab.sh 4 10 \
-#     "filed=/work/wt-base12/build/app/tyndall render --size 512x512 --radius 0.0353553 --radius-offset 1000" \
-#     "branch=build/app/tyndall render --size 512x512 --radius 0.0353553 --radius-offset 1000"
+#     "old=OLD/build/app/tyndall render --size 512x512 --radius 0.0353553 --radius-offset 1000" \
+#     "new=build/app/tyndall render --size 512x512 --radius 0.0353553 --radius-offset 1000"
 # Every run gets --passes PASSES --threads 2 --gpu off -o a scratch EXR appended.
 set -euo pipefail
 if [ $# -lt 4 ]; then

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Renders the scene library's thumbnails (docs/scenes/<name>.png, 256x256) with each scene's own
 # "render" block (pass and photon counts chosen per scene). caustic-box.json's render block must
-# stay that of `tyndall render` without a scene (core/default_scene.h), so its counts are given here.
+# stay that of `tyndall render` without a scene (loading/default_scene.h), so its counts are given here.
 # Usage: scripts/render-scene-thumbnails.sh [scene names...]   (default: all of scenes/*.json)
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -6,11 +6,12 @@
 
 #include "core/error.h"
 #include "gpu/gl_functions.h"
+#include "gpu/gl_program.h"
 
 namespace tyndall {
 
 namespace {
-const char* kVertex = R"(#version 330 core
+const char* kVertex = R"(
 out vec2 uv;
 void main() {
     // One triangle covering the viewport; uv (0,0) at the image's top-left.
@@ -21,7 +22,7 @@ void main() {
 )";
 // The same display transform as toneMapChannel (core/image_io.cpp): exposure, Narkowicz's ACES
 // fit, sRGB encoding.
-const char* kFragment = R"(#version 330 core
+const char* kFragment = R"(
 in vec2 uv;
 out vec4 color;
 uniform sampler2D image;
@@ -39,35 +40,15 @@ void main() {
 }
 )";
 
-unsigned compile(const GlFunctions& gl, GLenum type, const char* source) {
-    GLuint s = gl.CreateShader(type);
-    gl.ShaderSource(s, 1, &source, nullptr);
-    gl.CompileShader(s);
-    GLint ok = 0;
-    gl.GetShaderiv(s, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[2048] = {};
-        gl.GetShaderInfoLog(s, sizeof log, nullptr, log);
-        throw Error(std::string("viewer: display shader does not compile: ") + log);
-    }
-    return s;
-}
 }  // namespace
 
 ImageViewGl::ImageViewGl(GlProcLoader load) : m_gl(std::make_unique<GlFunctions>()) {
     m_gl->load([load](const char* name) { return load(name); }, "viewer: the window's OpenGL", GlVersion::Core33);
     const GlFunctions& gl = *m_gl;
-    GLuint vs = compile(gl, GL_VERTEX_SHADER, kVertex), fs = compile(gl, GL_FRAGMENT_SHADER, kFragment);
-    m_program = gl.CreateProgram();
-    gl.AttachShader(m_program, vs);
-    gl.AttachShader(m_program, fs);
-    gl.LinkProgram(m_program);
-    gl.DeleteShader(vs);
-    gl.DeleteShader(fs);
-    GLint ok = 0;
-    gl.GetProgramiv(m_program, GL_LINK_STATUS, &ok);
-    if (!ok) throw Error("viewer: display shader does not link");
-    m_exposureLocation = gl.GetUniformLocation(m_program, "exposure");
+    m_program = std::make_unique<GlProgram>(
+        gl, "viewer display", std::vector<GlShaderStage>{{GL_VERTEX_SHADER, {kVertex}}, {GL_FRAGMENT_SHADER, {kFragment}}},
+        "#version 330 core");
+    m_exposureLocation = gl.GetUniformLocation(m_program->id(), "exposure");
     gl.GenVertexArrays(1, &m_vao);
     gl.GenTextures(2, m_texture);
     for (unsigned t : m_texture) {
@@ -83,7 +64,6 @@ ImageViewGl::ImageViewGl(GlProcLoader load) : m_gl(std::make_unique<GlFunctions>
 ImageViewGl::~ImageViewGl() {
     m_gl->DeleteTextures(2, m_texture);
     m_gl->DeleteVertexArrays(1, &m_vao);
-    m_gl->DeleteProgram(m_program);
 }
 
 void ImageViewGl::upload(int slot, const Image& image) {
@@ -107,7 +87,7 @@ void ImageViewGl::draw(int slot, int x, int y, int w, int h, float exposure) {
     const GlFunctions& gl = *m_gl;
     gl.Viewport(x, y, w, h);
     gl.Disable(GL_BLEND);
-    gl.UseProgram(m_program);
+    gl.UseProgram(m_program->id());
     gl.Uniform1f(m_exposureLocation, exposure);
     gl.ActiveTexture(GL_TEXTURE0);
     gl.BindTexture(GL_TEXTURE_2D, m_texture[slot]);

@@ -13,6 +13,7 @@
 namespace tyndall {
 
 struct GlFunctions;
+class GlProgram;
 using GlProcLoader = void* (*)(const char* name);
 
 class ImageViewGl {
@@ -35,7 +36,8 @@ public:
 
 private:
     std::unique_ptr<GlFunctions> m_gl;
-    unsigned m_program = 0, m_vao = 0;
+    std::unique_ptr<GlProgram> m_program;  ///< after m_gl: destroyed before the table it calls through
+    unsigned m_vao = 0;
     unsigned m_texture[2] = {0, 0};
     bool m_hasImage[2] = {false, false};
     int m_exposureLocation = -1;

@@ -1,4 +1,4 @@
-// Bounded memory (issue 15), as a user meets it: one pass of 3e7 photon paths under a 4 GB
+// Bounded memory, as a user meets it: one pass of 3e7 photon paths under a 4 GB
 // address-space limit (ulimit -v, CPU only) renders to a finite image, the photon batches keeping
 // the pass's beams bounded; before batching it ended in std::bad_alloc. A --memory above the limit
 // is refused up front with both figures. Slow: 3e7 photon paths take ~2 CPU minutes here; the

@@ -1,4 +1,4 @@
-// The default radii fit (issue 10): with every radius setting left automatic, PPB converges to the
+// The default radii fit: with every radius setting left automatic, PPB converges to the
 // in-tree path tracer. A closed diffuse box of thin fog lit by one point light out of view (the
 // quality bench's walls-and-fog box, bench/scenes/walls-fog-box.json, built here), 32 x 32, fixed
 // seeds, the radii a `--time` render or the viewer resolves (planned for the open-ended horizon,

@@ -100,8 +100,8 @@ Image ppb(const Scene& s, uint64_t passes, uint32_t photons) {
     ps.width = ps.height = kSize;
     ps.photonsPerPass = photons;
     ps.seed = 3;
-    // The default radii: since their surface radius is capped at 2% of the scene's diagonal
-    // (issue 10b) they no longer lose light at the edges of the regions compared at this size.
+    // The default radii: with their surface radius capped at 2% of the scene's diagonal they
+    // lose no light at the edges of the regions compared at this size.
     PassRenderer renderer(s, ps);
     return test::renderPpbPasses(renderer, 0, passes);
 }

@@ -83,8 +83,8 @@ Renders render(const Scene& s) {
     ps.width = ps.height = kSize;
     ps.photonsPerPass = 40000;
     ps.seed = 12;
-    // The default radii: since their surface radius is capped at 2% of the scene's diagonal
-    // (issue 10b) they no longer lose light at the edges of the regions compared at this size.
+    // The default radii: with their surface radius capped at 2% of the scene's diagonal they
+    // lose no light at the edges of the regions compared at this size.
     PassRenderer renderer(s, ps);
     out.ppb = test::renderPpbPasses(renderer, 0, 16);
     return out;

@@ -1,4 +1,4 @@
-// Bounded-memory passes (issue 15): a pass traced in photon batches is the pass.
+// Bounded-memory passes: a pass traced in photon batches is the pass.
 //   BatchesSplitThePass: the batches' beams and photons are the whole pass's, bit for bit (same
 //     streams, radii, and power divided by the pass's path count, not the batch's).
 //   ABatchedPassIsTheWholePass: a pass rendered in many batches equals the one-batch pass up to

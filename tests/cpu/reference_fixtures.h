@@ -284,7 +284,7 @@ inline void expectPpbConvergesToReference(const Scene& scene, const ConsistencyB
     ps.seed = ppbSeed;
     // The scene-relative radii (0.5% / 2% of the diagonal, offset 1000) the bounds were measured
     // with, on purpose: they judge the estimator, and the reference's noise budget was sized for
-    // them. With the defaults of issue 10b (surface radius capped at 2% of the diagonal) this scene
+    // them. With the default radii (surface radius capped at 2% of the diagonal) this scene
     // renders far closer to the reference (relMSE 0.0043 after 64 passes, image mean 0.998, floor
     // 0.997), so close that the 4096-spp reference is too noisy to judge it (its variance 0.0023)
     // and the glass region's batches too few; before the cap the defaults' 3-footprint surface

@@ -1,5 +1,5 @@
 // Scale independence: the same scene with every length multiplied by s (1e-3 .. 1e6) and its
-// coefficients by 1/s must render the same image up to noise (issue 15). The causes found when it
+// coefficients by 1/s must render the same image up to noise. The causes found when it
 // did not: a ray offset that grew as s^2 (2% of the scene at s = 1e4, twice the scene at 1e6).
 //   HitPointError*: the float error of Embree hit points, in ulps of the magnitudes involved, stays
 //     under the bound offsetOrigin() uses, at every scale and far from the origin.

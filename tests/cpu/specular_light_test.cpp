@@ -226,7 +226,7 @@ TEST(SpecularLights, DirectionalLightThroughAnObliqueGlassSlab) {
     settings.photonsPerPass = 60000;
     // Each against E0 cos(theta) (1 - F)^2 on its own, with 3% for the directional light onto the
     // floor, which reads 1-3% high with or without Fresnel (measured 1.018 +- 0.006 and
-    // 1.012 +- 0.010 through the index-matched slab; see the closing note of issue 14); and the two
+    // 1.012 +- 0.010 through the index-matched slab); and the two
     // against each other, batch by batch, where that cancels: the same seed sends the same photon
     // paths at both slabs, so the paired ratio glass / index-matched = (1 - F)^2 is much less noisy
     // than either; to 4 of its standard errors plus 0.5%.

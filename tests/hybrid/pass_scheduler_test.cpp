@@ -343,7 +343,7 @@ TEST(PassScheduler, GridWithoutDenseFormFailsOnAndFallsBackOnAuto) {
 }
 
 TEST(PassScheduler, BatchedPassesAgreeOnGlAndCpuAndWithTheWholePass) {
-    // Bounded-memory passes (issue 15): with --memory 64 each pass of 3000 photon paths is traced in
+    // Bounded-memory passes: with --memory 64 each pass of 3000 photon paths is traced in
     // several batches; the GL splats of the batches are summed in batch order, the CPU twin sums
     // its per-batch images: both equal the one-batch render up to float rounding.
     RenderSettings whole = smallSettings(6);

@@ -5,7 +5,7 @@
 //     2x3 matrix matters (the extension's example at 90 degrees zeroes the cosines, and its one
 //     probe point (1, 0) never reads the v column): against T * R * S multiplied out here, with
 //     R = [[cos, sin], [-sin, cos]] in glTF's v-down uv (the reading of Babylon.js, three.js, Blender
-//     and the TextureTransformTest sample model: KhronosGroup/glTF issue 1563), directly and
+//     and the TextureTransformTest sample model: KhronosGroup/glTF#1563), directly and
 //     through the glTF loader.
 #include <gtest/gtest.h>
 
