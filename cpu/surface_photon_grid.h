@@ -37,8 +37,8 @@ public:
     Rgb density(const Vec3& x, const Vec3& n) const;
 
     /// sum_p weight(p) Phi_p K_2D(|x - x_p|, r_p) over photons near the plane through x with normal
-    /// n, from either side (|n_p . n| >= kSurfaceNormalAgreement): a glossy vertex evaluates its BSDF per photon
-    /// (weight = f(wo, p.wi)), transmission included.
+    /// n, from either side (|n_p . n| >= kSurfaceNormalAgreement): a glossy vertex evaluates its
+    /// BSDF per photon (weight = f(wo, p.wi)), transmission included.
     template <class Weight>
     Rgb gather(const Vec3& x, const Vec3& n, const Weight& weight) const;
 
