@@ -1,6 +1,7 @@
 #include "core/scene.h"
 
 #include "core/tangent_frame.h"
+#include "core/medium_nesting.h"
 
 #include <cmath>
 #include <map>
@@ -42,14 +43,12 @@ bool TriangleMesh::isClosed() const {
 void Scene::finalize() {
     bounds = Bounds3();
     emitters.clear();
+    resolveNestedMedia(*this);
     for (size_t m = 0; m < meshes.size(); ++m) {
         TriangleMesh& mesh = meshes[m];
         for (const Vec3& p : mesh.positions) bounds.extend(p);
         if (mesh.material < 0 || mesh.material >= int(materials.size())) continue;  // validate() reports
         const Material& mat = materials[mesh.material];
-        if (mesh.exteriorMedium == kInheritMedium) mesh.exteriorMedium = globalMedium;
-        if (mesh.interiorMedium == kInheritMedium)
-            mesh.interiorMedium = mat.isTransmissive() ? kVacuum : mesh.exteriorMedium;
         if (mat.isNormalMapped() && mesh.tangents.empty()) generateTangents(mesh, mat.normalTexture.texcoord);
         if (!mat.isEmissive()) continue;
         for (uint32_t t = 0; t < mesh.triangleCount(); ++t) {

@@ -8,9 +8,10 @@
 // (counter-clockwise winding) points to the exterior. Crossing a transmissive surface
 // (dielectric or interface) against the normal enters the interior medium, along it leaves to
 // the exterior. Meshes whose interior medium differs from their exterior must be closed
-// (checked by validate()). Defaults: exterior = the scene's global medium; interior = vacuum for
-// transmissive materials (a glass ball in fog holds no fog) and = exterior for the others (which
-// never let a path through, so their interior is never entered).
+// (checked by validate()). Slots left kInheritMedium are resolved by finalize() from how the
+// meshes lie inside one another (core/medium_nesting.h): exterior = the medium of the innermost
+// closed medium-bounding mesh around it, else the scene's global medium; interior = vacuum for
+// closed transmissive meshes (a glass ball in fog holds no fog) and = exterior for the others.
 #include <memory>
 #include <optional>
 #include <string>
@@ -81,7 +82,8 @@ struct Scene {
     Bounds3 bounds;
     std::vector<EmissiveTriangle> emitters;
 
-    /// Resolves inherited media, computes bounds and the emitter list. Call once after building.
+    /// Resolves inherited media (core/medium_nesting.h), computes bounds and the emitter list. Call
+    /// once after building. Throws Error when a mesh straddles a medium-bounding mesh.
     void finalize();
     /// Throws Error naming the first invalid element ("scene 'x': mesh 'lamp' (index 3): ...").
     void validate() const;

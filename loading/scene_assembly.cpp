@@ -61,15 +61,6 @@ SceneFile finishScene(SceneDraft draft, const std::string& file, const SceneLoad
     scene.source = file;
     checkTriangleBudget(scene.triangleCount(), options, file);
 
-    // An open glass or interface surface cannot bound a volume: it is a thin sheet with the same
-    // medium on both sides (a window in fog has fog behind it).
-    for (TriangleMesh& m : scene.meshes) {
-        if (m.interiorMedium != kInheritMedium || m.material < 0 || m.material >= int(scene.materials.size())) continue;
-        if (!scene.materials[size_t(m.material)].isTransmissive()) continue;
-        MediumId outside = m.exteriorMedium == kInheritMedium ? scene.globalMedium : m.exteriorMedium;
-        if (outside != kVacuum && !m.isClosed()) m.interiorMedium = outside;
-    }
-
     SceneFile out;
     if (draft.cameras.empty()) {
         Bounds3 b;

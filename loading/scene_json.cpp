@@ -280,11 +280,6 @@ SceneDraft readSceneJson(const std::string& text, const std::string& file, const
         scene.globalMedium = resolve(*global, scene.media, "medium");
         placed[size_t(scene.globalMedium)] = true;
     }
-    for (size_t i = gltfMedia; i < scene.media.size(); ++i)
-        if (!placed[i])
-            throw Error(file + ": medium '" + scene.media[i].name +
-                        "' is not used: give it \"inside\" or name it in \"global_medium\"");
-
     if (const auto& list = shapesKey) {
         std::vector<JsonValue> shapes = list->elements();
         for (size_t i = 0; i < shapes.size(); ++i) {
@@ -293,11 +288,27 @@ SceneDraft readSceneJson(const std::string& text, const std::string& file, const
             std::string type = obj.has("type") && obj.value().raw()["type"].is_string()
                                    ? obj.value().raw()["type"].get<std::string>()
                                    : "shape";
+            // "exterior": the medium on the side the normals face, instead of the one found by
+            // containment (core/medium_nesting.h); "vacuum" for none.
+            MediumId exterior = kInheritMedium;
+            if (auto e = obj.get("exterior")) {
+                if (e->isString() && e->string() == "vacuum") {
+                    exterior = kVacuum;
+                } else {
+                    exterior = resolve(*e, scene.media, "medium");
+                    placed[size_t(exterior)] = true;
+                }
+            }
             TriangleMesh mesh =
                 readShape(obj, type + " " + std::to_string(i), material, scene.triangleCount(), options);
+            mesh.exteriorMedium = exterior;
             scene.meshes.push_back(std::move(mesh));
         }
     }
+    for (size_t i = gltfMedia; i < scene.media.size(); ++i)
+        if (!placed[i])
+            throw Error(file + ": medium '" + scene.media[i].name +
+                        "' is not used: give it \"inside\", name it in \"global_medium\" or in a shape's \"exterior\"");
 
     if (const auto& list = lightsKey) {
         std::vector<JsonValue> lights = list->elements();

@@ -205,7 +205,9 @@ TEST(GltfLoader, VolumeBecomesAbsorbingMediumInsideClosedMeshesOnly) {
            {"KHR_materials_ior", {{"ior", 1.33}}},
            {"KHR_materials_volume", {{"attenuationColor", {0.5, 0.25, 1.0}}, {"attenuationDistance", 2.0}}}}}});
     b.addNode({{"name", "block"}, {"mesh", b.addCube("block", mat)}});
-    b.addNode({{"name", "sheet"}, {"mesh", b.addMesh("sheet", {0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, 2}, mat)}});
+    b.addNode({{"name", "sheet"},
+               {"mesh", b.addMesh("sheet", {0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, 2}, mat)},
+               {"translation", {3, 0, 0}}});  // beside the block, not through it
     addSomeLight(b);
     std::vector<std::string> warnings;
     Scene s = loadText(b.text(), SceneFormat::Gltf, &warnings).scene;

@@ -144,6 +144,27 @@ TEST(SceneErrors, MediumOnAnOpenMesh) {
                 "mesh 'floor' (index 0) is not closed: a medium needs a closed, consistently oriented mesh");
 }
 
+TEST(SceneErrors, MeshStraddlingAMedium) {
+    // A glass ball half inside a smoke box: its outside would be smoke on one half, fog on the other.
+    json j = validScene();
+    j["materials"].push_back({{"name", "hull"}, {"type", "interface"}});
+    j["media"].push_back({{"name", "smoke"}, {"sigma_s", 1}, {"inside", "smoke box"}});
+    j["shapes"].push_back({{"type", "box"}, {"name", "smoke box"}, {"material", "hull"}, {"min", {0, 0, -1}},
+                           {"max", {2, 2, 1}}});
+    expectError("straddle.json", j.dump(), "mesh 'ball' (index 1)",
+                "lies partly inside and partly outside mesh 'smoke box' (index 2)");
+}
+
+TEST(SceneErrors, ShapeExterior) {
+    json j = validScene();
+    j["shapes"][1]["exterior"] = "smog";
+    expectError("exterior-name.json", j.dump(), "/shapes/1/exterior", "no medium named 'smog' (there are: 'fog')");
+    j["shapes"][1]["exterior"] = 3;
+    expectError("exterior-index.json", j.dump(), "/shapes/1/exterior", "");
+    j["shapes"][1]["exterior"] = {1};
+    expectError("exterior-type.json", j.dump(), "/shapes/1/exterior", "expected a medium name or index");
+}
+
 TEST(SceneErrors, StructuralMistakes) {
     json j = validScene();
     j["materials"].push_back({{"name", "white"}});
