@@ -14,6 +14,7 @@
 
 #include "loading/default_scene.h"
 #include "core/error.h"
+#include "loading/scene_environment.h"
 #include "loading/scene_file.h"
 
 namespace tyndall::app {
@@ -56,6 +57,9 @@ void addSceneAndOutputOptions(CLI::App* cmd, CommonOptions& o, const std::string
     o.command = cmd;
     cmd->add_option("scene", o.scene, "Scene file (.json, .gltf, .glb); omitted = the built-in default scene");
     cmd->add_option("--camera", o.camera, "Camera by name or index (default: the scene's first camera)");
+    cmd->add_option("--environment", o.environment,
+                    "Latitude-longitude image (.exr, .hdr) lighting the scene from all around, in place of the "
+                    "scene's own environment (default: the scene's own, if any; docs/scene-format.md)");
     if (!defaultOutput.empty())
         cmd->add_option("-o,--output", o.output,
                         "Output image: .exr (linear, settings in metadata) or .png (tone-mapped)")
@@ -226,9 +230,14 @@ Scene loadScene(CommonOptions& o, std::vector<std::string>* cameraNames, std::ve
         file.renderWhere = "default scene";
         file.cameras = {"default"};
         file.cameraViews = {file.scene.camera};
+        if (!o.environment.empty()) {
+            WarnOnce warn(nullptr);
+            file.scene.environment = loadEnvironmentImage(o.environment, "--environment", warn);
+        }
     } else {
         SceneLoadOptions options;
         options.camera = o.camera;
+        options.environment = o.environment;
         file = loadSceneFile(o.scene, options);
     }
     // The command's own defaults (bench's photon count), then the scene's render block, then the

@@ -15,6 +15,7 @@ namespace tyndall::app {
 struct CommonOptions {
     std::string scene;   ///< empty = built-in default scene
     std::string camera;  ///< --camera NAME|INDEX; empty = the scene's first camera
+    std::string environment;  ///< --environment FILE: a lat-long image lighting the scene; empty = none
     std::string output;
     std::string size = "512x512";
     float exposure = 1.0f;
@@ -29,7 +30,7 @@ CLI::Validator positiveInteger();
 /// Rejects numbers <= 0, NaN and infinity (time budgets, rates' denominators).
 CLI::Validator positiveNumber();
 
-/// Adds [SCENE] --camera --size --seed --threads, and -o --exposure unless `defaultOutput` is empty
+/// Adds [SCENE] --camera --environment --size --seed --threads, and -o --exposure unless `defaultOutput` is empty
 /// (a command that writes no image, such as bench).
 void addSceneAndOutputOptions(CLI::App* cmd, CommonOptions& o, const std::string& defaultOutput);
 /// Adds the PPB options: --passes --time --photons --alpha --radius --surface-radius.

@@ -64,7 +64,8 @@ void rejectWithResume(const CLI::App* cmd) {
     static const char* kFixed[] = {"scene",           "--camera",        "--size",         "--seed",
                                    "--photons",       "--alpha",         "--radius",       "--surface-radius",
                                    "--radius-offset", "--free-flights",  "--exposure",     "--aov",
-                                   "--photon-angle",  "--planned-paths", "--direct-light", "--surface-boundary"};
+                                   "--photon-angle",  "--planned-paths", "--direct-light", "--surface-boundary",
+                                   "--environment"};
     for (const char* name : kFixed)
         if (given(cmd, name))
             throw Error(std::string("--resume: ") + (name[0] == '-' ? name : "the scene file") +
@@ -132,6 +133,7 @@ void runRender(RenderOptions& o, CLI::App* cmd, int& exitCode) {
             c.settings = resolveRadiusDefaults(c.settings, rt);
         }
         record = {c.scene, c.camera, sceneHash(c.scene, scene), c.settings, c.output, c.exposure, o.aov, 0.0};
+        record.environment = c.environment;
         allocating("the accumulator of a " + std::to_string(c.settings.width) + "x" +
                        std::to_string(c.settings.height) + " image",
                    accumulatorBytes(c.settings, o.aov),
@@ -144,6 +146,7 @@ void runRender(RenderOptions& o, CLI::App* cmd, int& exitCode) {
         record = readRecord(ck, where);
         c.scene = record.scenePath;
         c.camera = record.camera;
+        c.environment = record.environment;
         scene = loadScene(c);
         const uint64_t hash = sceneHash(record.scenePath, scene);
         if (hash != record.sceneHash)

@@ -59,6 +59,7 @@ Checkpoint makeCheckpoint(const RenderRecord& r, std::vector<std::pair<std::stri
                 {"version", kVersion},
                 {"scene", r.scenePath},
                 {"camera", r.camera},
+                {"environment", r.environment},
                 {"scene_hash", hashText(r.sceneHash)},
                 {"settings", r.settings.toJson()},
                 {"output", r.output},
@@ -82,6 +83,7 @@ RenderRecord readRecord(const Checkpoint& c, const std::string& where) {
     try {
         r.scenePath = j.at("scene").get<std::string>();
         r.camera = j.at("camera").get<std::string>();
+        r.environment = j.value("environment", std::string());  // absent before --environment
         r.sceneHash = std::stoull(j.at("scene_hash").get<std::string>(), nullptr, 16);
         r.settings = RenderSettings::fromJson(j.at("settings"), where + ": settings");
         // Checkpoints from before --direct-light rendered with surface photons alone.

@@ -23,6 +23,7 @@ struct RenderRecord {
     float exposure = 1.0f;
     bool aov = false;
     double elapsed = 0;  ///< seconds rendered before the checkpoint, all runs together
+    std::string environment;  ///< --environment as given ("" = none)
 };
 
 /// Hash of what the passes read from the scene: the scene file's bytes (for .json and .gltf),

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "loading/scene_environment.h"
 
 namespace tyndall {
 
@@ -71,8 +72,10 @@ SceneFile finishScene(SceneDraft draft, const std::string& file, const SceneLoad
     for (const NamedCamera& c : draft.cameras) out.cameras.push_back(c.name), out.cameraViews.push_back(c.camera);
     scene.camera = draft.cameras[size_t(selectCamera(draft.cameras, options.camera, file))].camera;
 
+    if (!options.environment.empty()) scene.environment = loadEnvironmentImage(options.environment, "--environment", warn);
     scene.finalize();
-    if (draft.headlightWhenDark && scene.lights.empty() && scene.emitters.empty() && !scene.bounds.empty()) {
+    if (draft.headlightWhenDark && scene.lights.empty() && scene.emitters.empty() && !scene.environment &&
+        !scene.bounds.empty()) {
         // A spot at the camera aimed at the scene's bounding sphere, about 1 W/m^2 at its centre.
         Vec3 toCenter = scene.bounds.center() - scene.camera.position;
         float d = length(toCenter), r = 0.5f * length(scene.bounds.diagonal());

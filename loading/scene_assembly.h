@@ -18,8 +18,9 @@ struct NamedCamera {
 struct SceneDraft {
     Scene scene;
     std::vector<NamedCamera> cameras;
-    /// A plain glTF file without lights or emissive surfaces gets a point light at the camera
-    /// (a "headlight", warned about) instead of the error a scene description would get.
+    /// A plain glTF file without lights, emissive surfaces or an environment (--environment) gets
+    /// a point light at the camera (a "headlight", warned about) instead of the error a scene
+    /// description would get.
     bool headlightWhenDark = false;
 };
 

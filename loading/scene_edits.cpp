@@ -35,12 +35,15 @@ nlohmann::json sceneEdits(const Scene& scene) {
     j["media"] = nlohmann::json::array();
     for (const Medium& m : scene.media)
         j["media"].push_back({{"name", m.name}, {"sigma_s", rgb(m.sigmaS)}, {"sigma_a", rgb(m.sigmaA)}, {"g", m.g}});
+    if (scene.environment)
+        j["environment"] = {{"scale", scene.environment->scale()}, {"rotate", scene.environment->rotation()}};
     return j;
 }
 
 void applySceneEdits(Scene& scene, const nlohmann::json& edits, const std::string& where) {
     JsonObject top = JsonValue(edits, where, "/edits").object();
     auto camera = top.get("camera"), lights = top.get("lights"), media = top.get("media");
+    auto environment = top.get("environment");
     top.finish();
     if (camera) {
         JsonObject o = camera->object();
@@ -82,6 +85,13 @@ void applySceneEdits(Scene& scene, const nlohmann::json& edits, const std::strin
                 o.fail("a density-grid medium needs grey extinction (sigma_s + sigma_a equal in r, g, b)");
             o.finish();
         }
+    }
+    if (environment) {
+        JsonObject o = environment->object();
+        if (!scene.environment) o.fail("the base scene has no environment");
+        scene.environment->setScale(float(o.require("scale").number(0.0, 1e30)));
+        scene.environment->setRotation(float(o.require("rotate").number(-1e6, 1e6)));
+        o.finish();
     }
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // Scene edits and view files: what the interactive viewer changes in a scene (the camera, each
-// light's position, direction and power, each medium's coefficients) as JSON, and the scene file
+// light's position, direction and power, each medium's coefficients, the environment's scale and
+// rotation) as JSON, and the scene file
 // the viewer saves: a base scene plus those edits plus the resolved render settings
 // (docs/scene-format.md, "View files"), so that `tyndall render SAVED.json` renders exactly what
 // the viewer showed.
@@ -19,10 +20,11 @@ namespace tyndall {
 /// The editable fields of `scene` as JSON:
 ///   {"camera": {"position", "forward", "up" (vec3), "y_fov" (radians), "lens_radius", "focus_distance"},
 ///    "lights": [{"name", "position", "direction", "intensity"} per light, in scene order],
-///    "media":  [{"name", "sigma_s", "sigma_a" (rgb), "g"} per medium, in scene order]}
+///    "media":  [{"name", "sigma_s", "sigma_a" (rgb), "g"} per medium, in scene order],
+///    "environment": {"scale", "rotate" (degrees)} (only when the scene has one)}
 nlohmann::json sceneEdits(const Scene& scene);
 
-/// Sets the fields named in `edits` (any of the three keys; lights and media must list every
+/// Sets the fields named in `edits` (any of the four keys; lights and media must list every
 /// light/medium of the scene, by the same names in the same order). The camera is rebuilt with
 /// Camera::lookAt(position, position + forward, up, y_fov); light directions are normalized.
 /// Throws Error naming `where` and the JSON place on unknown keys, wrong types, counts or names.

@@ -10,6 +10,7 @@
 #include "loading/gltf_loader.h"
 #include "loading/json_reader.h"
 #include "loading/scene_edits.h"
+#include "loading/scene_environment.h"
 #include "loading/scene_json.h"
 
 namespace tyndall {
@@ -58,6 +59,10 @@ SceneFile loadViewFile(const nlohmann::json& doc, const std::string& file, const
         if (!baseOptions.camera.empty() && baseOptions.camera != "0" && baseOptions.camera != "default")
             baseKey.fail("the built-in scenes have one camera, 0 'default'");
         out.scene = base == kBuiltinDefaultScene ? makeDefaultScene() : makeDefaultSmokeScene();
+        if (!options.environment.empty()) {
+            WarnOnce warn(options.warn);
+            out.scene.environment = loadEnvironmentImage(options.environment, "--environment", warn);
+        }
         out.cameras = {"default"};
         out.cameraViews = {out.scene.camera};
     } else {

@@ -35,6 +35,9 @@ struct SceneLoadOptions {
     /// Refuse scenes whose procedural density grids hold more voxels than this, all together (a
     /// bound on load time and memory for hostile input; the built-in smoke has 0.7 M).
     uint64_t maxProceduralVoxels = uint64_t(1) << 24;
+    /// `--environment FILE`: a latitude-longitude image that lights the scene (replacing the
+    /// file's own "environment"; a glTF without lights then gets no headlight). "" = none.
+    std::string environment;
     /// false: any reference to another file (glTF from a .json, buffers, images) is an error.
     /// The fuzzer turns it off.
     bool allowExternalFiles = true;

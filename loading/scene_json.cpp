@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "loading/gltf_loader.h"
+#include "loading/scene_environment.h"
 #include "core/settings.h"
 
 namespace tyndall {
@@ -216,6 +217,7 @@ SceneDraft readSceneJson(const std::string& text, const std::string& file, const
     auto gltfKey = top.get("gltf"), nameKey = top.get("name"), renderKey = top.get("render");
     auto materialsKey = top.get("materials"), mediaKey = top.get("media"), globalKey = top.get("global_medium");
     auto shapesKey = top.get("shapes"), lightsKey = top.get("lights"), camerasKey = top.get("cameras");
+    auto environmentKey = top.get("environment");
     top.finish();
 
     // Order: glTF contents first (meshes, materials, lights, cameras), then this file's additions.
@@ -316,6 +318,11 @@ SceneDraft readSceneJson(const std::string& text, const std::string& file, const
             JsonObject obj = lights[i].object();
             scene.lights.push_back(readLight(obj, "light " + std::to_string(i)));
         }
+    }
+
+    if (const auto& env = environmentKey) {
+        JsonObject obj = env->object();
+        scene.environment = readEnvironment(obj, baseDir, options, warn);
     }
 
     if (const auto& list = camerasKey) {

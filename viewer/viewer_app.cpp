@@ -110,6 +110,7 @@ private:
     Scene m_edited;  // lights and media as edited (camera: m_camera)
     std::vector<LightUi> m_lightUi;
     std::vector<MediumUi> m_mediumUi;
+    float m_environmentScale = 1, m_environmentRotation = 0;  // the environment's sliders
     RenderSettings m_settings;
     int m_selectedLight = 0;
     int m_cameraIndex = 0;
@@ -170,6 +171,10 @@ void Viewer::pushEdits() {
         m.sigmaS = Rgb(u.sigmaS[0], u.sigmaS[1], u.sigmaS[2]) * u.densityScale;
         m.sigmaA = Rgb(u.sigmaA[0], u.sigmaA[1], u.sigmaA[2]) * u.densityScale;
         m.g = u.g;
+    }
+    if (m_edited.environment) {
+        m_edited.environment->setScale(m_environmentScale);
+        m_edited.environment->setRotation(m_environmentRotation);
     }
     nlohmann::json edits = sceneEdits(m_edited);
     if (m_o.compare) edits.erase("media");  // the twin's media differ: only camera and lights are shared
@@ -442,6 +447,11 @@ void Viewer::drawPanel() {
             ImGui::PopID();
         }
     }
+    if (m_edited.environment && ImGui::CollapsingHeader("Environment", ImGuiTreeNodeFlags_DefaultOpen)) {
+        interactive(ImGui::DragFloat("intensity", &m_environmentScale, 0.01f * std::max(m_environmentScale, 0.1f), 0.0f,
+                                     1e9f, "%.3g"));
+        interactive(ImGui::SliderFloat("rotation", &m_environmentRotation, -180.0f, 180.0f, "%.0f deg"));
+    }
     if (!m_o.compare && !m_edited.media.empty() && ImGui::CollapsingHeader("Media", ImGuiTreeNodeFlags_DefaultOpen)) {
         for (size_t i = 0; i < m_edited.media.size(); ++i) {
             MediumUi& u = m_mediumUi[i];
@@ -534,6 +544,10 @@ int Viewer::run() {
         u.power = p;
         if (p > 0) u.colour[0] = l.intensity.r / p, u.colour[1] = l.intensity.g / p, u.colour[2] = l.intensity.b / p;
         m_lightUi.push_back(u);
+    }
+    if (m_edited.environment) {
+        m_environmentScale = m_edited.environment->scale();
+        m_environmentRotation = m_edited.environment->rotation();
     }
     for (const Medium& m : m_edited.media) {
         MediumUi u;
