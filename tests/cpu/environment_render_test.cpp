@@ -54,7 +54,7 @@ double meanOver(const Image& img, const std::vector<int>& classes, int cls) {
 
 /// PPB settings with constant radii (passes independent and alike: the spread of batch means is
 /// their standard error).
-RenderSettings ppbSettings(int size, uint32_t photons, const char* directLight) {
+RenderSettings ppbSettings(int size, uint32_t photons, bool directLight) {
     RenderSettings ps;
     ps.width = ps.height = size;
     ps.photonsPerPass = photons;
@@ -146,7 +146,7 @@ TEST(EnvironmentRender, WhiteFurnaceSphereReadsAlbedoTimesRadianceInPpbAndThePat
     std::vector<int> classes = pixelClasses(s, size);
     Image ppbMean, refMean;
     // Photons play no part (a convex sphere's first hits are shadow rays' and its photons leave it).
-    std::vector<Estimate> ppb = ppbRegions(s, ppbSettings(size, 200, "on"), 8, 32, classes, {0, kMiss}, &ppbMean);
+    std::vector<Estimate> ppb = ppbRegions(s, ppbSettings(size, 200, true), 8, 32, classes, {0, kMiss}, &ppbMean);
     std::vector<Estimate> ref = referenceRegions(s, size, 128, classes, {0, kMiss}, &refMean);
     std::printf("sphere: PPB %.5f +- %.5f, reference %.5f +- %.5f (closed form %.5f); background %.5f, %.5f\n",
                 ppb[0].mean, ppb[0].se, ref[0].mean, ref[0].se, double(a * L), ppb[1].mean, ref[1].mean);
@@ -169,7 +169,7 @@ TEST(EnvironmentRender, HiddenEnvironmentStillLightsTheSphere) {
     s.environment->setVisible(false);
     const int size = 16;
     std::vector<int> classes = pixelClasses(s, size);
-    std::vector<Estimate> ppb = ppbRegions(s, ppbSettings(size, 1000, "on"), 4, 4, classes, {0, kMiss}, nullptr);
+    std::vector<Estimate> ppb = ppbRegions(s, ppbSettings(size, 1000, true), 4, 4, classes, {0, kMiss}, nullptr);
     std::vector<Estimate> ref = referenceRegions(s, size, 64, classes, {0, kMiss}, nullptr);
     EXPECT_EQ(ppb[1].mean, 0.0);
     EXPECT_EQ(ref[1].mean, 0.0);
@@ -197,7 +197,7 @@ TEST(EnvironmentRender, PhotonsAloneGiveAnOpenPlaneTheIrradiancePiL) {
     const int size = 16;
     std::vector<int> classes = pixelClasses(s, size);
     for (int& c : classes) c = c == 0 ? 0 : -1;
-    std::vector<Estimate> ppb = ppbRegions(s, ppbSettings(size, 20000, "off"), 8, 4, classes, {0}, nullptr);
+    std::vector<Estimate> ppb = ppbRegions(s, ppbSettings(size, 20000, false), 8, 4, classes, {0}, nullptr);
     std::printf("sheet: PPB photons only %.5f +- %.5f (closed form %.5f)\n", ppb[0].mean, ppb[0].se, double(a * L));
     EXPECT_LT(ppb[0].se, 0.01 * a * L) << "too noisy to test";
     EXPECT_NEAR(ppb[0].mean, a * L, 4 * ppb[0].se + 0.01 * a * L);
@@ -270,7 +270,7 @@ void comparePpbWithReference(const Scene& s, const char* name, uint32_t photons,
     const std::vector<int> regions = {0, 1, 2, 3, kMiss};
     const char* names[] = {"floor", "ball", "glass ball", "mirror", "sky"};
     Image ppbMean, refMean;
-    std::vector<Estimate> ppb = ppbRegions(s, ppbSettings(size, photons, "on"), 8, passes, classes, regions, &ppbMean);
+    std::vector<Estimate> ppb = ppbRegions(s, ppbSettings(size, photons, true), 8, passes, classes, regions, &ppbMean);
     std::vector<Estimate> ref = referenceRegions(s, size, spp, classes, regions, &refMean);
     for (size_t k = 0; k < regions.size(); ++k) {
         const double se = std::sqrt(ppb[k].se * ppb[k].se + ref[k].se * ref[k].se);
