@@ -272,7 +272,7 @@ void addTwinOption(CLI::App* cmd, TwinRegion& region) {
     cmd->add_option("--twin", region,
                     "Where the homogeneous twin's medium sits: support (a box around the grid's voxels, at the "
                     "grid's mean over that box; clear air outside) or domain (all space the grid's medium fills, at "
-                    "its mean over its active voxels)")
+                    "its mean over its active voxels) (default: support)")
         ->transform(CLI::CheckedTransformer(regions))
         ->default_str("support");
 }

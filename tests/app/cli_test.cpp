@@ -125,7 +125,7 @@ TEST(Cli, HelpListsEveryOptionWithDefaults) {
         {"reference", join({scene, output, {"--spp", "--max-depth", "--no-nee"}})},
         {"bench", join({scene, {"--passes", "--photons", "--no-hybrid", "--radius", "--radius-offset", "--simd",
                             "--direct-light", "--surface-boundary"}})},
-        {"compare", join({scene, output, ppb, {"--gpu", "--density"}})}};
+        {"compare", join({scene, output, ppb, {"--gpu", "--density", "--twin"}})}};
     for (const auto& [command, names] : expected) {
         CliRun r = runTyndall(command + " --help");
         EXPECT_EQ(r.exitCode, 0) << command;
