@@ -46,7 +46,15 @@ LightSampler::LightSampler(const Scene& scene) : m_scene(scene) {
         m_cdf.push_back(sum);
         m_totalPower += p;
     }
-    if (sum <= 0.0) throw Error("scene '" + scene.name + "' emits no light (every light has zero power)");
+    if (sum <= 0.0) {
+        bool emissiveMedium = false;
+        for (const Medium& m : scene.media) emissiveMedium |= m.emissive();
+        if (!emissiveMedium) throw Error("scene '" + scene.name + "' emits no light (every light has zero power)");
+        // Lit by its media alone (cpu/medium_emitters.h): no source here.
+        m_power.clear();
+        m_cdf.clear();
+        return;
+    }
     for (double& c : m_cdf) c /= sum;
     for (size_t e = 0; e < scene.emitters.size(); ++e)
         m_emitterSource[(uint64_t(scene.emitters[e].mesh) << 32) | scene.emitters[e].triangle] =
@@ -133,6 +141,7 @@ DirectLightSample LightSampler::sampleDirect(const Vec3& x, Rng& rng) const {
     float u1 = rng.uniform(), u2 = rng.uniform();
     size_t i = 0;
     float pick = 0;
+    if (m_power.empty()) return s;  // no light at all (a scene lit by emissive media alone)
     if (!m_spatialChoice) {
         i = chooseSource(u);
         pick = sourceProbability(i);

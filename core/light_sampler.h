@@ -52,6 +52,9 @@ struct DirectLightSample {
 
 class LightSampler {
 public:
+    /// Throws Error when nothing in the scene emits. A scene lit by emissive media alone (no light,
+    /// or only lights of zero power) has no sources here: sourceCount() is 0, sample() must not be
+    /// called and sampleDirect() returns pdf 0 (the media are cpu/medium_emitters.h's).
     explicit LightSampler(const Scene& scene);
 
     EmittedPhoton sample(Rng& rng) const;

@@ -6,6 +6,13 @@
 // Heterogeneous (density != nullptr): sigma_x(p) = density(p) * sigma_x. The extinction must be
 // grey (sigma_s + sigma_a equal in all channels; colour comes from the albedo) so that one set of
 // free-flight distances serves all channels; Scene::validate() enforces this.
+//
+// Emission (fire, glowing gas; pbrt-v4's convention): the radiative transfer source term is
+// sigma_a(p) Le(p), so a medium emits only where it absorbs. Le is `emission` (a constant) or,
+// when `emissionField` is set, emissionField->radiance(p) (an emission or temperature grid).
+// Along a ray through a homogeneous medium the emitted radiance reaching the ray's origin from
+// [0, d] is sigma_a Le (1 - exp(-sigma_t d)) / sigma_t; the tracers estimate the same integral in
+// grid media at the tracking's tentative collisions (cpu/free_flight.h).
 #include <memory>
 #include <string>
 
@@ -14,12 +21,23 @@
 
 namespace tyndall {
 
+/// Le(p) of an emissive grid medium (W m^-2 sr^-1), >= 0 and finite everywhere; safe to call
+/// from many threads at once. Implemented by loading/vdb_emission.h (emission and temperature
+/// grids) and by tests.
+class EmissionField {
+public:
+    virtual ~EmissionField() = default;
+    virtual Rgb radiance(const Vec3& p) const = 0;
+};
+
 struct Medium {
     std::string name;
     Rgb sigmaS{0.1f};  ///< scattering coefficient (at density 1 for grid media)
     Rgb sigmaA{0.0f};  ///< absorption coefficient (at density 1 for grid media)
     float g = 0.0f;    ///< Henyey-Greenstein asymmetry in (-1, 1)
     std::shared_ptr<const DensityGrid> density;  ///< null for homogeneous media
+    Rgb emission{0.0f};  ///< Le where emissionField is null (W m^-2 sr^-1)
+    std::shared_ptr<const EmissionField> emissionField;  ///< Le(p) of a grid medium; null = `emission`
 
     bool homogeneous() const { return density == nullptr; }
     Rgb sigmaT() const { return sigmaS + sigmaA; }
@@ -29,6 +47,16 @@ struct Medium {
     }
     /// Scattering coefficient at `p` (the constant for homogeneous media).
     Rgb sigmaSAt(const Vec3& p) const { return density ? sigmaS * density->density(p) : sigmaS; }
+    /// True when the medium emits: it absorbs and has an emission.
+    bool emissive() const { return !sigmaA.isBlack() && (emissionField || !emission.isBlack()); }
+    /// Le at `p` (before sigma_a).
+    Rgb emissionAt(const Vec3& p) const { return emissionField ? emissionField->radiance(p) : emission; }
+    /// The source term sigma_a(p) Le(p) (W m^-3 sr^-1).
+    Rgb sourceAt(const Vec3& p) const {
+        if (!density) return sigmaA * emission;
+        const float d = density->density(p);
+        return d > 0 ? sigmaA * d * emissionAt(p) : Rgb(0.0f);
+    }
     /// Analytic transmittance over distance `t` (homogeneous only).
     Rgb transmittance(float t) const {
         Rgb st = sigmaT();

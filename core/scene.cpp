@@ -92,6 +92,8 @@ void Scene::validate() const {
         if (!finiteNonNegative(m.sigmaS)) fail(at + "scattering coefficient must be finite and >= 0");
         if (!finiteNonNegative(m.sigmaA)) fail(at + "absorption coefficient must be finite and >= 0");
         if (!(m.g > -1.0f && m.g < 1.0f)) fail(at + "phase asymmetry g must lie in (-1, 1)");
+        if (!finiteNonNegative(m.emission)) fail(at + "emission must be finite and >= 0");
+        if (m.emissionField && !m.density) fail(at + "an emission grid needs a density grid");
         if (m.density) {
             Rgb t = m.sigmaT();
             if (std::abs(t.r - t.g) > 1e-5f * t.r || std::abs(t.r - t.b) > 1e-5f * t.r)
@@ -137,8 +139,10 @@ void Scene::validate() const {
         if (!std::isfinite(environment->rotation()))
             fail("environment '" + environment->name() + "': rotation must be finite");
     }
-    if (lights.empty() && emitters.empty() && !environment)
-        fail("has no lights, no emissive surfaces and no environment: the image would be black");
+    bool emissiveMedium = false;
+    for (const Medium& m : media) emissiveMedium |= m.emissive();
+    if (lights.empty() && emitters.empty() && !environment && !emissiveMedium)
+        fail("has no lights, no emissive surfaces or media and no environment: the image would be black");
     if (!isFinite(camera.position) || !isFinite(camera.forward)) fail("camera has a non-finite position or direction");
 }
 

@@ -160,6 +160,7 @@ PrimaryPass CameraTracer::tracePrimary(uint64_t pass) const {
             if (nff > 0) std::fill_n(&primary.freeFlights[pixel * nff], nff, kInfinity);  // none stored
             ph.medium = cameraMedium;
             ph.throughput = Rgb(1.0f);
+            ph.emitted = Rgb(0.0f);
             ph.surface = m_rt.intersect(ray, &ph.hit);
             float tHit = ph.surface ? ph.hit.t : kInfinity;
             Ray seg;
@@ -168,9 +169,10 @@ PrimaryPass CameraTracer::tracePrimary(uint64_t pass) const {
                 primary.rays[pixel] = PrimaryRay{seg.o, seg.tMax, seg.d, cameraMedium};
                 if (med.homogeneous()) {
                     ph.throughput = med.transmittance(seg.tMax);
+                    ph.emitted = homogeneousEmission(med, seg.tMax);
                 } else {
                     float* ff = &primary.freeFlights[pixel * nff];
-                    sampleCollisionDistances(med, seg, seg.tMax, jitter, nff, ff);
+                    sampleCollisionDistances(med, seg, seg.tMax, jitter, nff, ff, &ph.emitted);
                     ph.throughput = Rgb(storedTransmittance(ff, nff, seg.tMax));
                 }
             } else {
@@ -210,16 +212,28 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
             const uint64_t pixel = uint64_t(y) * w + x;
             const PrimaryHit& ph = (*primary.hits)[pixel];
             Rgb throughput = ph.throughput, L, Lmedia, Lsurface;
+            auto store = [&]() {
+                radiance.at(x, y) = L;
+                if (layers) {
+                    layers->media.at(x, y) = Lmedia;
+                    layers->surface.at(x, y) = Lsurface;
+                }
+            };
+            // The primary segment's medium emission (the splatters add its beams).
+            if (emission) L = Lmedia = ph.emitted;
             if (!ph.surface) {
                 // Straight from the camera to the environment: its visible background.
                 if (environment && environment->visible() && !throughput.isBlack()) {
-                    L = throughput * environment->eval(primary.segments.rays[pixel].dir);
-                    radiance.at(x, y) = L;
-                    if (layers) layers->surface.at(x, y) = L;
+                    Lsurface = throughput * environment->eval(primary.segments.rays[pixel].dir);
+                    L += Lsurface;
                 }
+                store();
                 continue;
             }
-            if (throughput.isBlack()) continue;
+            if (throughput.isBlack()) {
+                store();
+                continue;
+            }
             Rng rng = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::CameraPath);
             // Shadow rays draw from their own stream, so the path's other draws do not move; one
             // stream per path, so a path's shadow-ray vertices (a plastic, then the diffuse end)
@@ -358,11 +372,16 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                 if (medium != kVacuum && m_rt.mediumSegment(ray.o, ray.d, tHit, &seg)) {
                     const Medium& med = m_scene.media[medium];
                     float* ff = tls.freeFlights.data();
-                    if (!med.homogeneous()) sampleCollisionDistances(med, seg, seg.tMax, rng, nff, ff);
+                    Rgb emitted;  // the segment's medium emission, with the pass's emission only
+                    if (!med.homogeneous())
+                        sampleCollisionDistances(med, seg, seg.tMax, rng, nff, ff, emission ? &emitted : nullptr);
+                    else if (emission)
+                        emitted = homogeneousEmission(med, seg.tMax);
                     beams.query(seg.o, seg.d, seg.tMax, tls.hits, tls.beamCache);
                     tls.stats.beamQueries++;
                     tls.stats.beamHits += tls.hits.size();
-                    Rgb media = throughput * gatherBeams(m_scene, photons, tls.hits, medium, seg.o, seg.d, ff, nff);
+                    Rgb media =
+                        throughput * (gatherBeams(m_scene, photons, tls.hits, medium, seg.o, seg.d, ff, nff) + emitted);
                     L += media;
                     Lmedia += media;
                     throughput *=
@@ -379,11 +398,7 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                 }
                 if (throughput.isBlack()) break;
             }
-            radiance.at(x, y) = L;
-            if (layers) {
-                layers->media.at(x, y) = Lmedia;
-                layers->surface.at(x, y) = Lsurface;
-            }
+            store();
         }
     });
     if (stats) {

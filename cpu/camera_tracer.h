@@ -3,11 +3,14 @@
 // in two stages so a scheduler can splat the primary segments while the CPU does the rest:
 //   tracePrimary(i)                         the first segment (camera -> first surface) of every
 //                                           pixel: recorded for a beam splatter (CPU rasterizer or
-//                                           GL), which adds its medium radiance; needs no photons
-//   traceSecondary(i, primary, photons...)  the rest of each path: emission at the first hit, then
+//                                           GL), which adds its medium radiance; needs no photons;
+//                                           also estimates the segment's medium emission (with
+//                                           its stored distances, cpu/free_flight.h)
+//   traceSecondary(i, primary, photons...)  the rest of each path: the primary segment's medium
+//                                           emission, emission at the first hit, then
 //                                           through mirrors and glass (Fresnel choice), every later
 //                                           segment inside a medium gathering the pass's beams
-//                                           through the BeamBvh, a diffuse hit ending the path with
+//                                           through the BeamBvh (and its medium emission), a diffuse hit ending the path with
 //                                           the surface-photon estimate (with --surface-boundary on
 //                                           divided by its kernel's coverage, cpu/surface_boundary.h)
 //                                           and, with --direct-light on,
@@ -49,6 +52,7 @@ struct CameraPassStats {
 struct PrimaryHit {
     SurfaceHit hit;
     Rgb throughput;             ///< transmittance of the primary segment
+    Rgb emitted;                ///< the medium's emission along it (estimate; cpu/free_flight.h)
     MediumId medium = kVacuum;  ///< the medium the camera ray ran through
     bool surface = false;       ///< false: the ray left the scene
 };

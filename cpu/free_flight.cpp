@@ -113,12 +113,30 @@ float sampleCollisionDistance(const Medium& medium, const Ray& ray, float tEnd, 
     return deltaTrack(medium, ray, tEnd, rng);
 }
 
-void sampleCollisionDistances(const Medium& medium, const Ray& ray, float tEnd, Rng& rng, int n, float* out) {
+Rgb homogeneousEmission(const Medium& medium, float d) {
+    if (!medium.emissive() || !(d > 0)) return Rgb(0.0f);
+    const Rgb st = medium.sigmaT(), source = medium.sigmaA * medium.emission;
+    Rgb e;
+    for (int c = 0; c < 3; ++c) {
+        const float x = st[c] * d;
+        e[c] = x > 0 ? source[c] * float(-std::expm1(-double(x))) / st[c] : source[c] * d;
+    }
+    return e;
+}
+
+void sampleCollisionDistances(const Medium& medium, const Ray& ray, float tEnd, Rng& rng, int n, float* out,
+                              Rgb* emitted) {
     n = std::min(n, kMaxFreeFlights);
+    if (emitted) *emitted = Rgb(0.0f);
     if (medium.homogeneous()) {
         for (int k = 0; k < n; ++k) out[k] = sampleCollisionDistance(medium, ray, tEnd, rng);
+        if (emitted) *emitted = homogeneousEmission(medium, tEnd);
         return;
     }
+    if (emitted && (!medium.emissive() || n <= 0)) emitted = nullptr;
+    // Emission at a tentative collision x with density dx: sigma_a dx Le(x) / (sigma_t maj), / n.
+    Rgb emittedSum(0.0f);
+    const Rgb sourceScale = emitted ? medium.sigmaA / (medium.sigmaT().r * float(n)) : Rgb(0.0f);
     // n delta trackers advanced piece by piece: the same process as n separate calls (each
     // tracker has its own optical-depth targets), with one walk of the majorant grid.
     const DensityGrid& grid = *medium.density;
@@ -152,7 +170,10 @@ void sampleCollisionDistances(const Medium& medium, const Ray& ray, float tEnd, 
                     break;
                 }
                 t += dt;
-                if (rng.uniform() * maj < grid.density(ray.at(t))) {
+                const Vec3 x = ray.at(t);
+                const float dx = grid.density(x);
+                if (emitted && dx > 0) emittedSum += sourceScale * medium.emissionAt(x) * (dx / maj);
+                if (rng.uniform() * maj < dx) {
                     out[k] = t;
                     collided = true;
                     break;
@@ -166,6 +187,34 @@ void sampleCollisionDistances(const Medium& medium, const Ray& ray, float tEnd, 
             }
         }
     }
+    if (emitted) *emitted = emittedSum;
+}
+
+Rgb estimateEmission(const Medium& medium, const Ray& ray, float tEnd, Rng& rng) {
+    if (!medium.emissive()) return Rgb(0.0f);
+    if (medium.homogeneous()) return homogeneousEmission(medium, tEnd);
+    const DensityGrid& grid = *medium.density;
+    const float sigmaT = medium.sigmaT().r;
+    if (!(sigmaT > 0)) return Rgb(0.0f);
+    const Rgb sourceScale = medium.sigmaA / sigmaT;
+    MajorantPieces pieces(grid, ray, tEnd);
+    Rgb sum(0.0f);
+    float tr = 1.0f;
+    float t0, t1, maj;
+    while (tr > 0 && pieces.next(&t0, &t1, &maj)) {
+        const float mu = maj * sigmaT;
+        if (!(mu > 0)) continue;
+        float t = t0;
+        while (tr > 0) {
+            t += expSample(mu, rng.uniform());
+            if (!(t < t1)) break;
+            const Vec3 x = ray.at(t);
+            const float dx = grid.density(x);
+            if (dx > 0) sum += sourceScale * medium.emissionAt(x) * (tr * dx / maj);
+            tr *= 1.0f - dx / maj;
+        }
+    }
+    return sum;
 }
 
 Rgb estimateTransmittance(const Medium& medium, const Ray& ray, float tEnd, Rng& rng) {

@@ -111,6 +111,7 @@ PhotonMap PhotonTracer::trace(uint64_t pass, uint64_t firstPath, uint32_t begin,
 
 void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t globalPath, uint32_t count, PhotonMap& out,
                              std::vector<Ray>* rays) const {
+    if (m_lights.sourceCount() == 0) return;  // lit by emissive media alone
     Rng rng = Rng::forKey(m_settings.seed, pass, pathInPass, StreamPurpose::PhotonPath);
     EmittedPhoton e = m_lights.sample(rng);
     Rgb power = e.power / float(count);

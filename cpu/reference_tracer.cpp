@@ -129,6 +129,9 @@ Rgb ReferenceTracer::radiance(Ray ray, MediumId medium, Rng& rng) const {
             Ray seg;
             if (m_rt.mediumSegment(ray.o, ray.d, tHit, &seg)) {
                 if (equiangular && vertices < m_settings.maxDepth) L += beta * pointLightInScattering(seg, medium, rng);
+                // The medium's own emission along the whole segment (its own estimate, before the
+                // free flight decides where the path goes on).
+                if (med.emissive()) L += beta * estimateEmission(med, seg, seg.tMax, rng);
                 FreeFlight ff = sampleFreeFlight(med, seg, seg.tMax, rng);
                 if (ff.scattered) {
                     if (vertices >= m_settings.maxDepth) break;

@@ -14,7 +14,9 @@
 //     surface-photon estimate), mirror and dielectric through sampleSpecular in
 //     TransportMode::Radiance (Fresnel choice, 1/eta^2 radiance scaling), Interface surfaces
 //     pass straight through and switch the medium;
-//   - emission: from the front (normal) side of emissive triangles only.
+//   - emission: from the front (normal) side of emissive triangles only; emissive media add
+//     estimateEmission along every medium segment (cpu/free_flight.h: exact for homogeneous
+//     media, ratio tracking in grids), never sampled by NEE.
 //
 // Next-event estimation at every diffuse and medium-scattering vertex: one light sample
 // (LightSampler::sampleDirect, the source chosen by what it can send to the vertex) with a shadow ray that passes through Interface

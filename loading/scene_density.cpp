@@ -77,7 +77,8 @@ std::shared_ptr<const DensityGrid> readProcedural(JsonObject& obj, const JsonVal
 }  // namespace
 
 std::shared_ptr<const DensityGrid> readDensity(JsonObject& obj, const std::string& baseDir,
-                                               const SceneLoadOptions& options, uint64_t* proceduralVoxels) {
+                                               const SceneLoadOptions& options, uint64_t* proceduralVoxels,
+                                               VdbGridSource* fileGrid) {
     auto file = obj.get("file");
     auto procedural = obj.get("procedural");
     const float scale = float(obj.number("scale", 1.0, 0.0, 1e6));
@@ -98,6 +99,7 @@ std::shared_ptr<const DensityGrid> readDensity(JsonObject& obj, const std::strin
         source.transform = toAffine3(readTransform(tobj));
     }
     obj.finish();
+    if (fileGrid) *fileGrid = source;
     try {
         return VdbDensityGrid::load(source, options.warn);
     } catch (const Error& e) {

@@ -139,9 +139,11 @@ Medium readMedium(JsonObject& obj, const std::string& baseDir, const SceneLoadOp
     m.sigmaA = obj.rgb("sigma_a", Rgb(0.0f));
     m.g = float(obj.number("g", 0.0, -0.999, 0.999));
     auto density = obj.get("density");
+    auto emission = obj.get("emission");
     obj.finish();
     if (m.sigmaT().maxComponent() <= 0.0f)
         obj.fail("medium '" + m.name + "' has sigma_s + sigma_a = 0: it would be vacuum");
+    VdbGridSource densityFile;
     if (density) {
         Rgb t = m.sigmaT();
         if (std::abs(t.r - t.g) > 1e-5f * t.r || std::abs(t.r - t.b) > 1e-5f * t.r)
@@ -149,8 +151,9 @@ Medium readMedium(JsonObject& obj, const std::string& baseDir, const SceneLoadOp
                      "' has a density grid, which needs grey extinction (sigma_s + sigma_a equal in r, g, b); "
                      "put the colour in the albedo");
         JsonObject d = density->object();
-        m.density = readDensity(d, baseDir, options, proceduralVoxels);
+        m.density = readDensity(d, baseDir, options, proceduralVoxels, &densityFile);
     }
+    if (emission) readEmission(*emission, densityFile, options, m);
     return m;
 }
 

@@ -8,6 +8,7 @@
 #include "core/density_grid.h"
 #include "loading/json_reader.h"
 #include "loading/scene_assembly.h"
+#include "loading/vdb_grid.h"
 #include "core/transform.h"
 
 namespace tyndall {
@@ -19,7 +20,8 @@ SceneDraft readSceneJson(const std::string& text, const std::string& file, const
 /// One entry of "materials". Keys: name, type, albedo, ior, emission.
 Material readMaterial(JsonObject& obj);
 /// One entry of "media"; the caller reads the placement ("inside") first, this reads the rest and
-/// finishes the object. Keys: name, sigma_s, sigma_a, g, density (readDensity). `baseDir` resolves
+/// finishes the object. Keys: name, sigma_s, sigma_a, g, density (readDensity), emission
+/// (readEmission). `baseDir` resolves
 /// relative grid files; `proceduralVoxels` as for readDensity.
 Medium readMedium(JsonObject& obj, const std::string& baseDir, const SceneLoadOptions& options,
                   uint64_t* proceduralVoxels);
@@ -28,8 +30,18 @@ Medium readMedium(JsonObject& obj, const std::string& baseDir, const SceneLoadOp
 /// "rolling_fog" with its parameters, "scale"). Errors name the JSON place. `proceduralVoxels`
 /// counts the scene's procedural voxels so far: a procedural grid adds its own, and one that would
 /// take the total past options.maxProceduralVoxels is an error before anything is built.
+/// `fileGrid`, when given, receives the file grid's source (empty `file` for procedural grids):
+/// where a medium's emission grid is read from.
 std::shared_ptr<const DensityGrid> readDensity(JsonObject& obj, const std::string& baseDir,
-                                               const SceneLoadOptions& options, uint64_t* proceduralVoxels);
+                                               const SceneLoadOptions& options, uint64_t* proceduralVoxels,
+                                               VdbGridSource* fileGrid = nullptr);
+/// A medium's "emission" (scene_emission.cpp, docs/scene-format.md) into `m`: an rgb Le, or for a
+/// grid medium read from a file an object naming a grid of the same file: {"grid", "color",
+/// "scale"} or {"grid", "blackbody": true, "scale", "temperature_scale", "temperature_offset"}.
+/// `densityFile`: the density's file grid (empty `file` when the density is procedural or absent).
+/// Errors name the JSON place.
+void readEmission(const JsonValue& value, const VdbGridSource& densityFile, const SceneLoadOptions& options,
+                  Medium& m);
 /// "transform": {"scale": s | [sx, sy, sz], "rotate": {"axis": [x, y, z], "degrees": d},
 /// "translate": [x, y, z]}, applied in that order (shapes and density grids).
 Affine readTransform(JsonObject& obj);

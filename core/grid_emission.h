@@ -1,0 +1,49 @@
+#pragma once
+// Le(p) of a grid medium from a scalar grid (an emission or temperature channel of a simulation,
+// read from the same OpenVDB file as the density or built procedurally). The scalar field v(p)
+// is any DensityGrid (trilinear, >= 0: OpenVDB grids clamp negative voxels to 0, and read 0
+// outside their voxels); it need not share the density's resolution or transform, since both are
+// sampled at world points.
+//   colour:    Le(p) = scale * color * v(p)
+//   blackbody: Le(p) = scale * blackbodyRgb(T),  T = (v(p) - temperatureOffset) * temperatureScale
+//              kelvin (pbrt-v4's order); T <= 0 emits nothing (core/blackbody.h for the colour
+//              and its normalisation).
+// The medium's source term is sigma_a(p) Le(p) (core/medium.h).
+#include <memory>
+
+#include "core/blackbody.h"
+#include "core/density_grid.h"
+#include "core/medium.h"
+
+namespace tyndall {
+
+class GridEmission : public EmissionField {
+public:
+    struct Blackbody {
+        float scale = 1.0f;
+        float temperatureScale = 1.0f;
+        float temperatureOffset = 0.0f;
+    };
+    /// Colour mode. `color` and `scale` finite and >= 0 (the loader checks).
+    GridEmission(std::shared_ptr<const DensityGrid> values, Rgb color, float scale)
+        : m_values(std::move(values)), m_color(color * scale) {}
+    /// Blackbody mode.
+    GridEmission(std::shared_ptr<const DensityGrid> values, const Blackbody& b)
+        : m_values(std::move(values)), m_blackbody(true), m_bb(b) {}
+
+    Rgb radiance(const Vec3& p) const override {
+        const float v = m_values->density(p);
+        if (!m_blackbody) return m_color * v;
+        return blackbodyRgb((v - m_bb.temperatureOffset) * m_bb.temperatureScale) * m_bb.scale;
+    }
+    const DensityGrid& values() const { return *m_values; }
+    bool blackbody() const { return m_blackbody; }
+
+private:
+    std::shared_ptr<const DensityGrid> m_values;
+    Rgb m_color;
+    bool m_blackbody = false;
+    Blackbody m_bb;
+};
+
+}  // namespace tyndall

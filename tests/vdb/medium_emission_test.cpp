@@ -1,0 +1,350 @@
+// Emissive media (core/medium.h: source sigma_a Le), against closed forms:
+//   - the blackbody colour (core/blackbody.h): chromaticity on the Planckian locus at 1500, 3000,
+//     6500 and 10000 K (published CIE 1931 2-degree xy), its RGB back to xy inside the gamut,
+//     the table against the exact integral;
+//   - the emission estimators (cpu/free_flight.h) on analytic densities along a ray: the stored-
+//     distance trackers and ratio tracking, averaged, against quadrature of
+//     integral Tr sigma_a Le ds with the exact transmittance; homogeneous ones exact;
+//   - whole renders of emission-only media: L = Le (1 - exp(-sigma_a d)) along each camera ray
+//     through a slab (homogeneous and as an OpenVDB grid; PPB and the reference path tracer) and
+//     through a sphere (chord from the mesh itself).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/accumulator.h"
+#include "core/blackbody.h"
+#include "core/pixel_jitter.h"
+#include "cpu/embree_scene.h"
+#include "cpu/free_flight.h"
+#include "cpu/pass_renderer.h"
+#include "cpu/reference_tracer.h"
+#include "loading/mesh_builders.h"
+#include "tests/vdb/analytic_density.h"
+
+namespace tyndall {
+namespace {
+
+// ---- Blackbody
+
+Vec3 xyOf(const Vec3& xyz) {
+    const float s = xyz.x + xyz.y + xyz.z;
+    return {xyz.x / s, xyz.y / s, 0.0f};
+}
+/// Linear Rec.709 (D65) to XYZ (IEC 61966-2-1), to read the RGB's chromaticity.
+Vec3 rec709ToXyz(const Rgb& c) {
+    return {0.4124564f * c.r + 0.3575761f * c.g + 0.1804375f * c.b,
+            0.2126729f * c.r + 0.7151522f * c.g + 0.0721750f * c.b,
+            0.0193339f * c.r + 0.1191920f * c.g + 0.9503041f * c.b};
+}
+
+TEST(Blackbody, ChromaticityLiesOnThePlanckianLocus) {
+    // Planckian locus, CIE 1931 2-degree observer (Charity's blackbody colour table).
+    struct Point {
+        float kelvin, x, y;
+    };
+    const Point locus[] = {{1500, 0.5857f, 0.3931f}, {3000, 0.4369f, 0.4041f}, {6500, 0.3135f, 0.3236f},
+                           {10000, 0.2807f, 0.2884f}};
+    for (const Point& p : locus) {
+        const Vec3 xy = xyOf(blackbodyXyz(p.kelvin));
+        EXPECT_NEAR(xy.x, p.x, 0.002f) << p.kelvin << " K";
+        EXPECT_NEAR(xy.y, p.y, 0.002f) << p.kelvin << " K";
+        const Rgb c = blackbodyRgb(p.kelvin);
+        EXPECT_GE(c.r, 0.0f);
+        EXPECT_GE(c.g, 0.0f);
+        EXPECT_GE(c.b, 0.0f);
+        if (p.kelvin >= 3000) {  // inside the Rec.709 gamut: the RGB keeps the chromaticity
+            const Vec3 back = xyOf(rec709ToXyz(c));
+            EXPECT_NEAR(back.x, p.x, 0.002f) << p.kelvin << " K (from RGB)";
+            EXPECT_NEAR(back.y, p.y, 0.002f) << p.kelvin << " K (from RGB)";
+        }
+    }
+    // Normalisation: a spectrum of peak 1 against Y of a flat spectrum of 1; at 6500 K the peak
+    // (446 nm) is near the visible band's middle, so Y is near 1; at 1500 K far below.
+    EXPECT_NEAR(blackbodyXyz(6500).y, 0.886f, 0.005f);
+    EXPECT_NEAR(blackbodyXyz(1500).y, 0.0034f, 0.0002f);
+}
+
+TEST(Blackbody, TableFollowsTheExactIntegralAndRejectsNonsense) {
+    for (float t = 1000; t < 20000; t *= 1.07f) {
+        const Rgb a = blackbodyRgb(t), e = blackbodyRgbExact(t);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(a[c], e[c], 1e-3f * e.maxComponent() + 1e-9f) << t << " K";
+    }
+    for (float t : {0.0f, -300.0f, std::nanf(""), -kInfinity}) {
+        EXPECT_TRUE(blackbodyRgb(t).isBlack()) << t;
+        EXPECT_TRUE(blackbodyRgbExact(t).isBlack()) << t;
+    }
+    EXPECT_TRUE(isFinite(blackbodyRgb(1e7f)));
+}
+
+// ---- Estimators along one ray
+
+/// Le(p) = (1 + x, 0.5, 2 - x): linear along the test ray, so a lookup at the wrong point shows.
+class LinearEmission : public EmissionField {
+public:
+    Rgb radiance(const Vec3& p) const override { return {1.0f + p.x, 0.5f, 2.0f - p.x}; }
+};
+
+/// Integral over [a, b] of f by composite Simpson with `steps` (even) intervals.
+template <class F>
+Rgb simpson(F f, double a, double b, int steps) {
+    const double h = (b - a) / steps;
+    Rgb sum(0.0f);
+    for (int i = 0; i <= steps; ++i) {
+        const float w = (i == 0 || i == steps) ? 1.0f : (i % 2 ? 4.0f : 2.0f);
+        sum += f(a + i * h) * w;
+    }
+    return sum * float(h / 3.0);
+}
+
+TEST(MediumEmission, TrackingEstimatorsAverageToTheEmissionIntegral) {
+    const Ray ray{Vec3(-0.2f, 0.5f, 0.5f), Vec3(1, 0, 0)};
+    const float tEnd = 1.4f;
+    for (auto kind : {test::AnalyticDensity::Kind::Ramp, test::AnalyticDensity::Kind::Slab}) {
+        auto field = std::make_shared<test::AnalyticDensity>(kind, 8);
+        Medium m;
+        m.sigmaS = Rgb(1.5f);
+        m.sigmaA = Rgb(0.5f);
+        m.density = field;
+        m.emissionField = std::make_shared<LinearEmission>();
+        ASSERT_TRUE(m.emissive());
+        // Exact: Tr(s) = exp(-sigma_t tau(s)); integrate piecewise between the profile's kinks.
+        auto integrand = [&](double s) {
+            const double x = -0.2 + s;
+            const double tr = std::exp(-2.0 * field->integral(0.0, x));
+            const Vec3 p = ray.at(float(s));
+            return m.emissionAt(p) * m.sigmaA * float(tr * field->profile(float(x)));
+        };
+        Rgb exact(0.0f);
+        const double cuts[] = {0.0, 0.2, 0.5, 0.8, 1.2, 1.4};
+        for (int i = 0; i + 1 < 6; ++i) exact += simpson(integrand, cuts[i], cuts[i + 1], 2000);
+
+        const int runs = 40000, n = 4;
+        Rng rng(24, uint64_t(kind));
+        double sum[2][3] = {}, sum2[2][3] = {};
+        float withE[n], without[n];
+        for (int r = 0; r < runs; ++r) {
+            Rgb e;
+            Rng a = rng, b = rng;  // the same draws with and without the emission
+            sampleCollisionDistances(m, ray, tEnd, a, n, withE, &e);
+            sampleCollisionDistances(m, ray, tEnd, b, n, without);
+            for (int k = 0; k < n; ++k) ASSERT_EQ(withE[k], without[k]);
+            rng = a;
+            const Rgb ratio = estimateEmission(m, ray, tEnd, rng);
+            for (int c = 0; c < 3; ++c) {
+                sum[0][c] += e[c], sum2[0][c] += double(e[c]) * e[c];
+                sum[1][c] += ratio[c], sum2[1][c] += double(ratio[c]) * ratio[c];
+            }
+        }
+        for (int est = 0; est < 2; ++est)
+            for (int c = 0; c < 3; ++c) {
+                const double mean = sum[est][c] / runs;
+                const double se = std::sqrt(std::max(0.0, sum2[est][c] / runs - mean * mean) / runs);
+                EXPECT_NEAR(mean, exact[c], 4.5 * se + 1e-4 * exact[c])
+                    << test::kindName(kind) << (est == 0 ? " stored-distance trackers" : " ratio tracking")
+                    << " channel " << c << " (standard error " << se << ")";
+            }
+    }
+}
+
+TEST(MediumEmission, HomogeneousEstimatesAreExact) {
+    Medium m;
+    m.sigmaS = Rgb(0.5f, 1.0f, 0.0f);
+    m.sigmaA = Rgb(0.25f, 0.0f, 2.0f);
+    m.emission = Rgb(2.0f, 3.0f, 0.5f);
+    const float d = 0.8f;
+    Rgb e;
+    float ff[4];
+    Rng rng(1, 2);
+    sampleCollisionDistances(m, Ray{Vec3(0.0f), Vec3(0, 0, 1)}, d, rng, 4, ff, &e);
+    const Rgb st = m.sigmaT();
+    for (int c = 0; c < 3; ++c) {
+        const float expected = m.sigmaA[c] * m.emission[c] * (1 - std::exp(-st[c] * d)) / st[c];
+        EXPECT_NEAR(e[c], expected, 1e-6f * (1 + expected)) << c;
+        EXPECT_NEAR(estimateEmission(m, Ray{Vec3(0.0f), Vec3(0, 0, 1)}, d, rng)[c], expected, 1e-6f * (1 + expected));
+    }
+    EXPECT_EQ(e.g, 0.0f);  // no absorption in green: no emission
+    // A medium without absorption does not emit; sigma_t = 0 in a channel falls back to sigma_a Le d.
+    Medium clear;
+    clear.sigmaS = Rgb(0.0f);
+    clear.sigmaA = Rgb(0.0f);
+    clear.emission = Rgb(1.0f);
+    EXPECT_FALSE(clear.emissive());
+    EXPECT_TRUE(homogeneousEmission(clear, 1.0f).isBlack());
+}
+
+// ---- Renders
+
+constexpr float kSigmaA = 2.0f;
+const Rgb kLe(1.0f, 0.5f, 0.25f);
+
+/// An emission-only medium (sigma_s = 0) inside an invisible box or sphere, nothing else in the
+/// scene, no lights; the camera on +z looks at it from vacuum. `room`: instead the medium fills
+/// a closed room of black walls (the global medium) with the camera inside it.
+Scene emissionOnlyScene(bool sphere, bool grid, bool room = false) {
+    Scene s;
+    s.name = sphere ? "emitting-sphere" : "emitting-slab";
+    s.source = "<test>";
+    Material hull;
+    hull.name = "hull";
+    hull.type = MaterialType::Interface;
+    s.materials = {hull};
+    Medium m;
+    m.name = "glow";
+    m.sigmaS = Rgb(0.0f);
+    m.sigmaA = Rgb(kSigmaA);
+    m.emission = kLe;
+    if (grid) {
+        // Density 1 on voxels of 0.1 over [-1.3, 1.3]^3: exactly 1 inside the hull.
+        const int n = 27;
+        const int dims[3] = {n, n, n};
+        std::vector<float> ones(size_t(n) * n * n, 1.0f);
+        m.density = VdbDensityGrid::fromDense(dims, ones, Affine3::scaleTranslate(Vec3(0.1f), Vec3(-1.3f)), "ones");
+    }
+    s.media = {m};
+    if (room) {
+        Material black;
+        black.name = "black";
+        black.albedo = Rgb(0.0f);
+        s.materials = {black};
+        s.globalMedium = 0;
+        s.meshes.push_back(makeBox("room", Vec3(-1.2f), Vec3(1.2f), 0, /*inward=*/true));
+        s.camera = Camera::lookAt({0.3f, -0.2f, 1.0f}, {0, 0, -1.2f}, {0, 1, 0}, 0.9f);
+        s.finalize();
+        s.validate();
+        return s;
+    }
+    TriangleMesh mesh = sphere ? makeSphere("hull", Vec3(0.0f), 1.0f, 5, 0)
+                               : makeBox("hull", Vec3(-1.0f, -1.0f, -0.25f), Vec3(1.0f, 1.0f, 0.25f), 0);
+    mesh.interiorMedium = 0;
+    mesh.exteriorMedium = kVacuum;
+    s.meshes.push_back(mesh);
+    s.camera = Camera::lookAt({0.1f, -0.05f, 3.0f}, {0, 0, 0}, {0, 1, 0}, 0.75f);
+    s.finalize();
+    s.validate();
+    return s;
+}
+
+/// Distance the ray through film point (fx, fy) travels inside the hull (0 when it misses), from
+/// the mesh itself; for the room, the distance to its wall.
+float chordThrough(const Scene& s, const EmbreeScene& rt, float fx, float fy, int size) {
+    Ray ray = s.camera.generateRay(fx, fy, size, size, {0.5f, 0.5f});
+    SurfaceHit in, out;
+    if (!rt.intersect(ray, &in)) return 0;
+    if (s.globalMedium == 0) return in.t;
+    Ray inside{rt.offsetOrigin(in.p, in.t, in.ng, ray.d), ray.d};
+    if (!rt.intersect(inside, &out)) return 0;
+    return length(out.p - in.p);
+}
+
+constexpr int kSize = 24;
+
+/// Pixels whose centre ray crosses the hull well inside its outline: their chord.
+std::vector<std::pair<int, float>> innerPixels(const Scene& s, bool sphere) {
+    EmbreeScene rt(s);
+    std::vector<std::pair<int, float>> out;
+    for (int py = 0; py < kSize; ++py)
+        for (int px = 0; px < kSize; ++px) {
+            // Every ray through the pixel (its corners) leaves the slab through its back face
+            // (chord 0.5 / cos) or crosses the sphere well inside its silhouette (chord > 1).
+            bool inner = true;
+            for (int corner = 0; corner < 4; ++corner) {
+                const float d = chordThrough(s, rt, float(px + corner % 2), float(py + corner / 2), kSize);
+                inner = inner && (sphere ? d > 1.0f : (d > 0.499f && d < 0.56f));
+            }
+            if (inner) out.push_back({py * kSize + px, chordThrough(s, rt, px + 0.5f, py + 0.5f, kSize)});
+        }
+    return out;
+}
+
+Rgb expectedRadiance(float chord) {
+    return kLe * (1.0f - std::exp(-kSigmaA * chord));
+}
+
+RenderSettings smallSettings() {
+    RenderSettings ps;
+    ps.width = ps.height = kSize;
+    ps.photonsPerPass = 200;
+    ps.seed = 9;
+    ps.gpu = "off";
+    return ps;
+}
+
+TEST(MediumEmission, HomogeneousSlabSphereAndRoomGiveLeOneMinusExp) {
+    for (int kind = 0; kind < 3; ++kind) {
+        const bool sphere = kind == 1, room = kind == 2;
+        Scene s = emissionOnlyScene(sphere, false, room);
+        const auto pixels = innerPixels(s, sphere || room);
+        ASSERT_GE(pixels.size(), 100u);
+        const RenderSettings ps = smallSettings();
+        PassRenderer renderer(s, ps);
+        EmbreeScene rt(s);
+        for (uint64_t pass = 0; pass < 4; ++pass) {
+            const Image img = renderer.renderPass(pass);
+            for (const auto& [pixel, centreChord] : pixels) {
+                // Homogeneous emission is exact per ray: the closed form along this pass's ray
+                // through the pixel (its film jitter).
+                const Vec2 j = pixelJitter(ps.seed, pass, uint64_t(pixel));
+                const float chord =
+                    chordThrough(s, rt, float(pixel % kSize) + j.x, float(pixel / kSize) + j.y, kSize);
+                const Rgb expected = expectedRadiance(chord);
+                for (int c = 0; c < 3; ++c)
+                    EXPECT_NEAR(img.pixels[size_t(pixel)][c], expected[c], 1e-4f * expected[c])
+                        << (room ? "room" : sphere ? "sphere" : "slab") << " pixel " << pixel << " channel " << c;
+            }
+        }
+    }
+}
+
+/// Mean over `pixels` of an image's red channel, and of the closed form.
+std::pair<double, double> meanAndExpected(const Image& img, const std::vector<std::pair<int, float>>& pixels) {
+    double m = 0, e = 0;
+    for (const auto& [pixel, chord] : pixels) {
+        m += img.pixels[size_t(pixel)].r;
+        e += expectedRadiance(chord).r;
+    }
+    return {m / pixels.size(), e / pixels.size()};
+}
+
+TEST(MediumEmission, GridSlabAndRoomGiveLeOneMinusExpInPpbAndTheReference) {
+    for (bool room : {false, true}) {
+        const char* what = room ? "grid room" : "grid slab";
+        Scene s = emissionOnlyScene(false, true, room);
+        const auto pixels = innerPixels(s, room);
+        ASSERT_GE(pixels.size(), 100u);
+        // PPB: the pass images' inner means are independent; their spread gives the standard error.
+        PassRenderer renderer(s, smallSettings());
+        const int passes = 64;
+        std::vector<double> means;
+        double expected = 0;
+        for (int p = 0; p < passes; ++p) {
+            auto [m, e] = meanAndExpected(renderer.renderPass(uint64_t(p)), pixels);
+            means.push_back(m);
+            expected = e;
+        }
+        double mean = 0, var = 0;
+        for (double m : means) mean += m / passes;
+        for (double m : means) var += (m - mean) * (m - mean) / (passes - 1);
+        const double se = std::sqrt(var / passes);
+        std::printf("%s, PPB: inner mean %.5f, closed form %.5f, standard error %.5f\n", what, mean, expected, se);
+        EXPECT_NEAR(mean, expected, 4.5 * se + 1e-3 * expected) << what;
+        EXPECT_GT(se, 0.0);
+
+        ReferenceSettings rs;
+        rs.width = rs.height = kSize;
+        rs.samplesPerPixel = 64;
+        rs.seed = 5;
+        EmbreeScene rt(s);
+        ReferenceTracer ref(rt, rs);
+        ReferenceImage r = ref.render();
+        auto [rm, re] = meanAndExpected(r.mean, pixels);
+        double rvar = 0;
+        for (const auto& [pixel, chord] : pixels) rvar += r.varianceOfMean.pixels[size_t(pixel)].r;
+        const double rse = std::sqrt(rvar) / pixels.size();
+        std::printf("%s, reference: inner mean %.5f, closed form %.5f, standard error %.5f\n", what, rm, re, rse);
+        EXPECT_NEAR(rm, re, 4.5 * rse + 1e-3 * re) << what;
+    }
+}
+
+}  // namespace
+}  // namespace tyndall
