@@ -266,7 +266,7 @@ RenderSettings smallSettings() {
     ps.width = ps.height = kSize;
     ps.photonsPerPass = 200;
     ps.seed = 9;
-    ps.gpu = "off";
+    ps.gpu = GpuMode::Off;
     return ps;
 }
 
