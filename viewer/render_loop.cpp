@@ -126,9 +126,12 @@ void RenderLoop::publish(const Accumulator& acc, const RenderProgress& progress,
     f.radii = renderer.radii();
     f.hybrid = m_scheduler->hybrid();
     f.edits = m_jobEdits;
-    std::lock_guard<std::mutex> lock(m_mutex);
-    f.serial = m_frame.serial + 1;
-    m_frame = std::move(f);
+    {
+        std::lock_guard<std::mutex> lock(m_mutex);
+        f.serial = m_frame.serial + 1;
+        m_frame = std::move(f);
+    }
+    if (m_onPublish) m_onPublish();
 }
 
 void RenderLoop::run() {
@@ -181,8 +184,11 @@ void RenderLoop::run() {
             m_scheduler->run(renderer, acc, 0, display);
         }
     } catch (const std::exception& e) {
-        std::lock_guard<std::mutex> lock(m_mutex);
-        m_error = e.what();
+        {
+            std::lock_guard<std::mutex> lock(m_mutex);
+            m_error = e.what();
+        }
+        if (m_onPublish) m_onPublish();
     }
 }
 

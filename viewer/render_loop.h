@@ -12,6 +12,7 @@
 // the photon paths (docs/viewer.md has the measured cost).
 #include <atomic>
 #include <condition_variable>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
@@ -62,6 +63,9 @@ public:
 
     /// Starts the render thread (with `edits` as the first job's edits).
     void start(const nlohmann::json& edits);
+    /// Set before start: called on the render thread after each publication and on an error (the UI
+    /// wakes on it).
+    void onPublish(std::function<void()> wake) { m_onPublish = std::move(wake); }
     /// Stops the job under way within one stage and joins.
     void stop();
 
@@ -114,6 +118,7 @@ private:
     std::string m_error;
     std::string m_glDescription, m_notice;
 
+    std::function<void()> m_onPublish;
     std::atomic<bool> m_paused{false};
     std::atomic<bool> m_quit{false};
     std::thread m_thread;

@@ -33,7 +33,13 @@ using Clock = std::chrono::steady_clock;
 double seconds(Clock::time_point t) { return std::chrono::duration<double>(t.time_since_epoch()).count(); }
 
 constexpr int kPanelWidth = 330;
-constexpr double kFrameSeconds = 1.0 / 60.0;
+constexpr double kFrameSeconds = 1.0 / 60.0;  // the most frames a second the window draws
+// Frames drawn after an input event whatever else happens, so the panel's hover, press and release
+// states settle (Dear ImGui updates them one frame late).
+constexpr int kSettleFrames = 3;
+// With nothing new the UI thread sleeps in the event queue; it wakes this often only to check
+// script time-outs and render errors, and draws nothing unless something changed.
+constexpr double kIdleWakeSeconds = 0.5;
 constexpr double kDoubleClickSeconds = 0.35;
 
 const char* kBindings[][2] = {
@@ -94,7 +100,8 @@ private:
     void screenshot(const std::string& path);
     void drawPanel();
     void drawHelp();
-    bool stepScript();
+    bool stepScript(bool* acted);
+    void inputArrived() { m_redraw = std::max(m_redraw, kSettleFrames); }
     bool refinedAtRest(uint64_t passes) const;
     void writeStats();
 
@@ -119,6 +126,7 @@ private:
     bool m_quit = false;
     int m_saves = 0;
     std::string m_status;
+    int m_redraw = kSettleFrames;  // frames to draw whether or not a new image arrives
 
     int m_dragButton = -1, m_dragMods = 0;
     float m_lastX = 0, m_lastY = 0;
@@ -135,6 +143,7 @@ private:
 
     // Statistics for --stats and the HUD.
     std::vector<double> m_frameSeconds;
+    uint64_t m_imagesShown = 0;  // published images of the first loop taken and drawn
     // Input change -> first image of the new view: during a drag (a preview image) and on release
     // or at rest (the first refined pass).
     std::vector<double> m_latencies, m_refineLatencies;
@@ -322,11 +331,14 @@ bool Viewer::refinedAtRest(uint64_t passes) const {
 }
 
 /// Runs script events until one waits; at most one input event per UI frame, so previews
-/// interleave with a drag as they do by hand. Returns false when the script says quit.
-bool Viewer::stepScript() {
+/// interleave with a drag as they do by hand. Returns false when the script says quit; *acted
+/// says whether it ran an event or counts a frame (the caller then draws one).
+bool Viewer::stepScript(bool* acted) {
     double t = seconds(Clock::now());
+    *acted = false;
     if (m_waitFrames > 0) {
         --m_waitFrames;
+        *acted = true;
         return true;
     }
     if (t < m_waitUntil) return true;
@@ -340,6 +352,7 @@ bool Viewer::stepScript() {
             case ScriptOp::WaitFrames:
                 m_waitFrames = uint64_t(e.value);
                 ++m_scriptNext;
+                *acted = true;
                 return true;
             case ScriptOp::WaitPasses:
                 if (m_waitPassesSince == 0) m_waitPassesSince = t;
@@ -376,6 +389,7 @@ bool Viewer::stepScript() {
             case ScriptOp::Quit: ++m_scriptNext; return false;
         }
         ++m_scriptNext;
+        *acted = true;
         return true;
     }
     return true;
@@ -485,6 +499,8 @@ void Viewer::writeStats() {
     if (m_o.statsPath.empty()) return;
     nlohmann::json j;
     j["frames"] = m_frameSeconds.size();
+    j["images_shown"] = m_imagesShown;
+    j["refine_passes"] = m_frames[0].mode == RenderMode::Refine ? m_frames[0].passes : 0;
     j["frame_ms_p50"] = 1000 * percentile(m_frameSeconds, 0.5);
     j["frame_ms_p95"] = 1000 * percentile(m_frameSeconds, 0.95);
     j["frame_ms_max"] = 1000 * percentile(m_frameSeconds, 1.0);
@@ -574,7 +590,10 @@ int Viewer::run() {
         m_edited.camera = m_camera.camera();
         nlohmann::json edits = sceneEdits(m_edited);
         if (m_o.compare) edits.erase("media");
-        for (auto& loop : m_loops) loop->start(edits);
+        for (auto& loop : m_loops) {
+            loop->onPublish([] { glfwPostEmptyEvent(); });  // wakes the UI thread's event wait
+            loop->start(edits);
+        }
     }
 
     IMGUI_CHECKVERSION();
@@ -584,6 +603,7 @@ int Viewer::run() {
     glfwSetWindowUserPointer(m_window, this);
     glfwSetMouseButtonCallback(m_window, [](GLFWwindow* win, int button, int action, int mods) {
         Viewer* v = self(win);
+        v->inputArrived();
         if (ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureMouse && v->m_dragButton < 0) return;
         double cx, cy;
         glfwGetCursorPos(win, &cx, &cy);
@@ -597,12 +617,14 @@ int Viewer::run() {
     });
     glfwSetCursorPosCallback(m_window, [](GLFWwindow* win, double cx, double cy) {
         Viewer* v = self(win);
+        v->inputArrived();
         float x, y;
         v->imageArea(cx, cy, &x, &y);
         v->move(x, y);
     });
     glfwSetScrollCallback(m_window, [](GLFWwindow* win, double, double dy) {
         Viewer* v = self(win);
+        v->inputArrived();
         if (ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureMouse) return;
         double cx, cy;
         glfwGetCursorPos(win, &cx, &cy);
@@ -611,6 +633,7 @@ int Viewer::run() {
     });
     glfwSetKeyCallback(m_window, [](GLFWwindow* win, int key, int, int action, int) {
         Viewer* v = self(win);
+        v->inputArrived();
         if (action != GLFW_PRESS || (ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureKeyboard)) return;
         switch (key) {
             case GLFW_KEY_ESCAPE: v->key("escape"); break;
@@ -627,27 +650,45 @@ int Viewer::run() {
     });
     glfwSetCharCallback(m_window, [](GLFWwindow* win, unsigned c) {
         Viewer* v = self(win);
+        v->inputArrived();
         if (ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureKeyboard) return;
         if (c == '+') v->key("plus");
         if (c == '-') v->key("minus");
     });
+    // Exposed, focused, entered: the window needs a frame too.
+    glfwSetWindowRefreshCallback(m_window, [](GLFWwindow* win) { self(win)->inputArrived(); });
+    glfwSetWindowFocusCallback(m_window, [](GLFWwindow* win, int) { self(win)->inputArrived(); });
+    glfwSetCursorEnterCallback(m_window, [](GLFWwindow* win, int) { self(win)->inputArrived(); });
     // ImGui's backend chains to the callbacks installed above.
     ImGui_ImplGlfw_InitForOpenGL(m_window, true);
     ImGui_ImplOpenGL3_Init("#version 330 core");
 
     int exitCode = 0;
     try {
-        auto next = Clock::now();
         while (!m_quit && !glfwWindowShouldClose(m_window)) {
+            // Sleep in the event queue until input, a published pass (glfwPostEmptyEvent from the
+            // render thread) or the script's next time; draw only when something is new.
+            if (m_redraw > 0) {
+                glfwPollEvents();
+            } else {
+                double wait = kIdleWakeSeconds;
+                if (m_scriptNext < m_script.size() && m_waitUntil > 0)
+                    wait = std::clamp(m_waitUntil - seconds(Clock::now()), 1e-3, wait);
+                glfwWaitEventsTimeout(wait);
+            }
             auto frameStart = Clock::now();
-            glfwPollEvents();
-            if (!m_script.empty() && !stepScript()) m_quit = true;
+            bool draw = m_redraw > 0;
+            bool acted = false;
+            if (!m_script.empty() && !stepScript(&acted)) m_quit = true;
+            if (acted) draw = true, m_redraw = std::max(m_redraw, 1);
             for (size_t i = 0; i < m_loops.size(); ++i) {
                 std::string err = m_loops[i]->error();
                 if (!err.empty()) throw Error("view: rendering failed: " + err);
                 if (m_loops[i]->latest(&m_frames[i])) {
                     m_view->upload(int(i), m_frames[i].mean);
+                    draw = true;
                     if (i == 0) {
+                        ++m_imagesShown;
                         double t = seconds(Clock::now());
                         while (!m_pendingChanges.empty() && m_pendingChanges.front().version <= m_frames[0].version) {
                             const PendingChange& c = m_pendingChanges.front();
@@ -668,6 +709,8 @@ int Viewer::run() {
             double tNow = seconds(Clock::now());
             if (previewing && m_previewSince < 0) m_previewSince = tNow;
             if (!previewing && m_previewSince >= 0) m_previewSeconds += tNow - m_previewSince, m_previewSince = -1;
+            if (!draw || m_quit) continue;
+            if (m_redraw > 0) --m_redraw;
 
             ImGui_ImplOpenGL3_NewFrame();
             ImGui_ImplGlfw_NewFrame();
@@ -687,12 +730,10 @@ int Viewer::run() {
             ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
             glfwSwapBuffers(m_window);
             m_frameSeconds.push_back(std::chrono::duration<double>(Clock::now() - frameStart).count());
-            next += std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(kFrameSeconds));
-            auto nowT = Clock::now();
-            if (next > nowT)
-                std::this_thread::sleep_until(next);
-            else
-                next = nowT;
+            // At most 60 frames a second, however fast passes arrive (a swap that does not block,
+            // as on Xvfb, must not spin a core).
+            std::this_thread::sleep_until(
+                frameStart + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(kFrameSeconds)));
         }
     } catch (...) {
         for (auto& loop : m_loops) loop->stop();

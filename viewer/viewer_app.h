@@ -1,7 +1,8 @@
 #pragma once
 // `tyndall view`: the interactive viewer window (GLFW + Dear ImGui). The UI thread owns the
 // window, draws the newest running mean of each render loop (viewer/render_loop.h) tone-mapped on
-// the GPU at the display rate, runs the panel, and turns mouse and keys (or a --script) into
+// the GPU when there is something new to show (a published pass, input; at most 60 frames a
+// second, none at rest), runs the panel, and turns mouse and keys (or a --script) into
 // camera, light and medium edits; the render loops run on their own threads and the UI never
 // waits for a pass. docs/viewer.md lists the bindings.
 #include <string>

@@ -136,6 +136,21 @@ TEST(ViewerXvfb, ExposureChangesTheWindowNotTheExr) {
     EXPECT_GT(a, 0.005) << "the window shows no image";
 }
 
+TEST(ViewerXvfb, AtRestItDrawsOnlyWhatIsNew) {
+    SKIP_WITHOUT_XVFB();
+    fs::path d = outDir("rest");
+    // Paused for 3 s: no pass is published and no input arrives, so next to no frame is drawn
+    // (a window redrawing at 60 Hz draws ~180).
+    test::CliRun r = runView(d, std::string(kSmall) + " --stats " + (d / "stats.json").string(),
+                             "wait-passes 1\nkey space\nsleep 3000\nquit\n");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    nlohmann::json j = nlohmann::json::parse(std::ifstream(d / "stats.json"));
+    uint64_t frames = j["frames"], images = j["images_shown"];
+    ASSERT_GE(images, 1u);
+    // One frame per image shown, plus a few to settle the panel at the start and after the key.
+    EXPECT_LE(frames, images + 10) << frames << " frames for " << images << " images";
+}
+
 /// `tyndall render VIEW.json --gpu off` reproduces the viewer's VIEW.exr bit for bit.
 void expectRenderReproduces(const fs::path& d, const std::string& stem) {
     const std::string exr = (d / (stem + ".exr")).string();
