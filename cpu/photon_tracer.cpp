@@ -31,7 +31,12 @@ RadiusSetup RadiusSetup::resolve(const RenderSettings& settings, const Scene& sc
 }
 
 PhotonTracer::PhotonTracer(const EmbreeScene& rt, const RenderSettings& settings, const RadiusSetup& radii)
-    : m_rt(rt), m_scene(rt.scene()), m_settings(settings), m_radii(radii), m_lights(rt.scene()) {
+    : m_rt(rt), m_scene(rt.scene()), m_settings(settings), m_radii(radii), m_lights(rt.scene()), m_media(rt) {
+    if (!m_media.empty()) {
+        const double media = std::max(0.0f, m_media.estimatedPower().luminance());
+        const double lights = m_lights.sourceCount() > 0 ? std::max(0.0f, m_lights.totalPower().luminance()) : 0.0;
+        m_mediaShare = lights > 0 ? float(std::clamp(media / (media + lights), 1e-3, 1.0 - 1e-3)) : 1.0f;
+    }
     for (const Light& l : m_scene.lights)
         m_lightMedium.push_back(l.type == LightType::Directional ? m_scene.globalMedium : m_rt.mediumAt(l.position));
     for (const Medium& m : m_scene.media) m_anyHeterogeneous |= !m.homogeneous();
@@ -111,16 +116,29 @@ PhotonMap PhotonTracer::trace(uint64_t pass, uint64_t firstPath, uint32_t begin,
 
 void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t globalPath, uint32_t count, PhotonMap& out,
                              std::vector<Ray>* rays) const {
-    if (m_lights.sourceCount() == 0) return;  // lit by emissive media alone
     Rng rng = Rng::forKey(m_settings.seed, pass, pathInPass, StreamPurpose::PhotonPath);
-    EmittedPhoton e = m_lights.sample(rng);
+    // The source: a light, or an emissive medium (one more draw only when both exist).
+    const bool fromMedium = m_mediaShare >= 1.0f || (m_mediaShare > 0 && rng.uniform() < m_mediaShare);
+    EmittedPhoton e;
+    MediumId mediumStart = kVacuum;
+    if (fromMedium) {
+        const MediumEmitters::Photon mp = m_media.sample(rng);
+        e.ray = mp.ray;
+        e.power = mp.power / m_mediaShare;
+        mediumStart = mp.medium;
+    } else {
+        if (m_lights.sourceCount() == 0) return;
+        e = m_lights.sample(rng);
+        if (m_mediaShare > 0) e.power *= 1.0f / (1.0f - m_mediaShare);
+    }
     Rgb power = e.power / float(count);
     const float startMax = power.maxComponent();
     if (!(startMax > 0)) return;
     float beamRadius, surfaceRadius;
     m_radii.radiiOf(globalPath, &beamRadius, &surfaceRadius);
 
-    MediumId medium = e.environment ? m_scene.globalMedium
+    MediumId medium = fromMedium      ? mediumStart
+                      : e.environment ? m_scene.globalMedium
                       : e.light >= 0 ? m_lightMedium[e.light]
                                      : m_scene.meshes[e.emitterMesh].exteriorMedium;
     // The ray is o + t d, t in (0, infinity), as every emitted and scattered ray is.
@@ -130,11 +148,12 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
     // SurfacePhoton::flags (core/photon_beam.h). deltaPath: from a point, spot or directional light
     // through delta interactions only, what glossy and coat-specular gathers use (docs/algorithm.md,
     // "Glossy vertices"); direct: no scattering vertex yet (interface crossings are none).
-    bool deltaPath = e.light >= 0;
-    bool direct = true;
+    // A photon from a medium is neither: no shadow ray carries a medium's light.
+    bool deltaPath = !fromMedium && e.light >= 0;
+    bool direct = !fromMedium;
     // Path distance from the light at o (the photon cone, cpu/beam_cone.h).
     // Parallel light (directional, the environment) has no cone: it starts infinitely far away.
-    double travelled = e.environment                                              ? kInfinity
+    double travelled = fromMedium || e.environment                                ? kInfinity
                        : e.light < 0                                              ? m_emitterStart[e.emitterMesh]
                        : m_scene.lights[e.light].type == LightType::Directional ? kInfinity
                                                                                   : 0.0;

@@ -1,5 +1,5 @@
 #pragma once
-// Photon tracing (PPB step 1): emits the pass's photon paths from the lights (the environment's
+// Photon tracing (PPB step 1): emits the pass's photon paths from the lights and emissive media (cpu/medium_emitters.h) and follows them
 // from a disc outside the scene's bounding sphere, core/light_sampler.h) and follows them
 // through specular and diffuse surfaces and through media, storing a photon beam for every
 // medium segment (long beams: each reaches the next surface, with analytic or stored-distance
@@ -17,6 +17,7 @@
 #include "core/radius_schedule.h"
 #include "core/settings.h"
 #include "cpu/embree_scene.h"
+#include "cpu/medium_emitters.h"
 
 namespace tyndall {
 
@@ -74,6 +75,10 @@ private:
     RenderSettings m_settings;
     RadiusSetup m_radii;
     LightSampler m_lights;
+    /// Photons from emissive media (cpu/medium_emitters.h), chosen with probability m_mediaShare
+    /// (the luminance share of their estimated power; no draw when there are none).
+    MediumEmitters m_media;
+    float m_mediaShare = 0;
     std::vector<MediumId> m_lightMedium;  // per Scene::lights entry
     std::vector<double> m_emitterStart;   // per mesh: path distance an area light's photons start at
     bool m_anyHeterogeneous = false;
