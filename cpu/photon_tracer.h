@@ -1,6 +1,7 @@
 #pragma once
-// Photon tracing (PPB step 1): emits the pass's photon paths from the lights and emissive media (cpu/medium_emitters.h) and follows them
-// from a disc outside the scene's bounding sphere, core/light_sampler.h) and follows them
+// Photon tracing (PPB step 1): emits the pass's photon paths from the lights (the environment's
+// from a disc outside the scene's bounding sphere, core/light_sampler.h) and from emissive media
+// (cpu/medium_emitters.h), and follows them
 // through specular and diffuse surfaces and through media, storing a photon beam for every
 // medium segment (long beams: each reaches the next surface, with analytic or stored-distance
 // transmittance) and a surface photon at every diffuse hit (with --direct-light on, none for a path
