@@ -83,6 +83,13 @@ void addViewCommand(CLI::App& app, int& exitCode) {
         v.compare = o->compare;
         v.preview.scale = o->previewScale;
         v.preview.photonDivisor = o->previewPhotons;
+        if (!o->compare && !c.scene.empty()) {
+            v.scenePath = c.scene;
+            v.reload = [c](std::vector<std::string>* names, std::vector<Camera>* cameras) {
+                CommonOptions again = c;
+                return loadScene(again, names, cameras);
+            };
+        }
         ThreadLimit threads(c.settings.threads);
         exitCode = runViewer(v);
     });

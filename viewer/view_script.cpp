@@ -55,7 +55,7 @@ struct LineReader {
 };
 
 bool validKey(const std::string& k) {
-    static const char* kKeys[] = {"F", "R", "S", "H", "plus", "minus", "space", "escape"};
+    static const char* kKeys[] = {"F", "R", "S", "H", "F5", "plus", "minus", "space", "escape"};
     for (const char* key : kKeys)
         if (k == key) return true;
     return k.size() == 1 && k[0] >= '1' && k[0] <= '9';
@@ -86,6 +86,9 @@ std::vector<ScriptEvent> parseViewScript(const std::string& text, const std::str
             if (r.more()) e.timeout = r.number("seconds", 0.001, 1e6);
         } else if (cmd == "wait-input") {
             e.op = ScriptOp::WaitInput, e.value = std::floor(r.number("releases", 1, 1e9));
+            if (r.more()) e.timeout = r.number("seconds", 0.001, 1e6);
+        } else if (cmd == "wait-reload") {
+            e.op = ScriptOp::WaitReload, e.value = std::floor(r.number("reloads", 1, 1e9));
             if (r.more()) e.timeout = r.number("seconds", 0.001, 1e6);
         } else if (cmd == "press" || cmd == "release") {
             e.op = cmd == "press" ? ScriptOp::Press : ScriptOp::Release;
@@ -122,7 +125,7 @@ std::vector<ScriptEvent> parseViewScript(const std::string& text, const std::str
         } else if (cmd == "key") {
             e.op = ScriptOp::Key, e.text = r.word("key name");
             if (!validKey(e.text))
-                r.fail("key: expected F, R, S, H, 1-9, plus, minus, space or escape, got '" + e.text + "'");
+                r.fail("key: expected F, R, S, H, F5, 1-9, plus, minus, space or escape, got '" + e.text + "'");
         } else if (cmd == "exposure") {
             e.op = ScriptOp::Exposure, e.value = r.number("exposure", 1e-6, 1e6);
         } else if (cmd == "save" || cmd == "screenshot") {
@@ -132,7 +135,7 @@ std::vector<ScriptEvent> parseViewScript(const std::string& text, const std::str
             e.op = ScriptOp::Quit;
         } else {
             r.fail("unknown command '" + cmd +
-                   "' (expected sleep, wait-frames, wait-passes, wait-input, press, move, release, drag, double-click, scroll, "
+                   "' (expected sleep, wait-frames, wait-passes, wait-input, wait-reload, press, move, release, drag, double-click, scroll, "
                    "key, exposure, save, screenshot or quit)");
         }
         r.done();

@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <deque>
+#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <thread>
@@ -40,6 +41,7 @@ constexpr int kSettleFrames = 3;
 // With nothing new the UI thread sleeps in the event queue; it wakes this often only to check
 // script time-outs and render errors, and draws nothing unless something changed.
 constexpr double kIdleWakeSeconds = 0.5;
+constexpr double kScenePollSeconds = 0.5;  // how often the scene file's modification time is read
 constexpr double kDoubleClickSeconds = 0.35;
 
 const char* kBindings[][2] = {
@@ -53,6 +55,7 @@ const char* kBindings[][2] = {
     {"+ / -", "exposure up / down"},
     {"Space", "pause / resume"},
     {"R", "restart the refinement"},
+    {"F5", "reload the scene file (also done when it changes on disk)"},
     {"S", "save EXR + PNG + scene .json"},
     {"H", "help overlay"},
     {"Escape", "quit"},
@@ -93,6 +96,10 @@ private:
     void key(const std::string& name);
     bool imageArea(double wx, double wy, float* x, float* y) const;
 
+    void initEditUi();
+    void startLoops();
+    void reloadScene();
+    void pollSceneFile();
     void pushEdits();
     void pushSettings();
     void resetControllerTo(const Camera& camera);
@@ -127,6 +134,9 @@ private:
     int m_saves = 0;
     std::string m_status;
     int m_redraw = kSettleFrames;  // frames to draw whether or not a new image arrives
+    uint64_t m_reloads = 0;        // reloads tried (a bad file counts: wait-reload)
+    std::filesystem::file_time_type m_sceneTime{};
+    double m_nextPoll = 0;
 
     int m_dragButton = -1, m_dragMods = 0;
     float m_lastX = 0, m_lastY = 0;
@@ -166,6 +176,93 @@ bool Viewer::imageArea(double wx, double wy, float* x, float* y) const {
     if (m_o.compare && px >= m_o.settings.width + gap) px -= float(m_o.settings.width + gap);
     *x = px, *y = py;
     return px >= 0 && py >= 0 && px < m_o.settings.width && py < m_o.settings.height && wx >= kPanelWidth;
+}
+
+void Viewer::initEditUi() {
+    m_lightUi.clear();
+    m_mediumUi.clear();
+    for (const Light& l : m_edited.lights) {
+        LightUi u;
+        float p = std::max({l.intensity.r, l.intensity.g, l.intensity.b});
+        u.power = p;
+        if (p > 0) u.colour[0] = l.intensity.r / p, u.colour[1] = l.intensity.g / p, u.colour[2] = l.intensity.b / p;
+        m_lightUi.push_back(u);
+    }
+    if (m_edited.environment) {
+        m_environmentScale = m_edited.environment->scale();
+        m_environmentRotation = m_edited.environment->rotation();
+    }
+    for (const Medium& m : m_edited.media) {
+        MediumUi u;
+        u.sigmaS[0] = m.sigmaS.r, u.sigmaS[1] = m.sigmaS.g, u.sigmaS[2] = m.sigmaS.b;
+        u.sigmaA[0] = m.sigmaA.r, u.sigmaA[1] = m.sigmaA.g, u.sigmaA[2] = m.sigmaA.b;
+        u.g = m.g;
+        u.heterogeneous = !m.homogeneous();
+        m_mediumUi.push_back(u);
+    }
+    m_selectedLight = std::clamp(m_selectedLight, 0, std::max(int(m_edited.lights.size()) - 1, 0));
+}
+
+void Viewer::startLoops() {
+    m_loops.push_back(std::make_unique<RenderLoop>(m_o.scene, m_settings, m_o.gpu, m_o.preview));
+    if (m_o.compare) m_loops.push_back(std::make_unique<RenderLoop>(m_o.twin, m_settings, m_o.gpu, m_o.preview));
+    m_frames.assign(m_loops.size(), ViewFrame{});
+    for (auto& loop : m_loops)
+        if (!loop->notice().empty()) std::fprintf(stderr, "tyndall: %s\n", loop->notice().c_str());
+    m_edited.camera = m_camera.camera();
+    nlohmann::json edits = sceneEdits(m_edited);
+    if (m_o.compare) edits.erase("media");
+    for (auto& loop : m_loops) {
+        loop->onPublish([] { glfwPostEmptyEvent(); });  // wakes the UI thread's event wait
+        loop->start(edits);
+    }
+}
+
+/// The scene file again, with the camera kept and the lights and media as the file now says; a file
+/// that does not load leaves the last good scene rendering and says why.
+void Viewer::reloadScene() {
+    ++m_reloads;
+    inputArrived();
+    if (!m_o.reload) {
+        m_status = "reload: only a scene file reloads (not a built-in scene, nor with --compare)";
+        return;
+    }
+    std::vector<std::string> names;
+    std::vector<Camera> cameras;
+    Scene scene;
+    try {
+        scene = m_o.reload(&names, &cameras);
+    } catch (const std::exception& e) {
+        m_status = std::string("reload failed, the last good scene stays: ") + e.what();
+        std::fprintf(stderr, "tyndall view: %s\n", m_status.c_str());
+        return;
+    }
+    for (auto& loop : m_loops) loop->stop();
+    m_loops.clear();
+    m_pendingChanges.clear();
+    m_dragButton = -1;
+    m_o.scene = std::move(scene);
+    m_o.cameraNames = std::move(names);
+    m_o.cameras = std::move(cameras);
+    m_edited = m_o.scene;
+    initEditUi();
+    m_cameraIndex = std::min(m_cameraIndex, std::max(int(m_o.cameras.size()) - 1, 0));
+    m_picker = std::make_unique<EmbreeScene>(m_o.scene);
+    startLoops();
+    m_status = "reloaded " + m_o.scenePath;
+    std::printf("tyndall view: reloaded %s\n", m_o.scenePath.c_str());
+    std::fflush(stdout);
+}
+
+void Viewer::pollSceneFile() {
+    double t = seconds(Clock::now());
+    if (m_o.scenePath.empty() || t < m_nextPoll) return;
+    m_nextPoll = t + kScenePollSeconds;
+    std::error_code ec;
+    auto time = std::filesystem::last_write_time(m_o.scenePath, ec);
+    if (ec || time == m_sceneTime) return;  // a file being replaced may be missing for a moment
+    m_sceneTime = time;
+    reloadScene();
 }
 
 void Viewer::pushEdits() {
@@ -285,6 +382,8 @@ void Viewer::key(const std::string& name) {
         for (auto& loop : m_loops) loop->setPaused(paused);
     } else if (name == "R") {
         for (auto& loop : m_loops) loop->restart();
+    } else if (name == "F5") {
+        reloadScene();
     } else if (name == "S") {
         save(m_o.saveStem + "-" + std::to_string(++m_saves));
     } else if (name == "H") {
@@ -367,10 +466,12 @@ bool Viewer::stepScript(bool* acted) {
                 ++m_scriptNext;
                 continue;
             case ScriptOp::WaitInput:
+            case ScriptOp::WaitReload:
                 if (m_waitPassesSince == 0) m_waitPassesSince = t;
-                if (m_windowReleases < uint64_t(e.value)) {
+                if ((e.op == ScriptOp::WaitInput ? m_windowReleases : m_reloads) < uint64_t(e.value)) {
                     if (t - m_waitPassesSince > e.timeout)
-                        throw Error(m_o.script + ": line " + std::to_string(e.line) + ": wait-input timed out after " +
+                        throw Error(m_o.script + ": line " + std::to_string(e.line) +
+                                    (e.op == ScriptOp::WaitInput ? ": wait-input" : ": wait-reload") + " timed out after " +
                                     std::to_string(e.timeout) + " s");
                     return true;
                 }
@@ -554,25 +655,7 @@ int Viewer::run() {
     m_edited = m_o.scene;
     m_settings = m_o.settings;
     m_exposure = m_o.exposure;
-    for (const Light& l : m_edited.lights) {
-        LightUi u;
-        float p = std::max({l.intensity.r, l.intensity.g, l.intensity.b});
-        u.power = p;
-        if (p > 0) u.colour[0] = l.intensity.r / p, u.colour[1] = l.intensity.g / p, u.colour[2] = l.intensity.b / p;
-        m_lightUi.push_back(u);
-    }
-    if (m_edited.environment) {
-        m_environmentScale = m_edited.environment->scale();
-        m_environmentRotation = m_edited.environment->rotation();
-    }
-    for (const Medium& m : m_edited.media) {
-        MediumUi u;
-        u.sigmaS[0] = m.sigmaS.r, u.sigmaS[1] = m.sigmaS.g, u.sigmaS[2] = m.sigmaS.b;
-        u.sigmaA[0] = m.sigmaA.r, u.sigmaA[1] = m.sigmaA.g, u.sigmaA[2] = m.sigmaA.b;
-        u.g = m.g;
-        u.heterogeneous = !m.homogeneous();
-        m_mediumUi.push_back(u);
-    }
+    initEditUi();
     m_picker = std::make_unique<EmbreeScene>(m_o.scene);
     for (size_t i = 0; i < m_o.cameras.size(); ++i)
         if (m_o.cameras[i].position.x == m_o.scene.camera.position.x &&
@@ -580,20 +663,10 @@ int Viewer::run() {
             m_o.cameras[i].position.z == m_o.scene.camera.position.z)
             m_cameraIndex = int(i);
     resetControllerTo(m_o.scene.camera);
-
-    m_loops.push_back(std::make_unique<RenderLoop>(m_o.scene, m_o.settings, m_o.gpu, m_o.preview));
-    if (m_o.compare) m_loops.push_back(std::make_unique<RenderLoop>(m_o.twin, m_o.settings, m_o.gpu, m_o.preview));
-    m_frames.resize(m_loops.size());
-    for (auto& loop : m_loops)
-        if (!loop->notice().empty()) std::fprintf(stderr, "tyndall: %s\n", loop->notice().c_str());
-    {
-        m_edited.camera = m_camera.camera();
-        nlohmann::json edits = sceneEdits(m_edited);
-        if (m_o.compare) edits.erase("media");
-        for (auto& loop : m_loops) {
-            loop->onPublish([] { glfwPostEmptyEvent(); });  // wakes the UI thread's event wait
-            loop->start(edits);
-        }
+    startLoops();
+    if (!m_o.scenePath.empty()) {
+        std::error_code ec;
+        m_sceneTime = std::filesystem::last_write_time(m_o.scenePath, ec);
     }
 
     IMGUI_CHECKVERSION();
@@ -641,6 +714,7 @@ int Viewer::run() {
             case GLFW_KEY_R: v->key("R"); break;
             case GLFW_KEY_S: v->key("S"); break;
             case GLFW_KEY_H: v->key("H"); break;
+            case GLFW_KEY_F5: v->key("F5"); break;
             case GLFW_KEY_SPACE: v->key("space"); break;
             case GLFW_KEY_KP_ADD: v->key("plus"); break;
             case GLFW_KEY_KP_SUBTRACT: v->key("minus"); break;
@@ -677,6 +751,7 @@ int Viewer::run() {
                 glfwWaitEventsTimeout(wait);
             }
             auto frameStart = Clock::now();
+            pollSceneFile();
             bool draw = m_redraw > 0;
             bool acted = false;
             if (!m_script.empty() && !stepScript(&acted)) m_quit = true;

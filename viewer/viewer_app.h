@@ -5,6 +5,7 @@
 // second, none at rest), runs the panel, and turns mouse and keys (or a --script) into
 // camera, light and medium edits; the render loops run on their own threads and the UI never
 // waits for a pass. docs/viewer.md lists the bindings.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,10 @@ struct ViewerOptions {
     Scene twin;
     PreviewOptions preview;
     std::string statsPath;             ///< --stats FILE: frame times, preview rate, latencies (JSON)
+    /// The scene file, polled for changes ("" for a built-in scene and --compare: nothing reloads).
+    std::string scenePath;
+    /// Loads scenePath again as at the start (same --camera); throws Error naming the file and place.
+    std::function<Scene(std::vector<std::string>* cameraNames, std::vector<Camera>* cameras)> reload;
 };
 
 /// Opens the window and runs until Escape, the window's close button or a script's quit; returns

@@ -38,6 +38,17 @@ TEST(ViewScript, ParsesEveryCommandAndExpandsDrags) {
     EXPECT_EQ(e.back().op, ScriptOp::Quit);
 }
 
+TEST(ViewScript, ParsesWaitReloadAndTheF5Key) {
+    auto e = parseViewScript("wait-reload 2 30\nkey F5\nwait-reload 3\n", "t.txt");
+    ASSERT_EQ(e.size(), 3u);
+    EXPECT_EQ(e[0].op, ScriptOp::WaitReload);
+    EXPECT_EQ(e[0].value, 2);
+    EXPECT_EQ(e[0].timeout, 30);
+    EXPECT_EQ(e[1].op, ScriptOp::Key);
+    EXPECT_EQ(e[1].text, "F5");
+    EXPECT_EQ(e[2].timeout, 600);
+}
+
 TEST(ViewScript, ErrorsNameTheFileLineAndWhatWasExpected) {
     auto message = [](const std::string& text) {
         try {

@@ -208,6 +208,68 @@ TEST(ViewerXvfb, RealMouseDragThroughTheXServerOrbits) {
     expectRenderReproduces(d, "after");
 }
 
+/// A one-room scene whose lamp has `intensity`.
+std::string roomScene(const std::string& intensity) {
+    return R"({"name": "room", "materials": [{"name": "wall", "albedo": 0.5}],
+  "shapes": [{"type": "box", "name": "room", "material": "wall", "min": [-1, 0, -1], "max": [1, 2, 1], "inward": true}],
+  "lights": [{"type": "point", "name": "lamp", "position": [0, 1.5, 0], "intensity": )" +
+           intensity + R"(}],
+  "cameras": [{"name": "front", "position": [0, 1, 0.9], "target": [0, 1, 0], "fov": 60}]})";
+}
+
+TEST(ViewerXvfb, TheSceneFileReloadsOnChangeAndOnF5KeepingTheCameraAndABadFileKeepsTheLastGoodScene) {
+    SKIP_WITHOUT_XVFB();
+    if (std::system("command -v xdotool >/dev/null 2>&1") != 0)
+        GTEST_SKIP() << "xdotool is not installed (scripts/setup.sh installs it): real-input test skipped";
+    fs::path d = outDir("reload");
+    const fs::path scene = d / "room.json";
+    std::ofstream(scene) << roomScene("1");
+    std::ofstream(d / "brighter.json") << roomScene("4");
+    std::ofstream(d / "bad.json") << roomScene("[4, 4]");  // not an RGB triple
+    auto stem = [&](const char* name) { return (d / name).string(); };
+    // Orbit, then: the file is replaced (a brighter lamp), F5 from the X server, a bad file.
+    std::ofstream(d / "script.txt") << "wait-passes 1\ndrag left 64 64 84 60 4\nwait-passes 1\nsave " << stem("before")
+                                    << "\nwait-reload 1 120\nwait-passes 1\nsave " << stem("changed")
+                                    << "\nwait-reload 2 120\nwait-passes 1\nsave " << stem("keyed")
+                                    << "\nwait-reload 3 120\nwait-passes 1\nsave " << stem("bad") << "\nquit\n";
+    auto waitFor = [&](const char* name) {
+        return std::string("while [ ! -f ") + stem(name) + ".json ]; do sleep 0.2; done\n";
+    };
+    std::ofstream(d / "run.sh") << "#!/bin/sh\n"
+                                << TYNDALL_BINARY << " view " << scene.string() << " " << kSmall << " --script "
+                                << (d / "script.txt").string() << " &\npid=$!\n"
+                                << waitFor("before") << "sleep 1.1; cp " << (d / "brighter.json").string() << " "
+                                << scene.string() << ".new; mv " << scene.string() << ".new " << scene.string() << "\n"
+                                << waitFor("changed") << "win=$(xdotool search --sync --name 'tyndall view')\n"
+                                << "xdotool key --window $win F5\n"
+                                << waitFor("keyed") << "sleep 1.1; cp " << (d / "bad.json").string() << " "
+                                << scene.string() << ".new; mv " << scene.string() << ".new " << scene.string()
+                                << "\nwait $pid\n";
+    fs::permissions(d / "run.sh", fs::perms::owner_all);
+    std::string cmd = "xvfb-run -a -s '-screen 0 1280x1024x24' " + (d / "run.sh").string() + " 2>&1";
+    test::CliRun r;
+    FILE* pipe = popen(cmd.c_str(), "r");
+    char buf[4096];
+    for (size_t n; (n = fread(buf, 1, sizeof buf, pipe)) > 0;) r.output.append(buf, n);
+    int status = pclose(pipe);
+    ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << r.output;
+    auto view = [&](const char* name) { return nlohmann::json::parse(std::ifstream(d / (std::string(name) + ".json"))); };
+    nlohmann::json before = view("before"), changed = view("changed"), keyed = view("keyed"), bad = view("bad");
+    // The file's change shows (4x the lamp), the orbited camera stays.
+    EXPECT_EQ(changed["edits"]["lights"][0]["intensity"], nlohmann::json({4, 4, 4}));
+    EXPECT_EQ(before["edits"]["lights"][0]["intensity"], nlohmann::json({1, 1, 1}));
+    EXPECT_EQ(changed["edits"]["camera"], before["edits"]["camera"]);
+    double lumBefore = meanLuminance(readImage(stem("before") + ".exr"), 0, 0, 128, 128);
+    double lumChanged = meanLuminance(readImage(stem("changed") + ".exr"), 0, 0, 128, 128);
+    EXPECT_NEAR(lumChanged / lumBefore, 4.0, 0.4) << "a lamp 4x brighter, same view and seed";
+    // F5 reloads (the same file: the same view and lamp); the bad file keeps the last good scene
+    // and says why, naming the file.
+    EXPECT_EQ(keyed["edits"], changed["edits"]);
+    EXPECT_EQ(bad["edits"], changed["edits"]);
+    EXPECT_NE(r.output.find("reload failed, the last good scene stays"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(scene.string() + ": "), std::string::npos) << r.output;
+}
+
 TEST(ViewerXvfb, WithGlSplattingTheSavedViewReproducesUnderGpuOn) {
     SKIP_WITHOUT_XVFB();
     fs::path d = outDir("gl");
