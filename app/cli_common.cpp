@@ -151,7 +151,8 @@ const std::pair<const char*, const char*> kOptionKeys[] = {
     {"--memory", "memory"},
     {"--simd", "simd"},
     {"--direct-light", "direct_light"},
-    {"--surface-boundary", "surface_boundary"}};
+    {"--surface-boundary", "surface_boundary"},
+    {"--max-path-length", "max_path_length"}};
 
 /// settings.validate(), its errors naming the command-line option.
 void validateOptions(const RenderSettings& settings) {
@@ -186,6 +187,15 @@ void addDirectLightOption(CLI::App* cmd, CommonOptions& o) {
     addOnOffOption(cmd, "--surface-boundary", o.settings.surfaceBoundary,
                    "on|off: divide the surface photon kernel by the part of its disc that lies on the "
                    "surface, so edges and corners are not darkened; off = the plain kernel (docs/algorithm.md)");
+}
+
+void addPathLengthOption(CLI::App* cmd, CommonOptions& o) {
+    cmd->add_option("--max-path-length", o.settings.maxPathLength,
+                    "Most segments of a light path, camera and light side together, as Mitsuba's max_depth "
+                    "and Tungsten's max_bounces count them: 1 = emitters seen directly, 2 = direct light and "
+                    "single scattering; 0 = uncapped")
+        ->check(nonNegativeInteger())
+        ->capture_default_str();
 }
 
 void addSimdOption(CLI::App* cmd, CommonOptions& o) {

@@ -38,6 +38,8 @@ void addPpbOptions(CLI::App* cmd, CommonOptions& o);
 
 /// Adds --gpu auto|on|off (RenderSettings::gpu) with `help`.
 void addGpuOption(CLI::App* cmd, CommonOptions& o, const std::string& help);
+/// --max-path-length N (RenderSettings::maxPathLength): render and reference.
+void addPathLengthOption(CLI::App* cmd, CommonOptions& o);
 /// Adds --simd on|off (RenderSettings::simd); part of addPpbOptions.
 void addSimdOption(CLI::App* cmd, CommonOptions& o);
 /// --direct-light on|off and --surface-boundary on|off (part of addPpbOptions; bench adds them alone).

@@ -42,6 +42,7 @@ void addReferenceCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--max-depth", o->reference.maxDepth,
                     "Most scattering vertices (surface or medium) per path; 1 = direct and single scattering")
         ->capture_default_str();
+    addPathLengthOption(cmd, o->common);
     cmd->add_flag("--no-nee", o->noNee, "Disable light sampling (only emissive surfaces hit by paths contribute)");
     cmd->callback([o, &exitCode]() {
         finishOptions(o->common);
@@ -51,6 +52,7 @@ void addReferenceCommand(CLI::App& app, int& exitCode) {
         s.width = o->common.settings.width;
         s.height = o->common.settings.height;
         s.seed = o->common.settings.seed;
+        s.maxPathLength = o->common.settings.maxPathLength;
         s.nextEventEstimation = !o->noNee;
         s.validate();
         ThreadLimit threads(o->common.settings.threads);

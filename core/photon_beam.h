@@ -40,6 +40,10 @@ struct SurfacePhoton {
     /// kPhotonDirect | kPhotonDeltaPath, set by the photon tracer at every stored photon. Interface
     /// crossings (index-matched medium boundaries) are not scattering vertices.
     uint8_t flags = 0;
+    /// Segments of its photon path from the light to here (an Interface crossing starts none),
+    /// saturating at 65535; a camera path that gathers it at its own segment k makes a light path
+    /// of k + segments (RenderSettings::maxPathLength).
+    uint16_t segments = 0;
 };
 
 /// A surface photon counts at a gather point, and a mesh edge bounds the kernel there, only when
@@ -61,6 +65,9 @@ struct PhotonMap {
     /// means the sample passed the whole beam. Empty when no beam is in a heterogeneous medium.
     std::vector<float> freeFlights;
     int freeFlightsPerBeam = 0;
+    /// With RenderSettings::maxPathLength set: per beam, its segment's index on its photon path
+    /// (1 = straight from the light; see SurfacePhoton::segments). Empty when uncapped.
+    std::vector<uint16_t> beamSegments;
     std::vector<SurfacePhoton> surfacePhotons;
 };
 

@@ -49,6 +49,7 @@ void RenderSettings::validate() const {
     if (threads < 0) fail("threads", "must be >= 0 (0 = all cores)");
     if (maxPhotonBounces <= 0) fail("max_photon_bounces", "must be positive");
     if (maxCameraBounces <= 0) fail("max_camera_bounces", "must be positive");
+    if (maxPathLength < 0 || maxPathLength > 65535) fail("max_path_length", "must be in 0..65535 (0 = uncapped)");
     if (freeFlightSamples < 1 || freeFlightSamples > 64) fail("free_flights", "must be in 1..64");
     if (memoryMiB < 64 || memoryMiB > (uint64_t(1) << 30))
         fail("memory", "must be in 64..2^30 MiB (got " + std::to_string(memoryMiB) + ")");
@@ -70,6 +71,7 @@ nlohmann::json RenderSettings::toJson() const {
             {"threads", threads},
             {"max_photon_bounces", maxPhotonBounces},
             {"max_camera_bounces", maxCameraBounces},
+            {"max_path_length", maxPathLength},
             {"free_flights", freeFlightSamples},
             {"gpu", gpuModeText(gpu)},
             {"memory", memoryMiB},
@@ -127,7 +129,7 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
     static const char* kKeys[] = {"width", "height", "passes", "time", "photons", "alpha", "radius",
                                   "surface_radius", "radius_offset", "planned_paths", "photon_angle", "seed", "threads",
                                   "max_photon_bounces", "max_camera_bounces", "free_flights", "gpu", "memory", "simd",
-                                  "direct_light", "surface_boundary"};
+                                  "direct_light", "surface_boundary", "max_path_length"};
     for (auto it = j.begin(); it != j.end(); ++it) {
         bool known = false;
         for (const char* k : kKeys) known |= it.key() == k;
@@ -158,6 +160,7 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
     read(j, "threads", s.threads, where);
     read(j, "max_photon_bounces", s.maxPhotonBounces, where);
     read(j, "max_camera_bounces", s.maxCameraBounces, where);
+    read(j, "max_path_length", s.maxPathLength, where);
     read(j, "free_flights", s.freeFlightSamples, where);
     read(j, "gpu", s.gpu, where);
     read(j, "memory", s.memoryMiB, where);

@@ -66,6 +66,10 @@ struct RenderSettings {
     int threads = 0;                 ///< 0 = all hardware threads
     int maxPhotonBounces = 32;       ///< photon path vertices before termination
     int maxCameraBounces = 16;       ///< specular camera-path vertices before termination
+    /// Most segments of a light path, camera side and light side together (Mitsuba's max_depth,
+    /// Tungsten's max_bounces): 1 = emitters seen directly, 2 = direct light and single scattering.
+    /// Crossing an index-matched Interface starts no segment. 0 = uncapped. docs/algorithm.md.
+    int maxPathLength = 0;
     int freeFlightSamples = 4;       ///< stored free-flight distances per beam/ray (heterogeneous)
     GpuMode gpu = GpuMode::Auto;
     /// Working-memory budget of the pass loop, MiB: image buffers plus the photon batches a pass

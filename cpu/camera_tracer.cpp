@@ -17,14 +17,16 @@
 namespace tyndall {
 
 Rgb gatherBeams(const Scene& scene, const PhotonMap& photons, const std::vector<BeamHitRecord>& hits, MediumId medium,
-                const Vec3& o, const Vec3& d, const float* segmentFreeFlights, int n) {
+                const Vec3& o, const Vec3& d, const float* segmentFreeFlights, int n, int maxBeamSegment) {
     const Medium& med = scene.media[medium];
     Rgb sum;
+    const bool capped = maxBeamSegment > 0 && !photons.beamSegments.empty();
+    auto beyondCap = [&](uint32_t b) { return capped && photons.beamSegments[b] > maxBeamSegment; };
     if (med.homogeneous()) {
         Rgb st = med.sigmaT();
         for (const BeamHitRecord& h : hits) {
             const PhotonBeam& beam = photons.beams[h.beam];
-            if (beam.medium != medium) continue;
+            if (beam.medium != medium || beyondCap(h.beam)) continue;
             float s = h.hit.s, t = h.hit.t;
             Rgb tr = exp(Rgb(-st.r * (s + t), -st.g * (s + t), -st.b * (s + t)));
             sum += beamRadiance(h.hit, beam, med.sigmaS, med.g, tr, Rgb(1.0f));
@@ -34,7 +36,7 @@ Rgb gatherBeams(const Scene& scene, const PhotonMap& photons, const std::vector<
     const int nb = photons.freeFlightsPerBeam;
     for (const BeamHitRecord& h : hits) {
         const PhotonBeam& beam = photons.beams[h.beam];
-        if (beam.medium != medium) continue;
+        if (beam.medium != medium || beyondCap(h.beam)) continue;
         float trCam = storedTransmittance(segmentFreeFlights, n, h.hit.s);
         float trBeam = storedTransmittance(&photons.freeFlights[size_t(h.beam) * nb], nb, h.hit.t);
         if (trCam == 0 || trBeam == 0) continue;
@@ -244,6 +246,16 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
             Vec3 dir = primary.segments.rays[pixel].dir;
             float pathLength = hit.t;
             bool straight = true;  // no reflection or refraction yet (Interface crossings are none)
+            // RenderSettings::maxPathLength: `segment` is the index of the camera segment that
+            // reached `hit` (1 = primary; Interface crossings start none). A photon estimate here
+            // joins a photon path of s segments into a light path of segment + s, a shadow ray
+            // makes segment + 1; those beyond the cap are left out.
+            const int maxLength = m_settings.maxPathLength;
+            int segment = 1;
+            auto photonWithinCap = [&](const SurfacePhoton& p) {
+                return maxLength == 0 || segment + int(p.segments) <= maxLength;
+            };
+            auto shadowRayWithinCap = [&]() { return maxLength == 0 || segment + 1 <= maxLength; };
 
             for (int depth = 0;;) {
                 const TriangleMesh& mesh = m_scene.meshes[hit.mesh];
@@ -271,22 +283,25 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                         if (!sp.baseColor.isBlack()) {
                             SurfaceBoundary::AtPoint coverage(*m_boundary, hit.p, hit.ng);
                             E = surfacePhotons.gather(hit.p, side.nf, [&](const SurfacePhoton& p) {
-                                if (dot(p.normal, side.nf) < SurfaceBoundary::kNormalAgreement || (p.flags & skip)) return 0.0f;
+                                if (dot(p.normal, side.nf) < SurfaceBoundary::kNormalAgreement || (p.flags & skip) ||
+                                    !photonWithinCap(p))
+                                    return 0.0f;
                                 return (shading ? shadingCosineRatio(side, p.wi) : 1.0f) / coverage(p.radius);
                             });
                         }
                     } else {
-                        E = !hasShadingNormal(hit) && skip == 0
+                        E = !hasShadingNormal(hit) && skip == 0 && maxLength == 0
                                 ? surfacePhotons.density(hit.p, side.nf)
                                 : surfacePhotons.gather(hit.p, side.nf, [&](const SurfacePhoton& p) {
-                                      return dot(p.normal, side.nf) < kSurfaceNormalAgreement || (p.flags & skip)
+                                      return dot(p.normal, side.nf) < kSurfaceNormalAgreement || (p.flags & skip) ||
+                                                     !photonWithinCap(p)
                                                  ? 0.0f
                                                  : shadingCosineRatio(side, p.wi);
                                   });
                     }
                     // Direct light by a shadow ray (once per pass: with the emission); none toward
                     // a black surface.
-                    if (m_direct && emission && !sp.baseColor.isBlack()) {
+                    if (m_direct && emission && !sp.baseColor.isBlack() && shadowRayWithinCap()) {
                         E += m_direct->diffuse(hit, side, medium, neeRng, false);
                     }
                     Rgb density = throughput * sp.baseColor * kInvPi * E;
@@ -311,6 +326,7 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                     const bool shading = hasShadingNormal(hit);
                     const uint8_t directLit = m_direct ? kPhotonDirect : 0;
                     auto photonWeight = [&](const SurfacePhoton& p) {
+                        if (!photonWithinCap(p)) return Rgb(0.0f);
                         Rgb f = coat.photonWeight(wo, p.wi, (p.flags & kPhotonDeltaPath) != 0,
                                                   (p.flags & directLit) != 0);
                         return shading ? f * shadingOverGeometricCosine(hit, p.wi) : f;
@@ -323,7 +339,7 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                         if (dot(p.normal, side.nf) < SurfaceBoundary::kNormalAgreement) return Rgb(0.0f);
                         return coverage ? photonWeight(p) / (*coverage)(p.radius) : photonWeight(p);
                     });
-                    if (m_direct && emission && !sp.baseColor.isBlack()) {
+                    if (m_direct && emission && !sp.baseColor.isBlack() && shadowRayWithinCap()) {
                         coated += throughput * m_direct->reflected(hit, side, medium, neeRng, [&](const DirectLightSample& ls) {
                             return coat.evalDiffuse(wo, ls.wi) * diffuseCosine(side, ls.wi);
                         });
@@ -345,7 +361,7 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                     const bool shading = hasShadingNormal(hit);
                     const Rgb glossy =
                         throughput * surfacePhotons.gather(hit.p, hit.ng, [&](const SurfacePhoton& p) {
-                            if (!(p.flags & kPhotonDeltaPath)) return Rgb(0.0f);
+                            if (!(p.flags & kPhotonDeltaPath) || !photonWithinCap(p)) return Rgb(0.0f);
                             Rgb f = bsdf.eval(wo, p.wi, TransportMode::Radiance);
                             return shading ? f * shadingOverGeometricCosine(hit, p.wi) : f;
                         });
@@ -357,6 +373,7 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                                            TransportMode::Radiance, &ev)) {
                     break;
                 }
+                if (mat.type != MaterialType::Interface && ++segment > maxLength && maxLength > 0) break;
                 throughput *= ev.weight;
                 medium = ev.medium;
                 straight = straight && mat.type == MaterialType::Interface;
@@ -377,11 +394,16 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                         sampleCollisionDistances(med, seg, seg.tMax, rng, nff, ff, emission ? &emitted : nullptr);
                     else if (emission)
                         emitted = homogeneousEmission(med, seg.tMax);
-                    beams.query(seg.o, seg.d, seg.tMax, tls.hits, tls.beamCache);
-                    tls.stats.beamQueries++;
-                    tls.stats.beamHits += tls.hits.size();
-                    Rgb media =
-                        throughput * (gatherBeams(m_scene, photons, tls.hits, medium, seg.o, seg.d, ff, nff) + emitted);
+                    // Beams of photon paths that fit the cap with this segment (none when it is full);
+                    // the medium's own emission is a path of `segment` segments, always within it.
+                    const int maxBeamSegment = maxLength > 0 ? maxLength - segment : 0;
+                    if (maxLength == 0 || maxBeamSegment > 0) {
+                        beams.query(seg.o, seg.d, seg.tMax, tls.hits, tls.beamCache);
+                        tls.stats.beamQueries++;
+                        tls.stats.beamHits += tls.hits.size();
+                        emitted += gatherBeams(m_scene, photons, tls.hits, medium, seg.o, seg.d, ff, nff, maxBeamSegment);
+                    }
+                    Rgb media = throughput * emitted;
                     L += media;
                     Lmedia += media;
                     throughput *=

@@ -151,7 +151,9 @@ private:
 /// Medium radiance gathered from `beams` along the segment o + s d, s in [0, sMax], inside
 /// `medium`, before the camera path's throughput. `segmentFreeFlights` (n distances from `o`) are
 /// the segment's own stored transmittance samples for grid media (ignored for homogeneous ones).
+/// `maxBeamSegment` > 0 (a capped path length): only beams whose PhotonMap::beamSegments index is
+/// at most that; 0 = every beam.
 Rgb gatherBeams(const Scene& scene, const PhotonMap& photons, const std::vector<BeamHitRecord>& hits, MediumId medium,
-                const Vec3& o, const Vec3& d, const float* segmentFreeFlights, int n);
+                const Vec3& o, const Vec3& d, const float* segmentFreeFlights, int n, int maxBeamSegment = 0);
 
 }  // namespace tyndall

@@ -41,6 +41,7 @@ PhotonTracer::PhotonTracer(const EmbreeScene& rt, const RenderSettings& settings
         m_lightMedium.push_back(l.type == LightType::Directional ? m_scene.globalMedium : m_rt.mediumAt(l.position));
     for (const Medium& m : m_scene.media) m_anyHeterogeneous |= !m.homogeneous();
     m_directLight = settings.directLight;
+    m_maxSegments = settings.maxPathLength > 0 ? settings.maxPathLength - 1 : -1;
     // The photon cone of an area light starts at its equivalent radius sqrt(area / 4 pi).
     for (const TriangleMesh& mesh : m_scene.meshes) {
         double area = 0;
@@ -110,6 +111,7 @@ PhotonMap PhotonTracer::trace(uint64_t pass, uint64_t firstPath, uint32_t begin,
         out.beams.insert(out.beams.end(), p.beams.begin(), p.beams.end());
         out.surfacePhotons.insert(out.surfacePhotons.end(), p.surfacePhotons.begin(), p.surfacePhotons.end());
         out.freeFlights.insert(out.freeFlights.end(), p.freeFlights.begin(), p.freeFlights.end());
+        out.beamSegments.insert(out.beamSegments.end(), p.beamSegments.begin(), p.beamSegments.end());
     }
     return out;
 }
@@ -158,7 +160,11 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
                        : m_scene.lights[e.light].type == LightType::Directional ? kInfinity
                                                                                   : 0.0;
 
+    // The index of the segment about to be traced (RenderSettings::maxPathLength: a camera path
+    // adds at least one, so a capped photon path ends after maxPathLength - 1).
+    int segment = 1;
     for (int bounce = 0; bounce < m_settings.maxPhotonBounces; ++bounce) {
+        if (m_maxSegments >= 0 && segment > m_maxSegments) return;
         RTCRayHit rh;
         initRayHit(rh, o, d);
         if (rays) rays->push_back(Ray{o, d, 0.0f, kInfinity});
@@ -197,6 +203,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
                 }
                 appendConeBeam(whole, s0, m_radii.coneReach, med, stored, n, out.beams, out.freeFlights);
             }
+            if (m_maxSegments >= 0) out.beamSegments.resize(out.beams.size(), uint16_t(std::min(segment, 65535)));
             FreeFlight ff = sampleFreeFlight(med, seg, seg.tMax, rng);
             power *= ff.weight;
             if (ff.scattered) {
@@ -208,6 +215,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
                 d = sampleHg(d, med.g, rng.uniform(), rng.uniform());
                 travelled += double(t0) + double(ff.t);
                 o = x;
+                ++segment;
                 deltaPath = direct = false;
                 continue;
             }
@@ -249,6 +257,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
             sp.normal = nf;
             sp.power = power;
             sp.flags = uint8_t((direct ? kPhotonDirect : 0) | (deltaPath ? kPhotonDeltaPath : 0));
+            sp.segments = uint16_t(std::min(segment, 65535));
             // alphaMode BLEND stops a photon with probability alpha (the filter): the stored photons
             // stand for the irradiance on the covered part, so they carry 1/alpha (the camera path
             // stops with probability alpha too, and must not apply the coverage twice).
@@ -270,6 +279,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
             d = Frame(side.nf).toWorld(sampleCosineHemisphere(rng.uniform(), rng.uniform()));
             o = m_rt.offsetOrigin(p, tHit, side.nf, d);
             deltaPath = false;
+            ++segment;
             continue;
         }
         SpecularEvent ev;
@@ -309,6 +319,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
         medium = ev.medium;
         o = m_rt.offsetOrigin(p, tHit, ng, ev.d);
         d = ev.d;
+        if (mat.type != MaterialType::Interface) ++segment;
     }
 }
 

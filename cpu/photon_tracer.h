@@ -86,6 +86,8 @@ private:
     /// --direct-light on: photons that reach a diffuse surface straight from a light (kPhotonDirect)
     /// are not stored there; shadow rays carry that light (cpu/direct_light.h).
     bool m_directLight = false;
+    /// RenderSettings::maxPathLength - 1: the most segments a photon path may have; -1 = uncapped.
+    int m_maxSegments = -1;
 };
 
 }  // namespace tyndall

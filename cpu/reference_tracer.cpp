@@ -27,6 +27,7 @@ void ReferenceSettings::validate() const {
                     std::to_string(height) + ")");
     if (samplesPerPixel == 0) throw Error("--spp must be positive");
     if (maxDepth <= 0) throw Error("--max-depth must be positive");
+    if (maxPathLength < 0) throw Error("--max-path-length must be >= 0 (0 = uncapped)");
     if (rouletteDepth <= 0) throw Error("reference roulette depth must be positive");
 }
 
@@ -36,6 +37,7 @@ nlohmann::json ReferenceSettings::toJson() const {
             {"spp", samplesPerPixel},
             {"seed", seed},
             {"max_depth", maxDepth},
+            {"max_path_length", maxPathLength},
             {"roulette_depth", rouletteDepth},
             {"nee", nextEventEstimation},
             {"equiangular", equiangular}};
@@ -45,6 +47,8 @@ ReferenceTracer::ReferenceTracer(const EmbreeScene& rt, const ReferenceSettings&
     : m_rt(rt),
       m_scene(rt.scene()),
       m_settings(settings),
+      m_maxVertices(settings.maxPathLength > 0 ? std::min(settings.maxDepth, settings.maxPathLength - 1)
+                                               : settings.maxDepth),
       m_lights(rt.scene()),
       m_direct(rt, m_lights),
       m_cameraMedium(rt.mediumAt(rt.scene().camera.position)) {
@@ -128,13 +132,13 @@ Rgb ReferenceTracer::radiance(Ray ray, MediumId medium, Rng& rng) const {
             const Medium& med = m_scene.media[medium];
             Ray seg;
             if (m_rt.mediumSegment(ray.o, ray.d, tHit, &seg)) {
-                if (equiangular && vertices < m_settings.maxDepth) L += beta * pointLightInScattering(seg, medium, rng);
+                if (equiangular && vertices < m_maxVertices) L += beta * pointLightInScattering(seg, medium, rng);
                 // The medium's own emission along the whole segment (its own estimate, before the
                 // free flight decides where the path goes on).
                 if (med.emissive()) L += beta * estimateEmission(med, seg, seg.tMax, rng);
                 FreeFlight ff = sampleFreeFlight(med, seg, seg.tMax, rng);
                 if (ff.scattered) {
-                    if (vertices >= m_settings.maxDepth) break;
+                    if (vertices >= m_maxVertices) break;
                     ++vertices;
                     beta *= ff.weight;
                     Vec3 x = seg.at(ff.t);
@@ -192,7 +196,7 @@ Rgb ReferenceTracer::radiance(Ray ray, MediumId medium, Rng& rng) const {
             ray = Ray{m_rt.offsetOrigin(hit.p, hit.ng, ray.d), ray.d};
             continue;
         }
-        if (vertices >= m_settings.maxDepth) break;
+        if (vertices >= m_maxVertices) break;
         ++vertices;
 
         if (diffuseBaseChosen(mat, sp, mat.isPartlyTransmissive() ? rng.uniform() : 0.0f)) {

@@ -69,6 +69,9 @@ struct ReferenceSettings {
     /// Most scattering vertices on a path: diffuse, mirror, glass or medium events (Interface
     /// crossings do not count). 1 = direct lighting and single scattering only.
     int maxDepth = 64;
+    /// Most segments of a path, camera to light (RenderSettings::maxPathLength: a path of d
+    /// scattering vertices has d + 1); 0 = uncapped. Paths stop at min(maxDepth, this - 1) vertices.
+    int maxPathLength = 0;
     /// Russian roulette from this many scattering vertices on (survival = max throughput, <= 1).
     int rouletteDepth = 5;
     /// Off: no light sampling; only emissive surfaces hit by scattered paths contribute (delta
@@ -118,6 +121,7 @@ private:
     const EmbreeScene& m_rt;
     const Scene& m_scene;
     ReferenceSettings m_settings;
+    int m_maxVertices;  ///< maxDepth, or maxPathLength - 1 when that is fewer
     LightSampler m_lights;
     DirectLight m_direct;  ///< light sampling and shadow rays (cpu/direct_light.h), shared with PPB
     MediumId m_cameraMedium;

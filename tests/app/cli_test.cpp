@@ -121,8 +121,8 @@ TEST(Cli, HelpListsEveryOptionWithDefaults) {
     const std::map<std::string, std::set<std::string>> expected = {
         {"render", join({scene, output, ppb,
                          {"--gpu", "--checkpoint", "--checkpoint-every", "--resume", "--quiet", "--progress-every", "--aov",
-                          "--reference", "--convergence"}})},
-        {"reference", join({scene, output, {"--spp", "--max-depth", "--no-nee"}})},
+                          "--reference", "--convergence", "--max-path-length"}})},
+        {"reference", join({scene, output, {"--spp", "--max-depth", "--max-path-length", "--no-nee"}})},
         {"bench", join({scene, {"--passes", "--photons", "--no-hybrid", "--radius", "--radius-offset", "--simd",
                             "--direct-light", "--surface-boundary"}})},
         {"compare", join({scene, output, ppb, {"--gpu", "--density", "--twin"}})}};
