@@ -196,7 +196,9 @@ TEST(PathLengthCap, PpbAndThePathTracerAgreeAtEachCap) {
             expectRegionAgrees((what + ", quadrant " + std::to_string(q)).c_str(), p, ref, x0, y0, x0 + h, y0 + h, 0.06);
         }
         // Each cap lets in light the one below leaves out, well beyond the tolerances above.
-        if (previous > 0) EXPECT_GT(mean, 1.15 * previous) << what << " adds too little to be told apart";
+        if (previous > 0) {
+            EXPECT_GT(mean, 1.15 * previous) << what << " adds too little to be told apart";
+        }
         previous = mean;
     }
 }
