@@ -184,6 +184,9 @@ struct ConsistencyBounds {
     double quadrantMean = 0.06;         ///< same for each 16 x 16 quadrant
     double regionBias = 0.03;           ///< PPB's kernel bias allowed per region, on top of 4 standard errors
     bool glassRegion = true;            ///< also check the pixels that see the glass sphere
+    /// PPB passes in all (>= 64, a multiple of 8): the relMSE is judged at 4, 16 and 64, the image,
+    /// quadrant and region means after all of them (regions from 8 batches of passes / 8).
+    uint64_t passes = 64;
     /// The reference's own variance may be at most this share of the corrected relMSE it judges.
     double referenceVarianceShare = 0.3;
 };
@@ -264,7 +267,8 @@ inline void expectRegionAgrees(const Scene& scene, const std::vector<int>& meshO
 /// passes) and end below `bounds.finalRelMse`; the reference's variance must be well below what
 /// it judges; image and quadrant means must agree (they expose normalisation errors the relMSE's
 /// noise hides); and so must the pixels that see the mirror, the glass sphere and the floor, each
-/// on its own (expectRegionAgrees, with PPB's standard errors from 8 batches of 8 passes). On
+/// on its own (expectRegionAgrees, with PPB's standard errors from 8 batches of bounds.passes / 8
+/// passes). On
 /// failure the PPB, reference and error images go to the test output folder as
 /// `<evidence>_ppb.exr` etc.
 inline void expectPpbConvergesToReference(const Scene& scene, const ConsistencyBounds& bounds, uint64_t referenceSeed,
@@ -293,11 +297,11 @@ inline void expectPpbConvergesToReference(const Scene& scene, const ConsistencyB
     PassRenderer renderer(scene, ps);
     Accumulator acc(size, size);
     const uint64_t checkpoints[] = {4, 16, 64};
-    const uint64_t passesPerBatch = 8;
+    const uint64_t passesPerBatch = bounds.passes / 8;
     std::vector<RelMse> errors;
     std::vector<Image> batches;
     Accumulator batch(size, size);
-    for (uint64_t pass = 0; pass < 64; ++pass) {
+    for (uint64_t pass = 0; pass < bounds.passes; ++pass) {
         Image passImage = renderer.renderPass(pass);
         acc.addPass(passImage);
         batch.addPass(passImage);
@@ -305,7 +309,7 @@ inline void expectPpbConvergesToReference(const Scene& scene, const ConsistencyB
             batches.push_back(batch.mean());
             batch = Accumulator(size, size);
         }
-        if (pass + 1 == checkpoints[errors.size()]) {
+        if (errors.size() < 3 && pass + 1 == checkpoints[errors.size()]) {
             errors.push_back(relMse(acc.mean(), ref));
             std::printf("%3llu passes: relMSE %.5f (raw %.5f, reference variance %.5f)\n",
                         (unsigned long long)(pass + 1), errors.back().corrected(), errors.back().raw,
