@@ -69,6 +69,12 @@ void addSceneAndOutputOptions(CLI::App* cmd, CommonOptions& o, const std::string
         ->check(nonNegativeInteger())
         ->capture_default_str();
     cmd->add_option("--threads", o.settings.threads, "Worker threads (0 = all cores)")->capture_default_str();
+    cmd->add_option("--load-memory", o.loadMemoryMiB,
+                    "Loading memory budget in MiB: what the scene's grids, buffers and textures may take; a file "
+                    "asking for more is refused before it is read. Default: 16384, or 3/4 of the machine's memory "
+                    "or of ulimit -v when less (docs/production.md)")
+        ->check(positiveInteger())
+        ->capture_default_str();
     if (!defaultOutput.empty())
         cmd->add_option("--exposure", o.exposure, "Exposure multiplier for PNG output")->capture_default_str();
 }
@@ -248,6 +254,9 @@ Scene loadScene(CommonOptions& o, std::vector<std::string>* cameraNames, std::ve
         SceneLoadOptions options;
         options.camera = o.camera;
         options.environment = o.environment;
+        const CLI::Option* given = o.command ? o.command->get_option_no_throw("--load-memory") : nullptr;
+        options.loadMemoryBytes = given && given->count() > 0 ? std::min(o.loadMemoryMiB, uint64_t(1) << 40) << 20
+                                                                      : defaultLoadMemoryBytes();
         file = loadSceneFile(o.scene, options);
     }
     // The command's own defaults (bench's photon count), then the scene's render block, then the

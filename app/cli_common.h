@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/image_io.h"
+#include "core/load_budget.h"
 #include "core/scene.h"
 #include "core/settings.h"
 #include "loading/homogeneous_twin.h"
@@ -19,6 +20,7 @@ struct CommonOptions {
     std::string output;
     std::string size = "512x512";
     float exposure = 1.0f;
+    uint64_t loadMemoryMiB = LoadBudget::kDefaultMiB;  ///< --load-memory: what loading the scene may allocate
     RenderSettings settings;
     CLI::App* command = nullptr;  ///< the subcommand, to tell options given from defaults
 };
@@ -30,7 +32,8 @@ CLI::Validator positiveInteger();
 /// Rejects numbers <= 0, NaN and infinity (time budgets, rates' denominators).
 CLI::Validator positiveNumber();
 
-/// Adds [SCENE] --camera --environment --size --seed --threads, and -o --exposure unless `defaultOutput` is empty
+/// Adds [SCENE] --camera --environment --size --seed --threads --load-memory, and -o --exposure unless
+/// `defaultOutput` is empty
 /// (a command that writes no image, such as bench).
 void addSceneAndOutputOptions(CLI::App* cmd, CommonOptions& o, const std::string& defaultOutput);
 /// Adds the PPB options: --passes --time --photons --alpha --radius --surface-radius.

@@ -24,6 +24,8 @@
 
 namespace tyndall {
 
+class LoadBudget;
+
 /// glTF sampler wrap modes (REPEAT 10497, CLAMP_TO_EDGE 33071, MIRRORED_REPEAT 33648).
 enum class TextureWrap { Repeat, ClampToEdge, MirroredRepeat };
 
@@ -70,12 +72,16 @@ public:
 
     /// Decodes an image file (any format OIIO reads: PNG, JPEG, EXR, ...). `where` prefixes the
     /// Error thrown when it cannot be read ("<scene>: material 'x': baseColorTexture"). Returns its id.
+    /// `budget` (may be null) is asked, from the image's header before any pixel is read, for the
+    /// memory decoding and mip-mapping take (about 40 bytes a pixel for an RGBA image), and, with
+    /// the first texture, for the TextureSystem's tile cache (`cacheMegabytes`).
     int addFile(const std::string& path, TextureEncoding enc, TextureWrap wrapS, TextureWrap wrapT,
-                const std::string& where);
+                const std::string& where, LoadBudget* budget = nullptr);
     /// The same for encoded bytes in memory (a .glb buffer view or a data URI). `mimeType` or
     /// `name` picks the decoder ("image/png", "image/jpeg", or a name with an extension).
     int addEncoded(const std::vector<unsigned char>& bytes, const std::string& mimeType, const std::string& name,
-                   TextureEncoding enc, TextureWrap wrapS, TextureWrap wrapT, const std::string& where);
+                   TextureEncoding enc, TextureWrap wrapS, TextureWrap wrapT, const std::string& where,
+                   LoadBudget* budget = nullptr);
     /// Raw pixels, `channels` floats per pixel (1..4), row-major from the top row; for procedural
     /// textures and tests. Colour channels are taken as `enc`-encoded.
     int addPixels(int width, int height, int channels, const std::vector<float>& pixels, TextureEncoding enc,

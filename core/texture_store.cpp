@@ -12,6 +12,7 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "core/load_budget.h"
 
 namespace tyndall {
 
@@ -89,7 +90,19 @@ struct TextureStore::Impl {
     }
 
     /// `src` holds the decoded image: make it RGBA float, linearise, mip-map into the folder.
-    int add(OIIO::ImageBuf& src, TextureEncoding enc, TextureWrap wrapS, TextureWrap wrapT, const std::string& where) {
+    int add(OIIO::ImageBuf& src, TextureEncoding enc, TextureWrap wrapS, TextureWrap wrapT, const std::string& where,
+            LoadBudget* budget = nullptr) {
+        const OIIO::ImageSpec& header = src.spec();  // the header only: no pixel is read yet
+        if (budget && header.width > 0 && header.height > 0) {
+            // The decoded float image, its RGBA copy, and make_texture's float mip chain.
+            const uint64_t pixels =
+                uint64_t(header.width) * uint64_t(header.height) * uint64_t(std::max(header.depth, 1));
+            const uint64_t channels = uint64_t(std::max(header.nchannels, 1));
+            budget->check(pixels * (channels * sizeof(float) + 40),
+                          where + ": a " + std::to_string(header.width) + " x " + std::to_string(header.height) +
+                              " image of " + std::to_string(channels) + " channels");
+        }
+        if (budget && !ts) budget->reserve(uint64_t(cacheMegabytes * 1048576.0), where + ": the texture cache");
         if (!src.read(0, 0, true, OIIO::TypeDesc::FLOAT))
             throw Error(where + ": cannot decode the image: " + src.geterror());
         const OIIO::ImageSpec& in = src.spec();
@@ -145,22 +158,22 @@ TextureStore::TextureStore(float cacheMegabytes) : m_impl(std::make_unique<Impl>
 TextureStore::~TextureStore() = default;
 
 int TextureStore::addFile(const std::string& path, TextureEncoding enc, TextureWrap wrapS, TextureWrap wrapT,
-                          const std::string& where) {
+                          const std::string& where, LoadBudget* budget) {
     std::error_code ec;
     if (!fs::is_regular_file(path, ec)) throw Error(where + ": image file '" + path + "' not found");
     OIIO::ImageBuf src(path, 0, 0, nullptr, &readConfig());
-    return m_impl->add(src, enc, wrapS, wrapT, where + " ('" + path + "')");
+    return m_impl->add(src, enc, wrapS, wrapT, where + " ('" + path + "')", budget);
 }
 
 int TextureStore::addEncoded(const std::vector<unsigned char>& bytes, const std::string& mimeType,
                              const std::string& name, TextureEncoding enc, TextureWrap wrapS, TextureWrap wrapT,
-                             const std::string& where) {
+                             const std::string& where, LoadBudget* budget) {
     std::string ext = extensionForMime(mimeType, name);
     if (ext.empty()) throw Error(where + ": image has no mimeType and no file extension: cannot tell its format");
     OIIO::Filesystem::IOMemReader mem(bytes.data(), bytes.size());
     // The name only selects the decoder; the bytes come from `mem`.
     OIIO::ImageBuf src("memory." + ext, 0, 0, nullptr, &readConfig(), &mem);
-    return m_impl->add(src, enc, wrapS, wrapT, where);
+    return m_impl->add(src, enc, wrapS, wrapT, where, budget);
 }
 
 int TextureStore::addPixels(int width, int height, int channels, const std::vector<float>& pixels,

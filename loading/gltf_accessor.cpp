@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "core/load_budget.h"
 
 namespace tyndall {
 
@@ -115,7 +116,7 @@ View checkedView(const tinygltf::Model& model, int bv, size_t byteOffset, size_t
 
 /// All values of an accessor as doubles (count * components), sparse substitution applied.
 std::vector<double> readAccessor(const tinygltf::Model& model, int index, const std::string& where, size_t maxElements,
-                                 int* components, int* componentType) {
+                                 LoadBudget* budget, int* components, int* componentType) {
     if (index < 0 || size_t(index) >= model.accessors.size())
         throw Error(where + ": accessor index " + std::to_string(index) + " out of range (the file has " +
                     std::to_string(model.accessors.size()) + ")");
@@ -133,9 +134,19 @@ std::vector<double> readAccessor(const tinygltf::Model& model, int index, const 
     *components = nc;
     *componentType = acc.componentType;
     size_t elementSize = size_t(nc) * size_t(cs);
+    View v;
+    if (acc.bufferView >= 0) v = checkedView(model, acc.bufferView, acc.byteOffset, acc.count, elementSize, true, at);
+    if (budget) {
+        // The values as doubles while reading, then as floats in the scene's mesh (an accessor
+        // without a buffer view, zeros, is the one whose count no buffer bounds).
+        const uint64_t values = uint64_t(acc.count) * uint64_t(nc);
+        const std::string what = at + ": " + std::to_string(acc.count) + " elements of " + std::to_string(nc) +
+                                 " component" + (nc > 1 ? "s" : "");
+        budget->check(values * (sizeof(double) + sizeof(float)), what);
+        budget->reserve(values * sizeof(float), what);
+    }
     std::vector<double> out(acc.count * size_t(nc), 0.0);
     if (acc.bufferView >= 0) {
-        View v = checkedView(model, acc.bufferView, acc.byteOffset, acc.count, elementSize, true, at);
         for (size_t i = 0; i < acc.count; ++i)
             for (int c = 0; c < nc; ++c)
                 out[i * nc + c] =
@@ -174,9 +185,9 @@ std::vector<double> readAccessor(const tinygltf::Model& model, int index, const 
 }  // namespace
 
 std::vector<float> readGltfFloats(const tinygltf::Model& model, int index, int components, const std::string& where,
-                                  size_t maxElements) {
+                                  size_t maxElements, LoadBudget* budget) {
     int nc = 0, ct = 0;
-    std::vector<double> v = readAccessor(model, index, where, maxElements, &nc, &ct);
+    std::vector<double> v = readAccessor(model, index, where, maxElements, budget, &nc, &ct);
     if (nc != components)
         throw Error(where + ": accessor " + std::to_string(index) + " has " + std::to_string(nc) +
                     " components per element, expected " + std::to_string(components));
@@ -184,9 +195,9 @@ std::vector<float> readGltfFloats(const tinygltf::Model& model, int index, int c
 }
 
 std::vector<uint32_t> readGltfIndices(const tinygltf::Model& model, int index, const std::string& where,
-                                      size_t maxElements) {
+                                      size_t maxElements, LoadBudget* budget) {
     int nc = 0, ct = 0;
-    std::vector<double> v = readAccessor(model, index, where, maxElements, &nc, &ct);
+    std::vector<double> v = readAccessor(model, index, where, maxElements, budget, &nc, &ct);
     if (nc != 1 || (ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
                     ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
         throw Error(where + ": indices accessor " + std::to_string(index) +

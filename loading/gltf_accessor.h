@@ -13,12 +13,16 @@
 
 namespace tyndall {
 
+class LoadBudget;
+
 /// Accessor `index` as `components` floats per element (count * components values).
-/// `components`: 1, 2, 3 or 4 (SCALAR, VEC2, VEC3, VEC4); other accessor types throw.
+/// `components`: 1, 2, 3 or 4 (SCALAR, VEC2, VEC3, VEC4); other accessor types throw. More than
+/// `maxElements` elements is an error; `budget` (may be null) is asked for the declared count x
+/// element size after the accessor is found to fit its buffer view, before anything is allocated.
 std::vector<float> readGltfFloats(const tinygltf::Model& model, int index, int components, const std::string& where,
-                                  size_t maxElements);
+                                  size_t maxElements, LoadBudget* budget);
 /// Accessor `index` as vertex indices (SCALAR of unsigned byte, short or int).
 std::vector<uint32_t> readGltfIndices(const tinygltf::Model& model, int index, const std::string& where,
-                                      size_t maxElements);
+                                      size_t maxElements, LoadBudget* budget);
 
 }  // namespace tyndall

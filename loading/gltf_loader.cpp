@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/load_budget.h"
 #include "loading/gltf_accessor.h"
 #include "loading/gltf_json_check.h"
 #include "loading/gltf_material_mapping.h"
@@ -32,6 +33,9 @@ struct FileAccess {
     std::string baseDir;     // absolute, lexically normal: what tinygltf joins URIs to
     fs::path canonicalBase;  // symbolic links resolved: what a file must lie inside
     bool allowed = true;
+    std::string file;              // the glTF file, for messages
+    LoadBudget* budget = nullptr;  // asked for each file's size before it is read
+    std::string refused;           // the budget's message when it refused a file
 };
 
 /// Whether `path` lies strictly inside `base`, comparing whole path components after resolving
@@ -74,6 +78,18 @@ bool readFile(std::vector<unsigned char>* out, std::string* err, const std::stri
     if (!in) {
         if (err) *err = "cannot open";
         return false;
+    }
+    if (access->budget) {
+        std::error_code ec;
+        const uint64_t size = fs::file_size(path, ec);
+        try {
+            access->budget->reserve(ec ? 0 : size,
+                                    access->file + ": file '" + fs::path(path).filename().string() + "'");
+        } catch (const Error& e) {
+            access->refused = e.what();
+            if (err) *err = e.what();
+            return false;
+        }
     }
     out->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
     return true;
@@ -340,12 +356,13 @@ void GltfImporter::addPrimitive(size_t node, const tinygltf::Primitive& prim, co
     auto pos = prim.attributes.find("POSITION");
     if (pos == prim.attributes.end()) throw Error(where + ": has no POSITION attribute");
 
-    const size_t budget = m_options.maxTriangles * 3;
-    std::vector<float> p = readGltfFloats(m_model, pos->second, 3, where + ": POSITION", budget);
+    const size_t maxElements = m_options.maxTriangles * 3;
+    std::vector<float> p =
+        readGltfFloats(m_model, pos->second, 3, where + ": POSITION", maxElements, m_options.budget.get());
     const size_t nv = p.size() / 3;
     std::vector<uint32_t> idx;
     if (prim.indices >= 0 || prim.indices < -1) {
-        idx = readGltfIndices(m_model, prim.indices, where + ": indices", budget);
+        idx = readGltfIndices(m_model, prim.indices, where + ": indices", maxElements, m_options.budget.get());
         for (uint32_t v : idx)
             if (v >= nv)
                 throw Error(where + ": vertex index " + std::to_string(v) + " out of range (" + std::to_string(nv) +
@@ -380,7 +397,8 @@ void GltfImporter::addPrimitive(size_t node, const tinygltf::Primitive& prim, co
     for (size_t k = 0; k < nv; ++k) m.positions[k] = world.point({p[3 * k], p[3 * k + 1], p[3 * k + 2]});
     auto nrm = prim.attributes.find("NORMAL");
     if (nrm != prim.attributes.end()) {
-        std::vector<float> n = readGltfFloats(m_model, nrm->second, 3, where + ": NORMAL", budget);
+        std::vector<float> n =
+            readGltfFloats(m_model, nrm->second, 3, where + ": NORMAL", maxElements, m_options.budget.get());
         if (n.size() != p.size())
             throw Error(where + ": NORMAL has " + std::to_string(n.size() / 3) + " elements for " + std::to_string(nv) +
                         " positions");
@@ -400,7 +418,7 @@ void GltfImporter::addPrimitive(size_t node, const tinygltf::Primitive& prim, co
     auto tan = prim.attributes.find("TANGENT");
     if (tan != prim.attributes.end() && !m.normals.empty()) {  // glTF: tangents without normals are ignored
         std::string what = where + ": TANGENT";
-        std::vector<float> t = readGltfFloats(m_model, tan->second, 4, what, budget);
+        std::vector<float> t = readGltfFloats(m_model, tan->second, 4, what, maxElements, m_options.budget.get());
         if (t.size() / 4 != nv)
             throw Error(what + " has " + std::to_string(t.size() / 4) + " elements for " + std::to_string(nv) +
                         " positions");
@@ -429,7 +447,7 @@ void GltfImporter::addPrimitive(size_t node, const tinygltf::Primitive& prim, co
         auto uv = prim.attributes.find("TEXCOORD_" + std::to_string(set));
         if (uv == prim.attributes.end()) continue;
         std::string what = where + ": TEXCOORD_" + std::to_string(set);
-        std::vector<float> t = readGltfFloats(m_model, uv->second, 2, what, budget);
+        std::vector<float> t = readGltfFloats(m_model, uv->second, 2, what, maxElements, m_options.budget.get());
         if (t.size() / 2 != nv)
             throw Error(what + " has " + std::to_string(t.size() / 2) + " elements for " + std::to_string(nv) +
                         " positions");
@@ -598,8 +616,8 @@ TextureRef GltfImporter::textureRef(int texture, int texCoord, const tinygltf::E
         std::string imageWhere = where + ": image " + (im.name.empty() ? "" : "'" + im.name + "' ") + "(index " +
                                  std::to_string(image) + ")";
         if (!m_draft.scene.textures) m_draft.scene.textures = std::make_shared<TextureStore>();
-        ref.texture = m_draft.scene.textures->addEncoded(bytes->second, mime, im.uri, enc, wrap[0], wrap[1],
-                                                         imageWhere);
+        ref.texture = m_draft.scene.textures->addEncoded(bytes->second, mime, im.uri, enc, wrap[0], wrap[1], imageWhere,
+                                                         m_options.budget.get());
         m_textures[key] = ref.texture;
     }
     ref.texcoord = texCoord;
@@ -710,6 +728,8 @@ SceneDraft importGltf(const std::string& bytes, bool binary, const std::string& 
     access.canonicalBase = fs::weakly_canonical(access.baseDir, ec);
     if (ec) access.canonicalBase.clear();  // nothing resolves inside it
     access.allowed = options.allowExternalFiles;
+    access.file = file;
+    access.budget = options.budget.get();
     ImageBytes images;
 
     tinygltf::TinyGLTF loader;
@@ -730,6 +750,7 @@ SceneDraft importGltf(const std::string& bytes, bool binary, const std::string& 
     } catch (const std::exception& e) {
         throw Error(file + ": not valid glTF: " + jsonErrorText(oneLine(e.what()), binary ? std::string() : bytes));
     }
+    if (!access.refused.empty()) throw Error(access.refused);
     // tinygltf treats only buffers as required external files: a missing one is an error there.
     for (const std::string prefix : {"File not found : ", "File read error : "}) {
         auto at = err.find(prefix);

@@ -41,6 +41,13 @@ std::shared_ptr<const DensityGrid> readProcedural(JsonObject& obj, const JsonVal
                      (before > 0 ? " (after " + std::to_string(before) + " in this scene's other grids)" : "") +
                      ": at most " + std::to_string(limit) + " in all; raise voxel_size");
         *proceduralVoxels = before + voxels;
+        // The values as built (4 bytes a voxel, freed after), the OpenVDB tree and the dense copy
+        // kept for lookups (about 8 bytes a voxel together).
+        if (options.budget) {
+            const std::string what = obj.where() + ": procedural grid of " + std::to_string(voxels) + " voxels";
+            options.budget->check(voxels * 12, what);
+            options.budget->reserve(voxels * 8, what);
+        }
     };
     if (type == "smoke") {
         ProceduralSmoke p;
@@ -101,7 +108,7 @@ std::shared_ptr<const DensityGrid> readDensity(JsonObject& obj, const std::strin
     obj.finish();
     if (fileGrid) *fileGrid = source;
     try {
-        return VdbDensityGrid::load(source, options.warn);
+        return VdbDensityGrid::load(source, options.warn, options.budget.get());
     } catch (const Error& e) {
         file->fail(e.what());
     }

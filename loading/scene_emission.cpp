@@ -60,7 +60,7 @@ void readEmission(const JsonValue& value, const VdbGridSource& densityFile, cons
     source.scale = 1.0f;
     std::shared_ptr<const VdbDensityGrid> values;
     try {
-        values = VdbDensityGrid::load(source, options.warn);
+        values = VdbDensityGrid::load(source, options.warn, options.budget.get());
     } catch (const Error& e) {
         grid.fail(e.what());
     }

@@ -85,7 +85,9 @@ SceneFile loadViewFile(const nlohmann::json& doc, const std::string& file, const
 }  // namespace
 
 SceneFile loadSceneData(const std::string& bytes, SceneFormat format, const std::string& file,
-                        const std::string& baseDir, const SceneLoadOptions& options) {
+                        const std::string& baseDir, const SceneLoadOptions& givenOptions) {
+    SceneLoadOptions options = givenOptions;
+    if (!options.budget) options.budget = std::make_shared<LoadBudget>(options.loadMemoryBytes);
     if (format == SceneFormat::Json) {
         nlohmann::json doc = parseJsonText(bytes, file);
         if (isViewFile(doc)) return loadViewFile(doc, file, baseDir, options);

@@ -13,11 +13,13 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 #include <vector>
 
+#include "core/load_budget.h"
 #include "core/scene.h"
 
 namespace tyndall {
@@ -41,6 +43,12 @@ struct SceneLoadOptions {
     /// false: any reference to another file (glTF from a .json, buffers, images) is an error.
     /// The fuzzer turns it off.
     bool allowExternalFiles = true;
+    /// What loading may allocate, in bytes, for grids, buffers, accessors and textures all
+    /// together (`--load-memory`, core/load_budget.h).
+    uint64_t loadMemoryBytes = LoadBudget::kDefaultMiB << 20;
+    /// The running tally of one load against loadMemoryBytes: loadSceneData makes it when empty
+    /// (callers leave it empty; a view file hands its own to the base scene's load).
+    std::shared_ptr<LoadBudget> budget;
 };
 
 struct SceneFile {

@@ -59,7 +59,8 @@ TextureRef readTexture(JsonObject& obj, const char* key, TextureEncoding enc, fl
     std::filesystem::path path = std::filesystem::path(baseDir.empty() ? "." : baseDir) / rel;
     if (!scene.textures) scene.textures = std::make_shared<TextureStore>();
     try {
-        ref.texture = scene.textures->addFile(path.string(), enc, TextureWrap::Repeat, TextureWrap::Repeat, v->where());
+        ref.texture = scene.textures->addFile(path.string(), enc, TextureWrap::Repeat, TextureWrap::Repeat, v->where(),
+                                              options.budget.get());
     } catch (const Error& e) {
         v->fail(std::string("cannot read the texture: ") + e.what());
     }

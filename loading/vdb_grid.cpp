@@ -1,6 +1,5 @@
 #include "loading/vdb_grid.h"
 
-#include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/ChangeBackground.h>
 #include <openvdb/tools/Interpolation.h>
@@ -16,6 +15,8 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/load_budget.h"
+#include "loading/vdb_file.h"
 #include "loading/vdb_grid_openvdb.h"
 
 namespace tyndall {
@@ -102,7 +103,8 @@ void initializeOpenVdb() {
 
 std::shared_ptr<const VdbDensityGrid> makeVdbDensityGrid(openvdb::FloatGrid::ConstPtr grid,
                                                          const Affine3& sceneTransform, float scale,
-                                                         const std::string& label, int majorantBlock) {
+                                                         const std::string& label, int majorantBlock,
+                                                         LoadBudget* budget) {
     auto fail = [&](const std::string& what) { throw Error(label + ": " + what); };
     if (!(scale >= 0) || !std::isfinite(scale)) fail("density scale must be a finite number >= 0");
     if (!grid->transform().isLinear())
@@ -208,6 +210,20 @@ std::shared_ptr<const VdbDensityGrid> makeVdbDensityGrid(openvdb::FloatGrid::Con
     }
     maj.finish();
     impl->majorants = std::move(maj);
+    if (budget) {
+        // What the grid adds to the tree: the majorant cells, and the dense copy the constructor
+        // keeps for lookups when the positive voxels' box (plus its border) has at most
+        // kMaxDenseVoxels voxels. Larger sparse grids stay sparse; the active voxels' count and
+        // box decide which.
+        uint64_t lattice = 1;
+        for (int a = 0; a < 3; ++a)  // saturates: each edge is below 2^33
+            lattice = std::min<uint64_t>(lattice * uint64_t(int64_t(hi[a]) - int64_t(lo[a]) + 3), uint64_t(1) << 30);
+        const bool dense = lattice <= VdbDensityGrid::kMaxDenseVoxels;
+        budget->reserve(uint64_t(res[0] * res[1] * res[2]) * sizeof(float) + (dense ? lattice * sizeof(float) : 0),
+                        label + " (" + std::to_string(impl->activeVoxels) + " active voxels" +
+                            (dense ? ", a dense copy of " + std::to_string(lattice) + " voxels" : "") +
+                            " and its majorant grid)");
+    }
     return std::make_shared<const VdbDensityGrid>(std::move(impl));
 }
 
@@ -217,97 +233,80 @@ VdbDensityGrid::VdbDensityGrid(std::unique_ptr<Impl> impl) : m_impl(std::move(im
 VdbDensityGrid::~VdbDensityGrid() = default;
 
 std::shared_ptr<const VdbDensityGrid> VdbDensityGrid::load(const VdbGridSource& source,
-                                                           const std::function<void(const std::string&)>& notice) {
+                                                           const std::function<void(const std::string&)>& notice,
+                                                           LoadBudget* budget) {
     initializeOpenVdb();
     const std::string where = "vdb file '" + source.file + "'";
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(source.file, ec)) throw Error(where + ": no such file");
-    openvdb::GridBase::Ptr base;
-    std::string chosen;
-    try {
-        openvdb::io::File file(source.file);
-        file.open(false);
-        openvdb::GridPtrVecPtr grids = file.readAllGridMetadata();
-        // Grids sharing a name are told apart as name[k], k counted in file order.
-        auto sameName = [&](const std::string& name) {
-            std::vector<size_t> at;
-            for (size_t i = 0; i < grids->size(); ++i)
-                if ((*grids)[i]->getName() == name) at.push_back(i);
-            return at;
-        };
-        std::ostringstream list;
-        for (size_t i = 0; i < grids->size(); ++i) {
-            const std::string& name = (*grids)[i]->getName();
-            std::vector<size_t> same = sameName(name);
-            std::string label = name;
-            if (same.size() > 1)
-                label += "[" + std::to_string(std::find(same.begin(), same.end(), i) - same.begin()) + "]";
-            list << (i ? ", " : "") << "'" << label << "' (" << (*grids)[i]->valueType() << ")";
-        }
-        std::string available = grids->empty() ? "the file holds no grids" : "grids in the file: " + list.str();
-
-        std::string name = source.grid;
-        long index = -1;  // -1: no [k] given
-        std::smatch m;
-        static const std::regex kIndexed(R"(^(.*)\[(\d{1,6})\]$)");
-        if (std::regex_match(source.grid, m, kIndexed) && sameName(source.grid).empty()) {
-            name = m[1];
-            index = std::stol(m[2]);
-        }
-        if (name.empty()) {
-            name = "density";
-            std::vector<size_t> d = sameName(name);
-            if (d.empty() || !(*grids)[d[0]]->isType<openvdb::FloatGrid>()) {
-                bool found = false;  // a grid's name may be "" (OpenVDB allows unnamed grids)
-                for (const auto& g : *grids)
-                    if (g->isType<openvdb::FloatGrid>()) {
-                        name = g->getName();
-                        found = true;
-                        break;
-                    }
-                if (!found) throw Error(where + ": no float grid to use as density (" + available + ")");
-            }
-        }
-        std::vector<size_t> candidates = sameName(name);
-        if (candidates.empty()) throw Error(where + ": no grid named '" + name + "' (" + available + ")");
-        if (index >= long(candidates.size()))
-            throw Error(where + ": '" + source.grid + "' asks for grid " + std::to_string(index + 1) + " named '" + name +
-                        "', the file holds " + std::to_string(candidates.size()) + " (" + available + ")");
-        if (index < 0 && candidates.size() > 1) {
-            std::string line = where + ": " + std::to_string(candidates.size()) + " grids are named '" + name +
-                               "'; using the first ('" + name + "[0]'); choose another with \"grid\": \"" + name +
-                               "[1]\" (up to [" + std::to_string(candidates.size() - 1) + "]) in the medium's density";
-            if (notice)
-                notice(line);
-            else
-                std::fprintf(stderr, "tyndall: %s\n", line.c_str());
-        }
-        const size_t pick = candidates[size_t(std::max(index, 0L))];
-        openvdb::GridBase::Ptr meta = (*grids)[pick];
-        chosen = candidates.size() > 1 ? name + "[" + std::to_string(std::max(index, 0L)) + "]" : name;
-        const std::string at = where + ": grid '" + chosen + "'";
-        if (!meta->isType<openvdb::FloatGrid>())
-            throw Error(at + " holds " + meta->valueType() + " values; a density grid must hold float");
-        if (meta->getGridClass() == openvdb::GRID_LEVEL_SET)
-            throw Error(at +
-                        " is a level set (signed distance), not a density; convert it to a fog volume "
-                        "(e.g. openvdb::tools::sdfToFogVolume or Houdini's VDB Convert)");
-        if (candidates.size() == 1) {
-            base = file.readGrid(name);
-        } else {
-            // readGrid(name) would log OpenVDB's own "more than one grid named" warning; reading
-            // them all and taking the one in file order does not.
-            openvdb::GridPtrVecPtr all = file.getGrids();
-            base = (*all)[pick];
-        }
-        file.close();
-    } catch (const Error&) {
-        throw;
-    } catch (const std::exception& e) {
-        throw Error(where + ": cannot be read as an OpenVDB file (" + e.what() + ")");
+    const VdbFileIndex file = readVdbFileIndex(source.file);
+    const std::vector<VdbFileGrid>& grids = file.grids;
+    // Grids sharing a name are told apart as name[k], k counted in file order.
+    auto sameName = [&](const std::string& name) {
+        std::vector<size_t> at;
+        for (size_t i = 0; i < grids.size(); ++i)
+            if (grids[i].name == name) at.push_back(i);
+        return at;
+    };
+    std::ostringstream list;
+    for (size_t i = 0; i < grids.size(); ++i) {
+        const std::string& name = grids[i].name;
+        std::vector<size_t> same = sameName(name);
+        std::string label = name;
+        if (same.size() > 1) label += "[" + std::to_string(std::find(same.begin(), same.end(), i) - same.begin()) + "]";
+        list << (i ? ", " : "") << "'" << label << "' (" << grids[i].valueType() << ")";
     }
-    return makeVdbDensityGrid(openvdb::gridConstPtrCast<openvdb::FloatGrid>(base), source.transform, source.scale,
-                              where + ": grid '" + chosen + "'", kMajorantBlock);
+    std::string available = grids.empty() ? "the file holds no grids" : "grids in the file: " + list.str();
+
+    std::string name = source.grid;
+    long index = -1;  // -1: no [k] given
+    std::smatch m;
+    static const std::regex kIndexed(R"(^(.*)\[(\d{1,6})\]$)");
+    if (std::regex_match(source.grid, m, kIndexed) && sameName(source.grid).empty()) {
+        name = m[1];
+        index = std::stol(m[2]);
+    }
+    if (name.empty()) {
+        name = "density";
+        std::vector<size_t> d = sameName(name);
+        if (d.empty() || !grids[d[0]].isFloat()) {
+            bool found = false;  // a grid's name may be "" (OpenVDB allows unnamed grids)
+            for (const VdbFileGrid& g : grids)
+                if (g.isFloat()) {
+                    name = g.name;
+                    found = true;
+                    break;
+                }
+            if (!found) throw Error(where + ": no float grid to use as density (" + available + ")");
+        }
+    }
+    std::vector<size_t> candidates = sameName(name);
+    if (candidates.empty()) throw Error(where + ": no grid named '" + name + "' (" + available + ")");
+    if (index >= long(candidates.size()))
+        throw Error(where + ": '" + source.grid + "' asks for grid " + std::to_string(index + 1) + " named '" + name +
+                    "', the file holds " + std::to_string(candidates.size()) + " (" + available + ")");
+    if (index < 0 && candidates.size() > 1) {
+        std::string line = where + ": " + std::to_string(candidates.size()) + " grids are named '" + name +
+                           "'; using the first ('" + name + "[0]'); choose another with \"grid\": \"" + name +
+                           "[1]\" (up to [" + std::to_string(candidates.size() - 1) + "]) in the medium's density";
+        if (notice)
+            notice(line);
+        else
+            std::fprintf(stderr, "tyndall: %s\n", line.c_str());
+    }
+    const size_t pick = candidates[size_t(std::max(index, 0L))];
+    const VdbFileGrid& meta = grids[pick];
+    const std::string chosen = candidates.size() > 1 ? name + "[" + std::to_string(std::max(index, 0L)) + "]" : name;
+    const std::string at = where + ": grid '" + chosen + "'";
+    if (!meta.isFloat()) throw Error(at + " holds " + meta.valueType() + " values; a density grid must hold float");
+    if (meta.gridClass == openvdb::GridBase::gridClassToString(openvdb::GRID_LEVEL_SET))
+        throw Error(at +
+                    " is a level set (signed distance), not a density; convert it to a fog volume "
+                    "(e.g. openvdb::tools::sdfToFogVolume or Houdini's VDB Convert)");
+    openvdb::GridBase::Ptr base = readVdbGrid(file, pick, budget);
+    if (!base->isType<openvdb::FloatGrid>()) throw Error(at + ": damaged: its tree is not a float tree");
+    if (base->getGridClass() == openvdb::GRID_LEVEL_SET)
+        throw Error(at + " is a level set (signed distance), not a density; convert it to a fog volume");
+    return makeVdbDensityGrid(openvdb::gridConstPtrCast<openvdb::FloatGrid>(base), source.transform, source.scale, at,
+                              kMajorantBlock, budget);
 }
 
 std::shared_ptr<const VdbDensityGrid> VdbDensityGrid::fromDense(const int dims[3], const std::vector<float>& values,

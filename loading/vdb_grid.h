@@ -36,6 +36,8 @@
 
 namespace tyndall {
 
+class LoadBudget;
+
 /// Where a grid comes from (the scene format's medium key "density": {"file", "grid", "scale",
 /// "transform"}).
 struct VdbGridSource {
@@ -57,14 +59,16 @@ public:
     /// Largest dense copy kept for lookups (64 MiB).
     static constexpr size_t kMaxDenseVoxels = size_t(1) << 24;
 
-    /// Loads a grid; throws Error "vdb file '<file>': ..." for a missing or unreadable file, a
-    /// missing grid name (listing the grids present), a level set, a non-float grid, a frustum or
-    /// singular transform, a positive background, or a bad scale. `notice` receives one line when
-    /// the choice was ambiguous (several grids of the chosen name): which one was taken and how
-    /// to pick another; empty = "tyndall: <line>" on stderr. OpenVDB's own console warnings are
-    /// never triggered.
+    /// Loads a grid through the strict reader (loading/vdb_file.h); throws Error "vdb file
+    /// '<file>': ..." for a missing, unreadable, truncated or damaged file, a missing grid name
+    /// (listing the grids present), a level set, a non-float grid, a frustum or singular transform,
+    /// a positive background, a bad scale, or a grid that does not fit `budget` (may be null: no
+    /// limit). `notice` receives one line when the choice was ambiguous (several grids of the
+    /// chosen name): which one was taken and how to pick another; empty = "tyndall: <line>" on
+    /// stderr. OpenVDB's own console warnings are never triggered.
     static std::shared_ptr<const VdbDensityGrid> load(const VdbGridSource& source,
-                                                      const std::function<void(const std::string&)>& notice = {});
+                                                      const std::function<void(const std::string&)>& notice = {},
+                                                      LoadBudget* budget = nullptr);
 
     /// Builds an OpenVDB grid from dense values (tests, procedural media): voxel (i, j, k) of a
     /// dims[0] x dims[1] x dims[2] block (x fastest) sits at index (i, j, k); values <= 0 stay

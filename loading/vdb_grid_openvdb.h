@@ -11,6 +11,8 @@
 
 namespace tyndall {
 
+class LoadBudget;
+
 /// openvdb::initialize(), once per process; safe to call from any thread, any number of times.
 void initializeOpenVdb();
 
@@ -18,9 +20,11 @@ void initializeOpenVdb();
 /// `sceneTransform` is applied after the grid's own index-to-world transform; `scale` multiplies
 /// the values. `label` prefixes error messages ("vdb file 'x': grid 'density'"). Throws Error for
 /// a frustum or singular transform, a positive background or a bad scale. May copy the grid to
-/// clamp negative values.
+/// clamp negative values. `budget` (may be null) is asked for the majorant grid and the dense copy
+/// kept for lookups before they are built.
 std::shared_ptr<const VdbDensityGrid> makeVdbDensityGrid(openvdb::FloatGrid::ConstPtr grid,
                                                          const Affine3& sceneTransform, float scale,
-                                                         const std::string& label, int majorantBlock);
+                                                         const std::string& label, int majorantBlock,
+                                                         LoadBudget* budget = nullptr);
 
 }  // namespace tyndall

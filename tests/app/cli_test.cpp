@@ -107,7 +107,8 @@ TEST(Cli, HelpListsEveryOptionWithDefaults) {
 
     // Every option of every command, each with its default ("TYPE=value" or "(default: ...)")
     // unless it is a flag; nothing listed that is not expected here.
-    const std::vector<std::string> scene = {"--camera", "--environment", "--size", "--seed", "--threads"};
+    const std::vector<std::string> scene = {"--camera", "--environment", "--size", "--seed", "--threads",
+                                            "--load-memory"};
     const std::vector<std::string> output = {"--output", "--exposure"};
     const std::vector<std::string> ppb = {"--passes", "--time",           "--photons",       "--alpha",
                                           "--radius", "--surface-radius", "--radius-offset", "--planned-paths",
