@@ -16,11 +16,9 @@
 
 #include "core/fresnel.h"
 #include "core/math.h"
+#include "core/transport_mode.h"
 
 namespace tyndall {
-
-/// Which flux a path carries through a transmission: radiance (divided by eta'^2) or importance.
-enum class MicrofacetMode { Radiance, Importance };
 
 struct Ggx {
     static constexpr float kMinAlpha = 1e-3f;
@@ -141,7 +139,7 @@ struct RoughDielectric {
         return true;
     }
 
-    Rgb eval(const Vec3& wo, const Vec3& wi, MicrofacetMode mode) const {
+    Rgb eval(const Vec3& wo, const Vec3& wi, TransportMode mode) const {
         Vec3 wm;
         float etap;
         if (!halfVector(wo, wi, &wm, &etap)) return Rgb(0.0f);
@@ -150,7 +148,7 @@ struct RoughDielectric {
         float denom = dot(wi, wm) + dot(wo, wm) / etap;
         denom = denom * denom * wi.z * wo.z;
         float ft = ggx.D(wm) * (1.0f - F) * ggx.G(wo, wi) * std::abs(dot(wi, wm) * dot(wo, wm) / denom);
-        if (mode == MicrofacetMode::Radiance) ft /= etap * etap;
+        if (mode == TransportMode::Radiance) ft /= etap * etap;
         return tint * ft;
     }
     float pdf(const Vec3& wo, const Vec3& wi) const {
@@ -163,7 +161,7 @@ struct RoughDielectric {
         float dwmdwi = std::abs(dot(wi, wm)) / (denom * denom);
         return ggx.visibleD(wo, wm) * dwmdwi * T;
     }
-    MicrofacetSample sample(const Vec3& wo, float uLobe, float u1, float u2, MicrofacetMode mode) const {
+    MicrofacetSample sample(const Vec3& wo, float uLobe, float u1, float u2, TransportMode mode) const {
         MicrofacetSample s;
         if (wo.z == 0) return s;
         Vec3 wm = ggx.sampleVisibleNormal(wo, u1, u2);

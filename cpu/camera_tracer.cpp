@@ -268,9 +268,11 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                     L += throughput * sp.emission;
                     Lsurface += throughput * sp.emission;
                 }
-                if (diffuseBaseChosen(mat, sp, mat.isPartlyTransmissive() ? rng.uniform() : 0.0f)) {
+                const Bsdf bsdf = Bsdf::at(m_scene, hit, sp, dir, medium, TransportMode::Radiance, rng);
+                const BsdfLobes lobes = bsdf.lobes();
+                if (!(lobes & (kLobeGlossy | kLobeSpecular))) {
                     // With a shading normal each photon is weighted by its light-side cosine ratio
-                    // (surface_scattering.h, shadingCosineRatio); the same photons as density().
+                    // (core/surface_hit.h, shadingCosineRatio); the same photons as density().
                     // With direct light, photons straight from a light are not counted (the photon
                     // tracer stores none on diffuse surfaces; glossy ones hold some).
                     const uint8_t skip = m_skipDirectPhotons ? kPhotonDirect : 0;
@@ -309,26 +311,21 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                     Lsurface += density;
                     break;
                 }
-                SpecularEvent ev;
-                const bool metal = metalChosen(mat, sp, mat.hasMetalMix() ? rng.uniform() : 0.0f);
-                if (mat.type == MaterialType::Plastic && !metal) {
+                if (lobes & kLobeDiffuse) {
                     // docs/algorithm.md "Coated (plastic) vertices". The diffuse part is this path's
                     // end: the density estimate of the photons stored here, weighted by f_d, and with
                     // --direct-light on a shadow ray for the light that arrives unscattered (whose
-                    // photons the diffuse part then skips), as at a diffuse end. The
-                    // specular part: the delta-path photons with f_s, then the path continues through
-                    // the specular lobe alone, with Russian roulette: kept with probability 4x its weight
-                    // (the weight is ~F, 0.04 at normal incidence: continuing every path would cost a ray
-                    // and a beam query per plastic hit for little; keeping only F of them, at weight 1,
-                    // made the reflections speckle at tens of passes).
-                    const CoatedBsdf coat = coatedBsdf(mat, sp, hit, dir);
-                    const Vec3 wo = -dir;
+                    // photons the diffuse part then skips), as at a diffuse end. The specular part:
+                    // the delta-path photons with f_s (light the continuation cannot find), then the
+                    // path continues through the specular lobe alone (below). Shading normal: times
+                    // |wi . ns| / |wi . ng|.
                     const bool shading = hasShadingNormal(hit);
                     const uint8_t directLit = m_direct ? kPhotonDirect : 0;
                     auto photonWeight = [&](const SurfacePhoton& p) {
                         if (!photonWithinCap(p)) return Rgb(0.0f);
-                        Rgb f = coat.photonWeight(wo, p.wi, (p.flags & kPhotonDeltaPath) != 0,
-                                                  (p.flags & directLit) != 0);
+                        const BsdfLobes parts = ((p.flags & directLit) ? 0 : kLobeDiffuse) |
+                                                ((p.flags & kPhotonDeltaPath) ? kLobeGlossy | kLobeSpecular : 0);
+                        Rgb f = bsdf.f(p.wi, parts);
                         return shading ? f * shadingOverGeometricCosine(hit, p.wi) : f;
                     };
                     // --surface-boundary on: both parts' density estimates over the part of the
@@ -341,43 +338,40 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                     });
                     if (m_direct && emission && !sp.baseColor.isBlack() && shadowRayWithinCap()) {
                         coated += throughput * m_direct->reflected(hit, side, medium, neeRng, [&](const DirectLightSample& ls) {
-                            return coat.evalDiffuse(wo, ls.wi) * diffuseCosine(side, ls.wi);
+                            return bsdf.f(ls.wi, kLobeDiffuse) * diffuseCosine(side, ls.wi);
                         });
                     }
                     L += coated;
                     Lsurface += coated;
-                    float u1 = rng.uniform(), u2 = rng.uniform(), uRoulette = rng.uniform();
-                    if (!sampleCoated(coat, hit, dir, medium, 0.0f, u1, u2, /*specularOnly=*/true, &ev)) break;
-                    const float q = std::min(1.0f, 4.0f * ev.weight.maxComponent());
-                    if (!(uRoulette < q)) break;
-                    ev.weight *= 1.0f / q;
-                } else if (mat.isGlossy() || (metal && mat.isRough())) {
+                } else if (lobes & kLobeGlossy) {
                     // docs/algorithm.md "Glossy vertices": photons stored here from delta lights
                     // through delta interactions only (kPhotonDeltaPath) with the BSDF evaluated,
                     // then continue by sampling it. Surfaces that also store photons for a diffuse
                     // part (partly transmissive, plastic) hold others too: the flag skips them.
-                    const GlossyBsdf bsdf = glossyBsdf(mat, sp, hit, dir);
-                    const Vec3 wo = -dir;
                     const bool shading = hasShadingNormal(hit);
                     const Rgb glossy =
                         throughput * surfacePhotons.gather(hit.p, hit.ng, [&](const SurfacePhoton& p) {
                             if (!(p.flags & kPhotonDeltaPath) || !photonWithinCap(p)) return Rgb(0.0f);
-                            Rgb f = bsdf.eval(wo, p.wi, TransportMode::Radiance);
+                            Rgb f = bsdf.f(p.wi);
                             return shading ? f * shadingOverGeometricCosine(hit, p.wi) : f;
                         });
                     L += glossy;
                     Lsurface += glossy;
-                    float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
-                    if (!sampleGlossy(bsdf, mesh, hit, dir, medium, u0, u1, u2, TransportMode::Radiance, &ev)) break;
-                } else if (!sampleSpecular(mat, sp.baseColor, mesh, hit, dir, medium, rng.uniform(),
-                                           TransportMode::Radiance, &ev)) {
-                    break;
                 }
-                if (mat.type != MaterialType::Interface && ++segment > maxLength && maxLength > 0) break;
-                throughput *= ev.weight;
-                medium = ev.medium;
-                straight = straight && mat.type == MaterialType::Interface;
-                Ray ray{m_rt.offsetOrigin(hit.p, hit.t, hit.ng, ev.d), ev.d};
+                // The path goes on through the lobes the photons cannot stand for. The coat's
+                // specular part alone, with Russian roulette: kept with probability 4x its weight
+                // (the weight is ~F, 0.04 at normal incidence: continuing every path would cost a ray
+                // and a beam query per plastic hit for little; keeping only F of them, at weight 1,
+                // made the reflections speckle at tens of passes).
+                BsdfSample s;
+                if (!bsdf.sample(rng, &throughput, &s, BsdfLobes(kLobesAll & ~kLobeDiffuse), [&](const Rgb&, const Rgb& w) {
+                        return (lobes & kLobeDiffuse) ? std::min(1.0f, 4.0f * w.maxComponent()) : kNoRoulette;
+                    }))
+                    break;
+                if (!bsdf.isPassThrough() && ++segment > maxLength && maxLength > 0) break;
+                medium = s.medium;
+                straight = straight && bsdf.isPassThrough();
+                Ray ray{m_rt.offsetOrigin(hit.p, hit.t, hit.ng, s.wi), s.wi};
                 dir = ray.d;
                 if (++depth > m_settings.maxCameraBounces) break;
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/scene.h"
+#include "core/surface_hit.h"
 
 namespace tyndall {
 
@@ -26,16 +27,6 @@ public:
 
 private:
     RTCDevice m_device = nullptr;
-};
-
-struct SurfaceHit {
-    float t = 0;
-    int mesh = -1;
-    uint32_t triangle = 0;
-    Vec3 p;   ///< hit point
-    Vec3 ng;  ///< unit geometric normal, pointing to the mesh exterior (CCW winding)
-    Vec3 ns;  ///< unit shading normal, on ng's side: interpolated on specular meshes with normals, else ng
-    float b1 = 0, b2 = 0;  ///< barycentrics of vertices 1 and 2
 };
 
 /// Fills `rh` for a closest-hit query along o + t d, t in (tMin, tMax). Origin and direction go in

@@ -242,8 +242,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
         applyNormalMap(m_scene, &hit, surfaceRadius);
         const bool partly = mat.isPartlyTransmissive();
         const bool plastic = mat.type == MaterialType::Plastic;
-        SurfacePoint at;
-        if (partly || plastic) at = evalSurface(m_scene, mesh, rh.hit.primID, rh.hit.u, rh.hit.v, surfaceRadius);
+        const SurfacePoint at = evalSurface(m_scene, mesh, rh.hit.primID, rh.hit.u, rh.hit.v, surfaceRadius);
         // Stored: what a gather here uses. A diffuse part gathers every photon except, with
         // --direct-light on, those that arrive without scattering (shadow rays carry that light);
         // glossy and coat-specular gathers use the kPhotonDeltaPath ones.
@@ -266,60 +265,22 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
                 if (a > 0) sp.power *= 1.0f / a;
             }
         }
-        if (mat.type != MaterialType::Interface) direct = false;
-        if (diffuseBaseChosen(mat, at, partly ? rng.uniform() : 0.0f)) {
-            const HitSide side = hitSide(hit, d);
-            if (hasShadingNormal(hit)) power *= shadingCosineRatio(side, -d);  // Veach's adjoint
-            power *= mat.isTextured() && !partly
-                         ? evalSurface(m_scene, mesh, rh.hit.primID, rh.hit.u, rh.hit.v, surfaceRadius).baseColor
-                         : partly ? at.baseColor : mat.albedo;
-            float q = std::min(1.0f, power.maxComponent() / startMax);
-            if (!(rng.uniform() < q)) return;
-            power *= 1.0f / q;
-            d = Frame(side.nf).toWorld(sampleCosineHemisphere(rng.uniform(), rng.uniform()));
-            o = m_rt.offsetOrigin(p, tHit, side.nf, d);
-            deltaPath = false;
-            ++segment;
-            continue;
-        }
-        SpecularEvent ev;
-        const bool metal = metalChosen(mat, at, mat.hasMetalMix() ? rng.uniform() : 0.0f);
-        if (plastic && !metal) {
-            // The coated diffuse, both lobes by their mixture (docs/algorithm.md "Coated vertices").
-            const CoatedBsdf coat = coatedBsdf(mat, at, hit, d);
-            float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
-            bool delta = false;
-            if (!sampleCoated(coat, hit, d, medium, u0, u1, u2, /*specularOnly=*/false, &ev, nullptr, &delta)) return;
-            deltaPath = deltaPath && delta;
-            float q = std::min(1.0f, (power * ev.weight).maxComponent() / startMax);
-            if (!(rng.uniform() < q)) return;
-            ev.weight *= 1.0f / q;
-        } else if (mat.isGlossy() || (metal && mat.isRough())) {
-            if (!(partly || plastic)) at = evalSurface(m_scene, mesh, rh.hit.primID, rh.hit.u, rh.hit.v, surfaceRadius);
-            const GlossyBsdf bsdf = glossyBsdf(mat, at, hit, d);
-            float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
-            if (!sampleGlossy(bsdf, mesh, hit, d, medium, u0, u1, u2, TransportMode::Importance, &ev)) return;
-            deltaPath = false;
-            float q = std::min(1.0f, (power * ev.weight).maxComponent() / startMax);
-            if (!(rng.uniform() < q)) return;
-            ev.weight *= 1.0f / q;
-        } else {
-            const Rgb tint =
-                plastic ? at.baseColor
-                : mat.isTextured()
-                    ? evalSurface(m_scene, mesh, rh.hit.primID, rh.hit.u, rh.hit.v, surfaceRadius).baseColor
-                    : mat.albedo;
-            if (!sampleSpecular(mat, tint, mesh, hit, d, medium, rng.uniform(), TransportMode::Importance, &ev))
-                return;
-        }
-        direct = direct && mat.type == MaterialType::Interface;  // a glossy, mirror or glass vertex scatters
-        if (hasShadingNormal(hit)) ev.weight *= shadingNormalAdjoint(hit, -d, ev.d);
-        power *= ev.weight;
+        if (mat.type != MaterialType::Interface) direct = false;  // a diffuse, glossy, mirror or glass vertex scatters
+        const Bsdf bsdf = Bsdf::at(m_scene, hit, at, d, medium, TransportMode::Importance, rng);
+        // Russian roulette keeps path power near its start value, at every vertex but delta ones.
+        const bool roulette = (bsdf.lobes() & (kLobeDiffuse | kLobeGlossy)) != 0;
+        BsdfSample s;
+        if (!bsdf.sample(rng, &power, &s, kLobesAll, [&](const Rgb& beta, const Rgb& w) {
+                return roulette ? std::min(1.0f, (beta * w).maxComponent() / startMax) : kNoRoulette;
+            }))
+            return;
         if (power.isBlack()) return;
-        medium = ev.medium;
-        o = m_rt.offsetOrigin(p, tHit, ng, ev.d);
-        d = ev.d;
-        if (mat.type != MaterialType::Interface) ++segment;
+        deltaPath = deltaPath && (s.lobe & kLobeSpecular);
+        medium = s.medium;
+        const bool diffuse = bsdf.lobes() == (kLobeReflection | kLobeDiffuse);
+        o = m_rt.offsetOrigin(p, tHit, diffuse ? bsdf.side().nf : ng, s.wi);
+        d = s.wi;
+        if (!bsdf.isPassThrough()) ++segment;
     }
 }
 

@@ -190,106 +190,55 @@ Rgb ReferenceTracer::radiance(Ray ray, MediumId medium, Rng& rng) const {
             L += beta * sp.emission * mis;
         }
 
-        if (mat.type == MaterialType::Interface) {
+        const Bsdf bsdf = Bsdf::at(m_scene, hit, sp, ray.d, medium, TransportMode::Radiance, rng);
+        if (bsdf.isPassThrough()) {
             if (++crossings > kMaxInterfaceCrossings) break;
-            medium = side.entering ? mesh.interiorMedium : mesh.exteriorMedium;
+            medium = bsdf.mediumBeyond();
             ray = Ray{m_rt.offsetOrigin(hit.p, hit.ng, ray.d), ray.d};
             continue;
         }
         if (vertices >= m_maxVertices) break;
         ++vertices;
 
-        if (diffuseBaseChosen(mat, sp, mat.isPartlyTransmissive() ? rng.uniform() : 0.0f)) {
-            // With a shading normal (surface_scattering.h, shadingCosineRatio): f cos = rho/pi
-            // max(0, wi . nsf) for wi above the geometric surface; cosine sampling about nsf, and
-            // a sampled direction below the geometric surface ends the path.
-            const bool shading = hasShadingNormal(hit);
-            if (nee) L += beta * sp.baseColor * kInvPi * m_direct.diffuse(hit, side, medium, rng, true);
-            const Vec3 n = shading ? side.nsf : side.nf;
-            Vec3 d = Frame(n).toWorld(sampleCosineHemisphere(rng.uniform(), rng.uniform()));
-            if (shading && !(dot(d, side.nf) > 0)) break;
-            beta *= sp.baseColor;  // (rho/pi) cos / (cos/pi)
-            lastPdf = std::max(dot(d, n), 0.0f) * kInvPi;
-            lastVertex = hit.p;
-            afterSpecular = false;
-            if (beta.isBlack() || !survives()) break;
-            ray = Ray{m_rt.offsetOrigin(hit.p, side.nf, d), d};
-            continue;
+        const BsdfLobes lobes = bsdf.lobes();
+        const Vec3 wo = -ray.d;
+        if (nee && !(lobes & (kLobeGlossy | kLobeSpecular))) {
+            // The diffuse base (with a shading normal: surface_hit.h, shadingCosineRatio).
+            L += beta * sp.baseColor * kInvPi * m_direct.diffuse(hit, side, medium, rng, true);
+        } else if (nee && (lobes & kLobeDiffuse)) {
+            // The coated diffuse: the full f (both lobes), MIS against the mixture pdf; the smooth
+            // coat's mirror direction is a delta (no MIS, like glass).
+            L += beta * m_direct.reflected(hit, side, medium, rng, [&](const DirectLightSample& ls) {
+                const float cosine = dot(ls.wi, bsdf.normal());
+                if (!(cosine > 0) || !(dot(ls.wi, side.nf) > 0)) return Rgb(0.0f);
+                const float mis = ls.delta ? 1.0f : powerHeuristic(ls.pdf, bsdf.pdf(ls.wi));
+                return bsdf.f(ls.wi) * (cosine * mis);
+            });
+        } else if (nee && (lobes & kLobeGlossy)) {
+            DirectLightSample ls = m_lights.sampleDirect(hit.p, rng);
+            Rgb f = ls.pdf > 0 && !ls.incident.isBlack() ? bsdf.f(ls.wi) : Rgb();
+            if (!f.isBlack()) {
+                bool crosses = dot(ls.wi, hit.ng) * dot(wo, hit.ng) < 0;
+                MediumId shadowMedium = crosses ? bsdf.mediumBeyond() : medium;
+                Rgb tr = m_direct.shadowTransmittance(m_rt.offsetOrigin(hit.p, hit.ng, ls.wi), ls, shadowMedium, rng);
+                float mis = ls.delta ? 1.0f : powerHeuristic(ls.pdf, bsdf.pdf(ls.wi));
+                float cosine = std::abs(dot(ls.wi, bsdf.normal()));
+                L += beta * f * ls.incident * tr * (cosine * mis / ls.pdf);
+            }
         }
 
-        const bool metal = metalChosen(mat, sp, mat.hasMetalMix() ? rng.uniform() : 0.0f);
-        if (mat.type == MaterialType::Plastic && !metal) {
-            // The coated diffuse: next-event estimation with the full f (both lobes), MIS against
-            // the mixture pdf; the smooth coat's mirror direction is a delta (no MIS, like glass).
-            const CoatedBsdf coat = coatedBsdf(mat, sp, hit, ray.d);
-            const Vec3 wo = -ray.d;
-            if (nee) {
-                L += beta * m_direct.reflected(hit, side, medium, rng, [&](const DirectLightSample& ls) {
-                    const float cosine = dot(ls.wi, coat.frame.n);
-                    if (!(cosine > 0) || !(dot(ls.wi, side.nf) > 0)) return Rgb(0.0f);
-                    const float mis = ls.delta ? 1.0f : powerHeuristic(ls.pdf, coat.pdf(wo, ls.wi));
-                    return coat.eval(wo, ls.wi) * (cosine * mis);
-                });
-            }
-            SpecularEvent ev;
-            float pdf = 0;
-            bool delta = false;
-            float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
-            if (!sampleCoated(coat, hit, ray.d, medium, u0, u1, u2, /*specularOnly=*/false, &ev, &pdf, &delta)) break;
-            beta *= ev.weight;
-            lastPdf = pdf;
-            lastVertex = hit.p;
-            afterSpecular = delta;
-            if (beta.isBlack() || !survives()) break;
-            ray = Ray{m_rt.offsetOrigin(hit.p, side.nf, ev.d), ev.d};
-            continue;
-        }
-
-        if (mat.isGlossy() || (metal && mat.isRough())) {
-            const GlossyBsdf bsdf = glossyBsdf(mat, sp, hit, ray.d);
-            const Vec3 wo = -ray.d;
-            if (nee) {
-                DirectLightSample ls = m_lights.sampleDirect(hit.p, rng);
-                Rgb f = ls.pdf > 0 && !ls.incident.isBlack() ? bsdf.eval(wo, ls.wi, TransportMode::Radiance) : Rgb();
-                if (!f.isBlack()) {
-                    bool crosses = dot(ls.wi, hit.ng) * dot(wo, hit.ng) < 0;
-                    MediumId shadowMedium =
-                        crosses ? (side.entering ? mesh.interiorMedium : mesh.exteriorMedium) : medium;
-                    Rgb tr = m_direct.shadowTransmittance(m_rt.offsetOrigin(hit.p, hit.ng, ls.wi), ls, shadowMedium, rng);
-                    float mis = ls.delta ? 1.0f : powerHeuristic(ls.pdf, bsdf.pdf(wo, ls.wi));
-                    float cosine = std::abs(dot(ls.wi, bsdf.frame.n));
-                    L += beta * f * ls.incident * tr * (cosine * mis / ls.pdf);
-                }
-            }
-            SpecularEvent ev;
-            float pdf = 0;
-            float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
-            if (!sampleGlossy(bsdf, mesh, hit, ray.d, medium, u0, u1, u2, TransportMode::Radiance, &ev, &pdf)) break;
-            beta *= ev.weight;
-            if (ev.transmitted) {
-                float etaRatio = side.entering ? 1.0f / mat.ior : mat.ior;  // eta_i / eta_t
-                etaScale /= etaRatio * etaRatio;
-            }
-            lastPdf = pdf;
-            lastVertex = hit.p;
-            afterSpecular = false;
-            medium = ev.medium;
-            if (beta.isBlack() || !survives()) break;
-            ray = Ray{m_rt.offsetOrigin(hit.p, hit.ng, ev.d), ev.d};
-            continue;
-        }
-
-        SpecularEvent ev;
-        if (!sampleSpecular(mat, sp.baseColor, mesh, hit, ray.d, medium, rng.uniform(), TransportMode::Radiance, &ev)) break;
-        beta *= ev.weight;
-        if (ev.transmitted && mat.type == MaterialType::Dielectric) {
-            float etaRatio = side.entering ? 1.0f / mat.ior : mat.ior;  // eta_i / eta_t
-            etaScale /= etaRatio * etaRatio;
-        }
-        afterSpecular = true;
-        medium = ev.medium;
+        BsdfSample s;
+        if (!bsdf.sample(rng, &beta, &s)) break;
+        // Roulette on the throughput without the 1/eta^2 radiance scaling.
+        if (s.lobe & kLobeTransmission) etaScale /= s.eta * s.eta;
+        lastPdf = s.pdf;
+        lastVertex = hit.p;
+        afterSpecular = (s.lobe & kLobeSpecular) != 0;
+        medium = s.medium;
         if (beta.isBlack() || !survives()) break;
-        ray = Ray{m_rt.offsetOrigin(hit.p, hit.ng, ev.d), ev.d};
+        // Diffuse and coated vertices leave from the arriving side, glossy and specular ones
+        // from either.
+        ray = Ray{m_rt.offsetOrigin(hit.p, (lobes & kLobeDiffuse) ? side.nf : hit.ng, s.wi), s.wi};
     }
     return L;
 }

@@ -11,7 +11,7 @@
 //     media); at a real collision the path scatters with the HG phase function. (PPB's camera
 //     paths never scatter in media: they gather beams instead. Different estimator, same answer.)
 //   - surfaces: diffuse (Lambertian about the geometric normal, like photon bounces and the
-//     surface-photon estimate), mirror and dielectric through sampleSpecular in
+//     surface-photon estimate), every material through Bsdf (core/bsdf.h) in
 //     TransportMode::Radiance (Fresnel choice, 1/eta^2 radiance scaling), Interface surfaces
 //     pass straight through and switch the medium;
 //   - emission: from the front (normal) side of emissive triangles only; emissive media add

@@ -59,14 +59,14 @@ TEST(Microfacet, WhiteFurnaceDielectricReflectsPlusTransmitsAtMostOne) {
             const int n = 100000;
             double sum = 0;
             for (int k = 0; k < n; ++k) {
-                MicrofacetSample s = m.sample(wo, u(gen), u(gen), u(gen), MicrofacetMode::Importance);
+                MicrofacetSample s = m.sample(wo, u(gen), u(gen), u(gen), TransportMode::Importance);
                 sum += s.valid ? s.weight.g : 0.0;
             }
             double mean = sum / n;
             SCOPED_TRACE("roughness " + std::to_string(roughness) + " eta " + std::to_string(eta));
             EXPECT_LE(mean, 1.01);
             if (roughness < 0.5f) EXPECT_GE(mean, 0.95);
-            double quad = albedoByQuadrature([&](const Vec3& wi) { return m.eval(wo, wi, MicrofacetMode::Importance).g; }, 800);
+            double quad = albedoByQuadrature([&](const Vec3& wi) { return m.eval(wo, wi, TransportMode::Importance).g; }, 800);
             EXPECT_NEAR(mean, quad, 0.02);
         }
     }
@@ -92,7 +92,7 @@ TEST(Microfacet, ChiSquareDielectricSamplingMatchesPdf) {
         Vec3 wo = dirOf(0.8f, 2.0f);
         chiSquare(
             [&](std::mt19937& g, std::uniform_real_distribution<float>& u, Vec3* wi) {
-                MicrofacetSample s = m.sample(wo, u(g), u(g), u(g), MicrofacetMode::Radiance);
+                MicrofacetSample s = m.sample(wo, u(g), u(g), u(g), TransportMode::Radiance);
                 *wi = s.wi;
                 return s.valid;
             },
@@ -111,7 +111,7 @@ TEST(Microfacet, Reciprocity) {
         Rgb fab = c.eval(a, b), fba = c.eval(b, a);
         EXPECT_NEAR(fab.r, fba.r, 1e-4f * (1 + fab.r));
         // Reflection is symmetric; transmission in radiance mode is the adjoint of importance mode.
-        float rad = d.eval(a, b, MicrofacetMode::Radiance).g, imp = d.eval(b, a, MicrofacetMode::Importance).g;
+        float rad = d.eval(a, b, TransportMode::Radiance).g, imp = d.eval(b, a, TransportMode::Importance).g;
         EXPECT_NEAR(rad, imp, 1e-3f * (1 + rad)) << "a.z " << a.z << " b.z " << b.z;
         transmissions += a.z * b.z < 0 && rad > 0;
     }

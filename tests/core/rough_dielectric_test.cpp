@@ -41,7 +41,7 @@ struct LobeMeans {
     double reflected = 0, transmitted = 0, seR = 0, seT = 0, valid = 0;
 };
 
-LobeMeans sampleMeans(const RoughDielectric& m, const Vec3& wo, MicrofacetMode mode, int n, unsigned seed) {
+LobeMeans sampleMeans(const RoughDielectric& m, const Vec3& wo, TransportMode mode, int n, unsigned seed) {
     std::mt19937 gen(seed);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     double sr = 0, sr2 = 0, st = 0, st2 = 0;
@@ -108,7 +108,7 @@ TEST(RoughDielectric, AlmostEverySampleFromInsideIsValid) {
     // leave on the wrong side of the macro surface (single-scattering loss: under 3% here).
     RoughDielectric m{Ggx::fromRoughness(0.3f), kGlass, Rgb(1.0f)};
     for (float cosO : {-0.95f, -0.7f, -0.4f}) {
-        LobeMeans r = sampleMeans(m, dirOf(cosO, 0.4f), MicrofacetMode::Radiance, 100000, 5);
+        LobeMeans r = sampleMeans(m, dirOf(cosO, 0.4f), TransportMode::Radiance, 100000, 5);
         EXPECT_GT(r.valid, 0.97) << "cos " << cosO;
         EXPECT_GT(r.transmitted, 0.0) << "cos " << cosO;
     }
@@ -123,11 +123,11 @@ TEST(RoughDielectric, NearlySmoothGlassSplitsEnergyByFresnelFromBothSides) {
         double n1 = inside ? kGlass : 1.0, n2 = inside ? 1.0 : kGlass;
         double F = fresnelFromAngles(cosO, n1, n2);
         Vec3 wo = dirOf(cosO, 1.3f);
-        for (MicrofacetMode mode : {MicrofacetMode::Importance, MicrofacetMode::Radiance}) {
+        for (TransportMode mode : {TransportMode::Importance, TransportMode::Radiance}) {
             LobeMeans r = sampleMeans(m, wo, mode, 40000, 9);
             // Radiance arriving through the interface into wo's medium scales by (n_wo / n_other)^2.
-            double scale = mode == MicrofacetMode::Radiance ? (n1 / n2) * (n1 / n2) : 1.0;
-            SCOPED_TRACE("cos " + std::to_string(cosO) + (mode == MicrofacetMode::Radiance ? " radiance" : " importance"));
+            double scale = mode == TransportMode::Radiance ? (n1 / n2) * (n1 / n2) : 1.0;
+            SCOPED_TRACE("cos " + std::to_string(cosO) + (mode == TransportMode::Radiance ? " radiance" : " importance"));
             EXPECT_NEAR(r.reflected, F, 0.01 + 4 * r.seR);
             EXPECT_NEAR(r.transmitted, (1.0 - F) * scale, 0.01 * scale + 4 * r.seT);
         }
@@ -140,16 +140,16 @@ TEST(RoughDielectric, LobeEnergiesEqualTheQuadratureOfEvalFromBothSides) {
         for (float cosO : {0.8f, 0.3f, -0.9f, -0.7f, -0.3f}) {
             Vec3 wo = dirOf(cosO, 2.2f);
             float sameSide = cosO > 0 ? 1.0f : -1.0f;
-            for (MicrofacetMode mode : {MicrofacetMode::Importance, MicrofacetMode::Radiance}) {
+            for (TransportMode mode : {TransportMode::Importance, TransportMode::Radiance}) {
                 LobeMeans r = sampleMeans(m, wo, mode, 100000, 21);
                 auto f = [&](const Vec3& wi) { return double(m.eval(wo, wi, mode).g); };
                 double qR = hemisphereAlbedo(f, sameSide), qT = hemisphereAlbedo(f, -sameSide);
                 SCOPED_TRACE("roughness " + std::to_string(roughness) + " cos " + std::to_string(cosO) +
-                             (mode == MicrofacetMode::Radiance ? " radiance" : " importance"));
+                             (mode == TransportMode::Radiance ? " radiance" : " importance"));
                 EXPECT_NEAR(r.reflected, qR, 4 * r.seR + 0.003 * (1 + qR));
                 EXPECT_NEAR(r.transmitted, qT, 4 * r.seT + 0.003 * (1 + qT));
                 EXPECT_GT(qT, 0.0);  // light leaves from inside, enters from outside (not TIR at these angles)
-                if (mode == MicrofacetMode::Importance) {
+                if (mode == TransportMode::Importance) {
                     // Energy: what is not reflected or transmitted is the single-scattering loss,
                     // largest from inside at grazing angles (measured: 6% at roughness 0.3 and 27%
                     // at 0.6 for cos -0.3; 2% at 0.3 from outside at cos 0.3).
@@ -174,7 +174,7 @@ TEST(RoughDielectric, ChiSquareOfSampledDirectionsFromInsideAndOutside) {
         chiSquare(
             [&](std::mt19937& g, std::uniform_real_distribution<float>& u, Vec3* wi) {
                 float u0 = u(g), u1 = u(g), u2 = u(g);
-                MicrofacetSample s = m.sample(wo, u0, u1, u2, MicrofacetMode::Radiance);
+                MicrofacetSample s = m.sample(wo, u0, u1, u2, TransportMode::Radiance);
                 *wi = s.wi;
                 return s.valid;
             },
@@ -192,8 +192,8 @@ TEST(RoughDielectric, TransmissionIsTheAdjointAcrossTheSurface) {
     int nonzero = 0;
     for (int k = 0; k < 2000; ++k) {
         Vec3 out = dirOf(u(gen), 2 * kPi * u(gen)), in = dirOf(-u(gen), 2 * kPi * u(gen));
-        float radOI = m.eval(out, in, MicrofacetMode::Radiance).g, impIO = m.eval(in, out, MicrofacetMode::Importance).g;
-        float radIO = m.eval(in, out, MicrofacetMode::Radiance).g;
+        float radOI = m.eval(out, in, TransportMode::Radiance).g, impIO = m.eval(in, out, TransportMode::Importance).g;
+        float radIO = m.eval(in, out, TransportMode::Radiance).g;
         EXPECT_NEAR(radOI, impIO, 1e-3f * (1 + radOI));
         EXPECT_NEAR(radIO, radOI * kGlass * kGlass, 1e-3f * (1 + radIO));
         nonzero += radOI > 0;

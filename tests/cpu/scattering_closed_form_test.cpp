@@ -1,4 +1,4 @@
-// The surface scattering every tracer shares (cpu/surface_scattering.h), checked against closed forms
+// The surface scattering every tracer shares (core/bsdf.h), checked against closed forms
 // and implementations written here, never against itself or another tracer: PPB and the reference
 // path tracer both call these functions, so a bug in them moves both images together and the
 // consistency tests cannot see it.
@@ -55,16 +55,40 @@ double conductorF(double f0, double alpha, const Vec3& n, const Vec3& wo, const 
 }
 
 /// A hit on the plane through the origin with normal `n` (exterior side), on a one-triangle mesh
-/// that separates medium 0 (exterior) from medium 1 (interior).
+/// of `material` that separates medium 0 (exterior) from medium 1 (interior).
 struct PlaneHit {
-    TriangleMesh mesh;
+    Scene scene;
     SurfaceHit hit;
-    explicit PlaneHit(const Vec3& n) {
+    PlaneHit(const Vec3& n, const Material& material) {
+        TriangleMesh mesh;
         mesh.interiorMedium = 1;
         mesh.exteriorMedium = 0;
+        scene.meshes.push_back(mesh);
+        scene.materials.push_back(material);
         hit.mesh = 0;
         hit.ng = hit.ns = normalize(n);
     }
+    /// The Bsdf for a path arriving along dIn in `medium`, base colour `tint`.
+    template <class Uniforms>
+    Bsdf at(const Vec3& dIn, MediumId medium, const Rgb& tint, TransportMode mode, Uniforms& u) const {
+        SurfacePoint sp;
+        sp.baseColor = tint;
+        sp.roughness = scene.materials[0].roughness;
+        return Bsdf::at(scene, hit, sp, dIn, medium, mode, u);
+    }
+};
+
+/// Every number drawn is `u` (a delta lobe draws one).
+struct FixedUniform {
+    float u;
+    float uniform() const { return u; }
+};
+
+/// Numbers from a seeded generator.
+struct GenUniforms {
+    std::mt19937& gen;
+    std::uniform_real_distribution<float> u{0.0f, 1.0f};
+    float uniform() { return u(gen); }
 };
 
 Vec3 tilted(float cosTheta, float phi, const Frame& f) {
@@ -77,10 +101,10 @@ Vec3 tilted(float cosTheta, float phi, const Frame& f) {
 TEST(SurfaceScatteringClosedForm, SmoothDielectricFollowsFresnelSnellAndScalesRadianceByEtaSquared) {
     const Vec3 n = normalize(Vec3(0.3f, 0.8f, -0.5f));  // an arbitrary orientation
     const Frame frame(n);
-    PlaneHit p(n);
     Material glass;
     glass.type = MaterialType::Dielectric;
     glass.ior = 1.5f;
+    PlaneHit p(n, glass);
     const Rgb tint(0.9f, 0.6f, 0.3f);
     const int kU = 4000;  // stratified u: the reflected share is exact to 1 / kU
     for (bool fromOutside : {true, false}) {
@@ -94,27 +118,31 @@ TEST(SurfaceScatteringClosedForm, SmoothDielectricFollowsFresnelSnellAndScalesRa
             const double F = fresnelByAngles(cosI, etaT);
             int reflected = 0;
             for (int k = 0; k < kU; ++k) {
-                float u = (k + 0.5f) / kU;
+                FixedUniform u{(k + 0.5f) / kU};
                 for (TransportMode mode : {TransportMode::Radiance, TransportMode::Importance}) {
-                    SpecularEvent ev;
-                    ASSERT_TRUE(sampleSpecular(glass, tint, p.mesh, p.hit, dIn, /*currentMedium=*/7, u, mode, &ev));
-                    const float side = dot(ev.d, n) * dot(wo, n);  // > 0: reflected
-                    EXPECT_NEAR(length(ev.d), 1.0f, 1e-5f);
+                    const Bsdf bsdf = p.at(dIn, /*medium=*/7, tint, mode, u);
+                    BsdfSample ev;
+                    Rgb beta(1.0f);
+                    ASSERT_TRUE(bsdf.sample(u, &beta, &ev));
+                    const bool transmitted = (ev.lobe & kLobeTransmission) != 0;
+                    for (int c = 0; c < 3; ++c) EXPECT_EQ(beta[c], ev.weight[c]) << "beta took the weight";
+                    const float side = dot(ev.wi, n) * dot(wo, n);  // > 0: reflected
+                    EXPECT_NEAR(length(ev.wi), 1.0f, 1e-5f);
                     if (side > 0) {
                         if (mode == TransportMode::Radiance) ++reflected;
                         // Law of reflection: d = dIn - 2 (dIn.n) n.
                         Vec3 r = dIn - n * (2 * dot(dIn, n));
-                        EXPECT_LT(length(ev.d - r), 1e-5f);
-                        EXPECT_FALSE(ev.transmitted);
+                        EXPECT_LT(length(ev.wi - r), 1e-5f);
+                        EXPECT_FALSE(transmitted);
                         EXPECT_EQ(ev.medium, 7) << "reflection keeps the current medium";
                         for (int c = 0; c < 3; ++c) EXPECT_NEAR(ev.weight[c], 1.0f, 1e-6f) << "untinted reflection";
                     } else {
                         // Snell: n_i sin_i = n_t sin_t, in the plane of incidence.
                         double sinI = std::sqrt(1 - double(cosI) * cosI);
-                        double sinT = length(cross(ev.d, n));
+                        double sinT = length(cross(ev.wi, n));
                         EXPECT_NEAR(sinT, sinI / etaT, 2e-5);
-                        EXPECT_NEAR(dot(cross(dIn, n), ev.d), 0.0f, 1e-5f) << "left the plane of incidence";
-                        EXPECT_TRUE(ev.transmitted);
+                        EXPECT_NEAR(dot(cross(dIn, n), ev.wi), 0.0f, 1e-5f) << "left the plane of incidence";
+                        EXPECT_TRUE(transmitted);
                         EXPECT_EQ(ev.medium, fromOutside ? 1 : 0);
                         // Radiance crossing into n_t is scaled by (n_i / n_t)^2; power is not.
                         double scale = mode == TransportMode::Radiance ? 1 / (etaT * etaT) : 1.0;
@@ -129,25 +157,29 @@ TEST(SurfaceScatteringClosedForm, SmoothDielectricFollowsFresnelSnellAndScalesRa
     // Beyond the critical angle from inside (sin_i > 1 / 1.5): every u reflects.
     Vec3 dIn = tilted(0.5f, 0.2f, frame);  // from inside: travels along +n side... toward the exterior
     for (int k = 0; k < 64; ++k) {
-        SpecularEvent ev;
-        ASSERT_TRUE(sampleSpecular(glass, tint, p.mesh, p.hit, dIn, 1, (k + 0.5f) / 64, TransportMode::Radiance, &ev));
-        EXPECT_FALSE(ev.transmitted) << "total internal reflection";
-        EXPECT_LT(dot(ev.d, n), 0.0f);
+        FixedUniform u{(k + 0.5f) / 64};
+        BsdfSample ev;
+        Rgb beta(1.0f);
+        ASSERT_TRUE(p.at(dIn, 1, tint, TransportMode::Radiance, u).sample(u, &beta, &ev));
+        EXPECT_FALSE(ev.lobe & kLobeTransmission) << "total internal reflection";
+        EXPECT_LT(dot(ev.wi, n), 0.0f);
     }
 }
 
 TEST(SurfaceScatteringClosedForm, SmoothMirrorReflectsWithItsTint) {
     const Vec3 n = normalize(Vec3(-0.2f, 0.1f, 0.9f));
-    PlaneHit p(n);
     Material mirror;
     mirror.type = MaterialType::Mirror;
+    PlaneHit p(n, mirror);
     const Rgb tint(0.95f, 0.64f, 0.54f);
     for (float cosI : {1.0f, 0.5f, 0.05f})
         for (float sign : {1.0f, -1.0f}) {  // both faces of a mirror reflect
             Vec3 dIn = -tilted(cosI, 2.0f, Frame(n)) * sign;
-            SpecularEvent ev;
-            ASSERT_TRUE(sampleSpecular(mirror, tint, p.mesh, p.hit, dIn, 3, 0.5f, TransportMode::Radiance, &ev));
-            EXPECT_LT(length(ev.d - (dIn - n * (2 * dot(dIn, n)))), 1e-5f);
+            FixedUniform u{0.5f};
+            BsdfSample ev;
+            Rgb beta(1.0f);
+            ASSERT_TRUE(p.at(dIn, 3, tint, TransportMode::Radiance, u).sample(u, &beta, &ev));
+            EXPECT_LT(length(ev.wi - (dIn - n * (2 * dot(dIn, n)))), 1e-5f);
             EXPECT_EQ(ev.medium, 3);
             for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(ev.weight[c], tint[c]);
         }
@@ -158,26 +190,24 @@ TEST(SurfaceScatteringClosedForm, SmoothMirrorReflectsWithItsTint) {
 TEST(SurfaceScatteringClosedForm, RoughConductorWithColouredF0MatchesIndependentGgxSmithSchlick) {
     const Vec3 n = normalize(Vec3(0.4f, -0.3f, 0.87f));
     const Frame frame(n);
-    PlaneHit p(n);
     Material metal;
     metal.type = MaterialType::Mirror;
     const Rgb f0(0.95f, 0.64f, 0.54f);  // copper
     std::mt19937 gen(5);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    GenUniforms draws{gen};
     for (float roughness : {0.3f, 0.6f}) {
         metal.roughness = roughness;
+        PlaneHit p(n, metal);
         const double alpha = double(roughness) * roughness;
-        SurfacePoint sp;
-        sp.baseColor = f0;
-        sp.roughness = roughness;
         for (float cosO : {0.95f, 0.5f, 0.12f}) {
             SCOPED_TRACE("roughness " + std::to_string(roughness) + " cos_o " + std::to_string(cosO));
             const Vec3 wo = tilted(cosO, 0.4f, frame);
-            const GlossyBsdf bsdf = glossyBsdf(metal, sp, p.hit, -wo);
+            const Bsdf bsdf = p.at(-wo, 0, f0, TransportMode::Radiance, draws);
             // Pointwise: eval = the independent f, each channel, where f is not tiny.
             for (int k = 0; k < 200; ++k) {
                 Vec3 wi = tilted(0.02f + 0.98f * u(gen), 2 * kPi * u(gen), frame);
-                Rgb f = bsdf.eval(wo, wi, TransportMode::Radiance);
+                Rgb f = bsdf.f(wi);
                 for (int c = 0; c < 3; ++c) {
                     double ref = conductorF(f0[c], alpha, n, wo, wi);
                     EXPECT_NEAR(f[c], ref, 2e-4 * ref + 1e-6) << "channel " << c;
@@ -197,10 +227,10 @@ TEST(SurfaceScatteringClosedForm, RoughConductorWithColouredF0MatchesIndependent
             const int ns = 60000;
             double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
             for (int k = 0; k < ns; ++k) {
-                SpecularEvent ev;
-                if (!sampleGlossy(bsdf, p.mesh, p.hit, -wo, 0, u(gen), u(gen), u(gen), TransportMode::Radiance, &ev))
-                    continue;
-                EXPECT_GT(dot(ev.d, n), 0.0f);
+                BsdfSample ev;
+                Rgb beta(1.0f);
+                if (!bsdf.sample(draws, &beta, &ev)) continue;
+                EXPECT_GT(dot(ev.wi, n), 0.0f);
                 for (int c = 0; c < 3; ++c) sum[c] += ev.weight[c], sum2[c] += double(ev.weight[c]) * ev.weight[c];
             }
             for (int c = 0; c < 3; ++c) {

@@ -1,0 +1,353 @@
+#pragma once
+// Scattering at one surface point: the one interface the photon tracer (importance), PPB's camera
+// paths and the reference path tracer (radiance) scatter through, modelled on pbrt-v4's BSDF
+// (Sample_f / f / PDF, lobe flags, TransportMode). A material's behaviour is written here once.
+//
+// Bsdf::at builds it at a hit for a path arriving along dIn and makes the material's per-vertex
+// choice of component (docs/algorithm.md "Partial transmission", "Coated (plastic) vertices"):
+//   - Diffuse: the Lambertian base, rho = baseColor: Diffuse materials, and a partly transmissive
+//     dielectric's base, chosen with probability 1 - transmission (one number drawn);
+//   - Coated: a Plastic's coat over its diffuse base (core/coated_diffuse.h); a plastic with a
+//     metal part is its conductor instead with probability metallic (one number drawn), which is
+//     Glossy when rough, Specular when smooth;
+//   - Glossy: GGX conductor (rough Mirror) or rough dielectric (core/microfacet.h);
+//   - Specular: delta mirror, smooth dielectric (Fresnel's choice of reflection or refraction),
+//     Interface (straight through, switching the medium: pbrt's empty BSDF).
+// Then sample() draws a direction from the component, f() and pdf() evaluate it toward any.
+//
+// Random numbers, from the caller's path stream and in this order: at() draws at most one (the
+// mixes above); sample() draws per component diffuse 2, coat 3 (its specular part alone 2),
+// glossy 3, specular 1, and one more where the caller's roulette plays. Each tracer's images
+// depend on this order.
+//
+// Directions are world-space and point away from the surface; wo = -dIn is fixed at construction.
+// With a shading normal (interpolated or normal-mapped), f and pdf live in the shading frame and
+// a sample's weight is f |wi . ns| / pdf, times Veach's adjoint |wo.ns| |wi.ng| / (|wo.ng| |wi.ns|)
+// in importance mode (cosine-weighted diffuse: rho, and rho max(0, wo.nsf) / (wo.nf) for photons,
+// which sample the cosine about the geometric normal instead).
+#include <algorithm>
+#include <cstdint>
+
+#include "core/coated_diffuse.h"
+#include "core/fresnel.h"
+#include "core/material.h"
+#include "core/material_eval.h"
+#include "core/microfacet.h"
+#include "core/rng.h"
+#include "core/sampling.h"
+#include "core/scene.h"
+#include "core/surface_hit.h"
+#include "core/transport_mode.h"
+
+namespace tyndall {
+
+/// Lobe flags (pbrt's BxDFFlags): a lobe is reflection or transmission, and diffuse, glossy (a
+/// non-delta lobe with a peak) or specular (a delta).
+using BsdfLobes = uint8_t;
+constexpr BsdfLobes kLobeReflection = 1, kLobeTransmission = 2, kLobeDiffuse = 4, kLobeGlossy = 8,
+                    kLobeSpecular = 16, kLobesAll = 31;
+
+/// A scattered direction (Bsdf::sample).
+struct BsdfSample {
+    Vec3 wi;                    ///< unit direction the path leaves along
+    Rgb weight{1.0f};           ///< the factor the throughput took (see Bsdf::sample)
+    float pdf = 0;              ///< solid-angle pdf of wi; a delta lobe's is not one (no MIS)
+    BsdfLobes lobe = 0;         ///< the lobe taken: reflection or transmission, and its kind
+    MediumId medium = kVacuum;  ///< the medium wi travels in
+    float eta = 1.0f;           ///< eta_i / eta_t across a dielectric's refraction, else 1
+};
+
+/// Russian roulette as a tracer plays it at a scattering vertex, for Bsdf::sample: a callable
+/// q(beta, w) giving the probability that a path with throughput `beta` goes on through a lobe of
+/// weight `w`, or kNoRoulette (nothing drawn). A path that goes on carries 1/q.
+constexpr float kNoRoulette = -1.0f;
+struct NoRoulette {
+    float operator()(const Rgb&, const Rgb&) const { return kNoRoulette; }
+};
+
+class Bsdf {
+public:
+    /// The scattering at `hit` (its normals final: normal maps applied) of a path arriving along
+    /// `dIn` in `medium`, `sp` the material there (core/material_eval.h). Draws from `rng` only
+    /// for the mixes (see the file comment). Uniforms: Rng, or anything with float uniform().
+    template <class Uniforms>
+    static Bsdf at(const Scene& scene, const SurfaceHit& hit, const SurfacePoint& sp, const Vec3& dIn,
+                   MediumId medium, TransportMode mode, Uniforms& rng);
+
+    /// Every lobe of the chosen component (a coat: diffuse and glossy or specular reflection).
+    BsdfLobes lobes() const { return m_lobes; }
+    /// An Interface: no scattering, the path goes straight on into mediumBeyond().
+    bool isPassThrough() const { return m_type == MaterialType::Interface; }
+    const HitSide& side() const { return m_side; }
+    /// The medium on the other side of the surface from the arriving path.
+    MediumId mediumBeyond() const { return m_beyond; }
+    /// +z of the coat's and the glossy lobes' frame: the shading normal on the arriving side, a
+    /// dielectric's toward the exterior.
+    const Vec3& normal() const { return m_frame.n; }
+
+    /// f(wo, wi) restricted to the lobe kinds in `lobes` (diffuse, glossy, specular; delta lobes
+    /// are 0 here). In the mode's convention: f_radiance(wo, wi) = f_importance(wi, wo).
+    Rgb f(const Vec3& wi, BsdfLobes lobes = kLobesAll) const;
+    /// The solid-angle density sample() draws wi with (all lobes; 0 for delta components).
+    float pdf(const Vec3& wi) const;
+
+    /// Samples a lobe among `allowed` (kLobesAll, or without kLobeDiffuse: a coat's specular part
+    /// alone, weight f_s cos / pdf_s) and a direction, plays `roulette`, and multiplies `*beta` by
+    /// the weight: f |wi . ns| / pdf (see the file comment), times 1/q where the roulette played.
+    /// The roulette plays as soon as the weight is known: for the importance diffuse lobe before
+    /// the direction is drawn (its weight does not depend on it), else after. False when the path
+    /// ends: no lobe allowed, a sample below the geometric surface or on a back-facing microfacet,
+    /// or the roulette.
+    template <class Uniforms, class Roulette = NoRoulette>
+    bool sample(Uniforms& rng, Rgb* beta, BsdfSample* s, BsdfLobes allowed = kLobesAll,
+                const Roulette& roulette = {}) const;
+
+private:
+    enum class Kind : uint8_t { Diffuse, Coated, Conductor, RoughDielectric, Delta };
+
+    bool sampleDelta(float u, BsdfSample* s, Rgb* w) const;
+
+    Kind m_kind = Kind::Diffuse;
+    MaterialType m_type = MaterialType::Diffuse;
+    TransportMode m_mode = TransportMode::Radiance;
+    BsdfLobes m_lobes = 0;
+    bool m_shading = false;  ///< ns differs from ng
+    HitSide m_side;
+    Vec3 m_ng, m_ns;
+    Vec3 m_wo;       ///< -dIn, world
+    Vec3 m_woLocal;  ///< m_wo in m_frame (coat, glossy)
+    Frame m_frame;   ///< coat, glossy
+    Rgb m_rho;       ///< baseColor: diffuse reflectance, conductor F0, mirror and dielectric tint
+    float m_ior = 1.5f;
+    MediumId m_medium = kVacuum, m_beyond = kVacuum;
+    CoatedDiffuse m_coat;
+    RoughConductor m_metal;
+    RoughDielectric m_glass;
+};
+
+template <class Uniforms>
+Bsdf Bsdf::at(const Scene& scene, const SurfaceHit& hit, const SurfacePoint& sp, const Vec3& dIn, MediumId medium,
+              TransportMode mode, Uniforms& rng) {
+    const TriangleMesh& mesh = scene.meshes[size_t(hit.mesh)];
+    const Material& mat = scene.materials[size_t(mesh.material)];
+    Bsdf b;
+    b.m_type = mat.type;
+    b.m_mode = mode;
+    b.m_side = hitSide(hit, dIn);
+    b.m_shading = hasShadingNormal(hit);
+    b.m_ng = hit.ng;
+    b.m_ns = hit.ns;
+    b.m_wo = -dIn;
+    b.m_rho = sp.baseColor;
+    b.m_ior = mat.ior;
+    b.m_medium = medium;
+    b.m_beyond = b.m_side.entering ? mesh.interiorMedium : mesh.exteriorMedium;
+    // The component choice: one lobe choice for every tracer.
+    if (mat.type == MaterialType::Diffuse || (mat.isPartlyTransmissive() && !(rng.uniform() < sp.transmission))) {
+        b.m_kind = Kind::Diffuse;
+        b.m_lobes = kLobeReflection | kLobeDiffuse;
+        return b;
+    }
+    const bool metal = mat.hasMetalMix() && rng.uniform() < sp.metallic;
+    const float roughness = std::max(sp.roughness, Material::kSmoothRoughness);
+    if (mat.type == MaterialType::Plastic && !metal) {
+        b.m_kind = Kind::Coated;
+        b.m_lobes = kLobeReflection | kLobeDiffuse | (mat.isRough() ? kLobeGlossy : kLobeSpecular);
+        b.m_frame = Frame(b.m_side.nsf);
+        b.m_coat = CoatedDiffuse::make(roughness, !mat.isRough(), mat.ior, sp.baseColor);
+    } else if (mat.isGlossy() || (metal && mat.isRough())) {
+        // Conductors reflect on the side the path arrives from; dielectrics use the exterior side
+        // (+z = hit.ns) so eta = interior / exterior holds from both sides.
+        const Ggx ggx = Ggx::fromRoughness(roughness);
+        if (mat.type == MaterialType::Mirror || mat.type == MaterialType::Plastic) {
+            b.m_kind = Kind::Conductor;
+            b.m_lobes = kLobeReflection | kLobeGlossy;
+            b.m_frame = Frame(b.m_side.nsf);
+            b.m_metal = RoughConductor{ggx, sp.baseColor};
+        } else {
+            b.m_kind = Kind::RoughDielectric;
+            b.m_lobes = kLobeReflection | kLobeTransmission | kLobeGlossy;
+            b.m_frame = Frame(hit.ns);
+            b.m_glass = RoughDielectric{ggx, mat.ior, sp.baseColor};
+        }
+    } else {
+        b.m_kind = Kind::Delta;
+        b.m_lobes = mat.type == MaterialType::Interface    ? kLobeTransmission | kLobeSpecular
+                    : mat.type == MaterialType::Dielectric ? kLobeReflection | kLobeTransmission | kLobeSpecular
+                                                           : kLobeReflection | kLobeSpecular;
+        return b;
+    }
+    b.m_woLocal = b.m_frame.toLocal(b.m_wo);
+    return b;
+}
+
+inline Rgb Bsdf::f(const Vec3& wi, BsdfLobes lobes) const {
+    switch (m_kind) {
+        case Kind::Diffuse: {
+            if (!(lobes & kLobeDiffuse) || !(dot(wi, m_side.nf) > 0)) return Rgb(0.0f);
+            // The light-side direction must be above the shading surface too.
+            const Vec3& light = m_mode == TransportMode::Radiance ? wi : m_wo;
+            return dot(light, m_side.nsf) > 0 ? m_rho * kInvPi : Rgb(0.0f);
+        }
+        case Kind::Coated: {
+            const Vec3 wiLocal = m_frame.toLocal(wi);
+            Rgb f = (lobes & kLobeDiffuse) ? m_coat.evalDiffuse(m_woLocal, wiLocal) : Rgb(0.0f);
+            if (lobes & (kLobeGlossy | kLobeSpecular)) f += Rgb(m_coat.evalSpecular(m_woLocal, wiLocal));
+            return f;
+        }
+        case Kind::Conductor:
+            return (lobes & kLobeGlossy) ? m_metal.eval(m_woLocal, m_frame.toLocal(wi)) : Rgb(0.0f);
+        case Kind::RoughDielectric:
+            return (lobes & kLobeGlossy) ? m_glass.eval(m_woLocal, m_frame.toLocal(wi), m_mode) : Rgb(0.0f);
+        case Kind::Delta:
+            break;
+    }
+    return Rgb(0.0f);
+}
+
+inline float Bsdf::pdf(const Vec3& wi) const {
+    switch (m_kind) {
+        case Kind::Diffuse: {
+            if (m_mode == TransportMode::Importance) return std::max(dot(wi, m_side.nf), 0.0f) * kInvPi;
+            if (m_shading && !(dot(wi, m_side.nf) > 0)) return 0.0f;
+            return std::max(dot(wi, m_shading ? m_side.nsf : m_side.nf), 0.0f) * kInvPi;
+        }
+        case Kind::Coated:
+            return m_coat.pdf(m_woLocal, m_frame.toLocal(wi));
+        case Kind::Conductor:
+            return m_metal.pdf(m_woLocal, m_frame.toLocal(wi));
+        case Kind::RoughDielectric:
+            return m_glass.pdf(m_woLocal, m_frame.toLocal(wi));
+        case Kind::Delta:
+            break;
+    }
+    return 0.0f;
+}
+
+/// The delta components: `u` chooses between Fresnel reflection and refraction.
+inline bool Bsdf::sampleDelta(float u, BsdfSample* s, Rgb* w) const {
+    s->lobe = kLobeReflection | kLobeSpecular;
+    s->pdf = 0.0f;
+    switch (m_type) {
+        case MaterialType::Mirror:
+        case MaterialType::Plastic:  // the smooth metal part
+            s->wi = reflect(m_wo, m_side.nsf);
+            *w = m_rho;
+            return dot(s->wi, m_side.nf) > 0;
+        case MaterialType::Interface:
+            s->wi = -m_wo;
+            *w = Rgb(1.0f);
+            s->medium = m_beyond;
+            s->lobe = kLobeTransmission | kLobeSpecular;
+            return true;
+        case MaterialType::Dielectric: {
+            *w = Rgb(1.0f);
+            const float F = fresnelDielectric(dot(m_wo, m_ns), m_ior);
+            Vec3 wt;
+            // Total internal reflection where the shading normal disagrees with F.
+            if (u < F || !refract(m_wo, m_ns, m_ior, &wt)) {
+                s->wi = reflect(m_wo, m_side.nsf);
+                return dot(s->wi, m_side.nf) > 0;
+            }
+            s->wi = wt;
+            *w = m_rho;
+            s->eta = m_side.entering ? 1.0f / m_ior : m_ior;
+            if (m_mode == TransportMode::Radiance) *w *= s->eta * s->eta;
+            s->medium = m_beyond;
+            s->lobe = kLobeTransmission | kLobeSpecular;
+            return dot(s->wi, m_side.nf) < 0;
+        }
+        case MaterialType::Diffuse:
+            break;
+    }
+    return false;
+}
+
+template <class Uniforms, class Roulette>
+bool Bsdf::sample(Uniforms& rng, Rgb* beta, BsdfSample* s, BsdfLobes allowed, const Roulette& roulette) const {
+    s->medium = m_medium;
+    s->eta = 1.0f;
+    Rgb w;
+    switch (m_kind) {
+        case Kind::Diffuse: {
+            if (!(allowed & kLobeDiffuse)) return false;
+            s->lobe = kLobeReflection | kLobeDiffuse;
+            if (m_mode == TransportMode::Importance) {
+                // Cosine about the geometric normal; the weight rho max(0, wo.nsf) / (wo.nf) is
+                // known before the direction, so the roulette comes first.
+                const float ratio = m_shading ? shadingCosineRatio(m_side, m_wo) : 1.0f;
+                if (m_shading) *beta *= ratio;
+                *beta *= m_rho;
+                const float q = roulette(*beta, Rgb(1.0f));
+                if (q >= 0) {
+                    if (!(rng.uniform() < q)) return false;
+                    *beta *= 1.0f / q;
+                }
+                // The two numbers in one call, in the order the compiler evaluates them (as the
+                // photon tracer always has).
+                s->wi = Frame(m_side.nf).toWorld(sampleCosineHemisphere(rng.uniform(), rng.uniform()));
+                s->pdf = std::max(dot(s->wi, m_side.nf), 0.0f) * kInvPi;
+                s->weight = m_rho * (q >= 0 ? ratio / q : ratio);
+                return true;
+            }
+            // Cosine about the shading normal; below the geometric surface the path ends.
+            const Vec3& n = m_shading ? m_side.nsf : m_side.nf;
+            s->wi = Frame(n).toWorld(sampleCosineHemisphere(rng.uniform(), rng.uniform()));
+            if (m_shading && !(dot(s->wi, m_side.nf) > 0)) return false;
+            s->pdf = std::max(dot(s->wi, n), 0.0f) * kInvPi;
+            w = m_rho;
+            break;
+        }
+        case Kind::Coated: {
+            CoatedSample c;
+            if (allowed & kLobeDiffuse) {
+                const float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+                c = m_coat.sample(m_woLocal, u0, u1, u2);
+            } else {
+                if (!(allowed & (kLobeGlossy | kLobeSpecular))) return false;
+                const float u1 = rng.uniform(), u2 = rng.uniform();
+                c = m_coat.sampleSpecular(m_woLocal, u1, u2);
+            }
+            if (!c.valid) return false;
+            s->wi = normalize(m_frame.toWorld(c.wi));
+            s->pdf = c.pdf;
+            s->lobe = kLobeReflection | (!c.specular ? kLobeDiffuse : c.delta ? kLobeSpecular : kLobeGlossy);
+            if (!(dot(s->wi, m_side.nf) > 0)) return false;
+            w = c.weight;
+            break;
+        }
+        case Kind::Conductor:
+        case Kind::RoughDielectric: {
+            if (!(allowed & kLobeGlossy)) return false;
+            const float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+            const MicrofacetSample m = m_kind == Kind::Conductor ? m_metal.sample(m_woLocal, u1, u2)
+                                                                 : m_glass.sample(m_woLocal, u0, u1, u2, m_mode);
+            if (!m.valid) return false;
+            s->wi = normalize(m_frame.toWorld(m.wi));
+            s->pdf = m.pdf;
+            s->lobe = kLobeGlossy | (m.transmitted ? kLobeTransmission : kLobeReflection);
+            if (m.transmitted) {
+                s->medium = m_beyond;
+                s->eta = m_side.entering ? 1.0f / m_ior : m_ior;
+            }
+            if (!(m.transmitted ? dot(s->wi, m_side.nf) < 0 : dot(s->wi, m_side.nf) > 0)) return false;
+            w = m.weight;
+            break;
+        }
+        case Kind::Delta:
+            if (!(allowed & kLobeSpecular)) return false;
+            if (!sampleDelta(rng.uniform(), s, &w)) return false;
+            break;
+    }
+    const float q = roulette(*beta, w);
+    if (q >= 0) {
+        if (!(rng.uniform() < q)) return false;
+        w *= 1.0f / q;
+    }
+    if (m_mode == TransportMode::Importance && m_shading) w *= shadingNormalAdjoint(m_ng, m_ns, m_wo, s->wi);
+    *beta *= w;
+    s->weight = w;
+    return true;
+}
+
+}  // namespace tyndall
