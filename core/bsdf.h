@@ -83,7 +83,7 @@ public:
     MediumId mediumBeyond() const { return m_beyond; }
     /// +z of the coat's and the glossy lobes' frame: the shading normal on the arriving side, a
     /// dielectric's toward the exterior.
-    const Vec3& normal() const { return m_frame.n; }
+    const Vec3& normal() const { return m_parts.local.frame.n; }
 
     /// f(wo, wi) restricted to the lobe kinds in `lobes` (diffuse, glossy, specular; delta lobes
     /// are 0 here). In the mode's convention: f_radiance(wo, wi) = f_importance(wi, wo).
@@ -114,15 +114,27 @@ private:
     bool m_shading = false;  ///< ns differs from ng
     HitSide m_side;
     Vec3 m_ng, m_ns;
-    Vec3 m_wo;       ///< -dIn, world
-    Vec3 m_woLocal;  ///< m_wo in m_frame (coat, glossy)
-    Frame m_frame;   ///< coat, glossy
-    Rgb m_rho;       ///< baseColor: diffuse reflectance, conductor F0, mirror and dielectric tint
+    Vec3 m_wo;  ///< -dIn, world
+    Rgb m_rho;  ///< baseColor: diffuse reflectance, conductor F0, mirror and dielectric tint
     float m_ior = 1.5f;
     MediumId m_medium = kVacuum, m_beyond = kVacuum;
-    CoatedDiffuse m_coat;
-    RoughConductor m_metal;
-    RoughDielectric m_glass;
+    // The chosen component's parts, set by at() for the kinds that have them (the others cost
+    // nothing to build: every vertex of every path builds a Bsdf).
+    struct Local {
+        Frame frame;  ///< +z: normal()
+        Vec3 wo;      ///< m_wo in frame
+    };
+    union Parts {
+        Parts() {}
+        Local local;
+    } m_parts;
+    union Component {
+        Component() {}
+        CoatedDiffuse coat;
+        RoughConductor metal;
+        RoughDielectric glass;
+    } m_component;
+    const Local& local() const { return m_parts.local; }
 };
 
 template <class Uniforms>
@@ -153,8 +165,8 @@ Bsdf Bsdf::at(const Scene& scene, const SurfaceHit& hit, const SurfacePoint& sp,
     if (mat.type == MaterialType::Plastic && !metal) {
         b.m_kind = Kind::Coated;
         b.m_lobes = kLobeReflection | kLobeDiffuse | (mat.isRough() ? kLobeGlossy : kLobeSpecular);
-        b.m_frame = Frame(b.m_side.nsf);
-        b.m_coat = CoatedDiffuse::make(roughness, !mat.isRough(), mat.ior, sp.baseColor);
+        b.m_parts.local.frame = Frame(b.m_side.nsf);
+        b.m_component.coat = CoatedDiffuse::make(roughness, !mat.isRough(), mat.ior, sp.baseColor);
     } else if (mat.isGlossy() || (metal && mat.isRough())) {
         // Conductors reflect on the side the path arrives from; dielectrics use the exterior side
         // (+z = hit.ns) so eta = interior / exterior holds from both sides.
@@ -162,13 +174,13 @@ Bsdf Bsdf::at(const Scene& scene, const SurfaceHit& hit, const SurfacePoint& sp,
         if (mat.type == MaterialType::Mirror || mat.type == MaterialType::Plastic) {
             b.m_kind = Kind::Conductor;
             b.m_lobes = kLobeReflection | kLobeGlossy;
-            b.m_frame = Frame(b.m_side.nsf);
-            b.m_metal = RoughConductor{ggx, sp.baseColor};
+            b.m_parts.local.frame = Frame(b.m_side.nsf);
+            b.m_component.metal = RoughConductor{ggx, sp.baseColor};
         } else {
             b.m_kind = Kind::RoughDielectric;
             b.m_lobes = kLobeReflection | kLobeTransmission | kLobeGlossy;
-            b.m_frame = Frame(hit.ns);
-            b.m_glass = RoughDielectric{ggx, mat.ior, sp.baseColor};
+            b.m_parts.local.frame = Frame(hit.ns);
+            b.m_component.glass = RoughDielectric{ggx, mat.ior, sp.baseColor};
         }
     } else {
         b.m_kind = Kind::Delta;
@@ -177,7 +189,7 @@ Bsdf Bsdf::at(const Scene& scene, const SurfaceHit& hit, const SurfacePoint& sp,
                                                            : kLobeReflection | kLobeSpecular;
         return b;
     }
-    b.m_woLocal = b.m_frame.toLocal(b.m_wo);
+    b.m_parts.local.wo = b.m_parts.local.frame.toLocal(b.m_wo);
     return b;
 }
 
@@ -190,15 +202,15 @@ inline Rgb Bsdf::f(const Vec3& wi, BsdfLobes lobes) const {
             return dot(light, m_side.nsf) > 0 ? m_rho * kInvPi : Rgb(0.0f);
         }
         case Kind::Coated: {
-            const Vec3 wiLocal = m_frame.toLocal(wi);
-            Rgb f = (lobes & kLobeDiffuse) ? m_coat.evalDiffuse(m_woLocal, wiLocal) : Rgb(0.0f);
-            if (lobes & (kLobeGlossy | kLobeSpecular)) f += Rgb(m_coat.evalSpecular(m_woLocal, wiLocal));
+            const Vec3 wiLocal = local().frame.toLocal(wi);
+            Rgb f = (lobes & kLobeDiffuse) ? m_component.coat.evalDiffuse(local().wo, wiLocal) : Rgb(0.0f);
+            if (lobes & (kLobeGlossy | kLobeSpecular)) f += Rgb(m_component.coat.evalSpecular(local().wo, wiLocal));
             return f;
         }
         case Kind::Conductor:
-            return (lobes & kLobeGlossy) ? m_metal.eval(m_woLocal, m_frame.toLocal(wi)) : Rgb(0.0f);
+            return (lobes & kLobeGlossy) ? m_component.metal.eval(local().wo, local().frame.toLocal(wi)) : Rgb(0.0f);
         case Kind::RoughDielectric:
-            return (lobes & kLobeGlossy) ? m_glass.eval(m_woLocal, m_frame.toLocal(wi), m_mode) : Rgb(0.0f);
+            return (lobes & kLobeGlossy) ? m_component.glass.eval(local().wo, local().frame.toLocal(wi), m_mode) : Rgb(0.0f);
         case Kind::Delta:
             break;
     }
@@ -213,11 +225,11 @@ inline float Bsdf::pdf(const Vec3& wi) const {
             return std::max(dot(wi, m_shading ? m_side.nsf : m_side.nf), 0.0f) * kInvPi;
         }
         case Kind::Coated:
-            return m_coat.pdf(m_woLocal, m_frame.toLocal(wi));
+            return m_component.coat.pdf(local().wo, local().frame.toLocal(wi));
         case Kind::Conductor:
-            return m_metal.pdf(m_woLocal, m_frame.toLocal(wi));
+            return m_component.metal.pdf(local().wo, local().frame.toLocal(wi));
         case Kind::RoughDielectric:
-            return m_glass.pdf(m_woLocal, m_frame.toLocal(wi));
+            return m_component.glass.pdf(local().wo, local().frame.toLocal(wi));
         case Kind::Delta:
             break;
     }
@@ -279,15 +291,17 @@ bool Bsdf::sample(Uniforms& rng, Rgb* beta, BsdfSample* s, BsdfLobes allowed, co
                 if (m_shading) *beta *= ratio;
                 *beta *= m_rho;
                 const float q = roulette(*beta, Rgb(1.0f));
+                float invQ = 1.0f;
                 if (q >= 0) {
                     if (!(rng.uniform() < q)) return false;
-                    *beta *= 1.0f / q;
+                    invQ = 1.0f / q;
+                    *beta *= invQ;
                 }
                 // The two numbers in one call, in the order the compiler evaluates them (as the
                 // photon tracer always has).
                 s->wi = Frame(m_side.nf).toWorld(sampleCosineHemisphere(rng.uniform(), rng.uniform()));
                 s->pdf = std::max(dot(s->wi, m_side.nf), 0.0f) * kInvPi;
-                s->weight = m_rho * (q >= 0 ? ratio / q : ratio);
+                s->weight = m_rho * (ratio * invQ);
                 return true;
             }
             // Cosine about the shading normal; below the geometric surface the path ends.
@@ -302,14 +316,14 @@ bool Bsdf::sample(Uniforms& rng, Rgb* beta, BsdfSample* s, BsdfLobes allowed, co
             CoatedSample c;
             if (allowed & kLobeDiffuse) {
                 const float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
-                c = m_coat.sample(m_woLocal, u0, u1, u2);
+                c = m_component.coat.sample(local().wo, u0, u1, u2);
             } else {
                 if (!(allowed & (kLobeGlossy | kLobeSpecular))) return false;
                 const float u1 = rng.uniform(), u2 = rng.uniform();
-                c = m_coat.sampleSpecular(m_woLocal, u1, u2);
+                c = m_component.coat.sampleSpecular(local().wo, u1, u2);
             }
             if (!c.valid) return false;
-            s->wi = normalize(m_frame.toWorld(c.wi));
+            s->wi = normalize(local().frame.toWorld(c.wi));
             s->pdf = c.pdf;
             s->lobe = kLobeReflection | (!c.specular ? kLobeDiffuse : c.delta ? kLobeSpecular : kLobeGlossy);
             if (!(dot(s->wi, m_side.nf) > 0)) return false;
@@ -320,10 +334,10 @@ bool Bsdf::sample(Uniforms& rng, Rgb* beta, BsdfSample* s, BsdfLobes allowed, co
         case Kind::RoughDielectric: {
             if (!(allowed & kLobeGlossy)) return false;
             const float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
-            const MicrofacetSample m = m_kind == Kind::Conductor ? m_metal.sample(m_woLocal, u1, u2)
-                                                                 : m_glass.sample(m_woLocal, u0, u1, u2, m_mode);
+            const MicrofacetSample m = m_kind == Kind::Conductor ? m_component.metal.sample(local().wo, u1, u2)
+                                                                 : m_component.glass.sample(local().wo, u0, u1, u2, m_mode);
             if (!m.valid) return false;
-            s->wi = normalize(m_frame.toWorld(m.wi));
+            s->wi = normalize(local().frame.toWorld(m.wi));
             s->pdf = m.pdf;
             s->lobe = kLobeGlossy | (m.transmitted ? kLobeTransmission : kLobeReflection);
             if (m.transmitted) {

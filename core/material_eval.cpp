@@ -35,13 +35,7 @@ std::array<float, 4> sampleSlot(const Scene& scene, const TextureRef& ref, const
 SurfacePoint evalSurface(const Scene& scene, const TriangleMesh& mesh, uint32_t tri, float b1, float b2,
                          float footprint) {
     const Material& mat = scene.materials[size_t(mesh.material)];
-    SurfacePoint sp;
-    sp.baseColor = mat.albedo;
-    sp.alpha = mat.alpha;
-    sp.emission = mat.emission;
-    sp.metallic = mat.metallic;
-    sp.roughness = mat.roughness;
-    sp.transmission = mat.transmission;
+    SurfacePoint sp = surfaceFactors(mat);
     if (!mat.isTextured()) return sp;
     if (mat.baseColorTexture.present()) {
         auto t = sampleSlot(scene, mat.baseColorTexture, mesh, tri, b1, b2, footprint);

@@ -31,6 +31,18 @@ Vec2 meshTexcoord(const TriangleMesh& mesh, int set, uint32_t tri, float b1, flo
 /// sqrt(uv area / world area) of triangle `tri` in TEXCOORD_`set`: converts a world footprint to uv.
 float texcoordScale(const TriangleMesh& mesh, int set, uint32_t tri);
 
+/// A material's factors: what evalSurface returns for an untextured one.
+inline SurfacePoint surfaceFactors(const Material& mat) {
+    SurfacePoint sp;
+    sp.baseColor = mat.albedo;
+    sp.alpha = mat.alpha;
+    sp.emission = mat.emission;
+    sp.metallic = mat.metallic;
+    sp.roughness = mat.roughness;
+    sp.transmission = mat.transmission;
+    return sp;
+}
+
 /// The material of `mesh` at (tri, b1, b2), with textures looked up over `footprint` world units.
 /// Untextured materials return their factors without touching a texture. Thread-safe.
 SurfacePoint evalSurface(const Scene& scene, const TriangleMesh& mesh, uint32_t tri, float b1, float b2,

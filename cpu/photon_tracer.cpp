@@ -242,7 +242,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
         applyNormalMap(m_scene, &hit, surfaceRadius);
         const bool partly = mat.isPartlyTransmissive();
         const bool plastic = mat.type == MaterialType::Plastic;
-        const SurfacePoint at = evalSurface(m_scene, mesh, rh.hit.primID, rh.hit.u, rh.hit.v, surfaceRadius);
+        const SurfacePoint at = surfaceAt(m_scene, hit, surfaceRadius);
         // Stored: what a gather here uses. A diffuse part gathers every photon except, with
         // --direct-light on, those that arrive without scattering (shadow rays carry that light);
         // glossy and coat-specular gathers use the kPhotonDeltaPath ones.

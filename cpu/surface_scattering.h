@@ -10,7 +10,9 @@ namespace tyndall {
 
 /// The material at a hit, textures filtered over `footprint` world units (core/material_eval.h).
 inline SurfacePoint surfaceAt(const Scene& scene, const SurfaceHit& hit, float footprint) {
-    return evalSurface(scene, scene.meshes[size_t(hit.mesh)], hit.triangle, hit.b1, hit.b2, footprint);
+    const TriangleMesh& mesh = scene.meshes[size_t(hit.mesh)];
+    const Material& mat = scene.materials[size_t(mesh.material)];
+    return mat.isTextured() ? evalSurface(scene, mesh, hit.triangle, hit.b1, hit.b2, footprint) : surfaceFactors(mat);
 }
 
 /// Normal maps: replaces hit->ns by the normal-mapped shading normal when the material has a normal
