@@ -16,7 +16,6 @@
 #include "loading/default_smoke_scene.h"
 #include "loading/homogeneous_twin.h"
 #include "core/error.h"
-#include "cpu/progressive_render.h"
 #include "hybrid/pass_scheduler.h"
 
 namespace tyndall::app {

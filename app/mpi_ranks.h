@@ -6,24 +6,24 @@
 #include <cstdint>
 #include <vector>
 
+#include "hybrid/pass_distribution.h"
+
 namespace tyndall::app {
 
-class Ranks {
+/// The MPI world as the render driver's PassDistribution.
+class Ranks : public PassDistribution {
 public:
     /// The world of this process: initialises MPI the first time when launched by mpirun.
     static Ranks& world();
-    ~Ranks();
+    ~Ranks() override;
 
-    int rank() const { return m_rank; }
-    int size() const { return m_size; }
-    bool distributed() const { return m_mpi; }
-
-    /// Rank 0's `values` to every rank (same size everywhere).
-    void broadcast(std::vector<uint64_t>& values) const;
-    /// Every rank's `mine` (the same size on all ranks), concatenated in rank order, into `all`
-    /// on rank 0 (untouched elsewhere).
-    void gather(const std::vector<float>& mine, std::vector<float>* all) const;
-    void gather(const std::vector<uint64_t>& mine, std::vector<uint64_t>* all) const;
+    int rank() const override { return m_rank; }
+    int size() const override { return m_size; }
+    /// Started by mpirun (even with one rank).
+    bool distributed() const override { return m_mpi; }
+    void broadcast(std::vector<uint64_t>& values) const override;
+    void gather(const std::vector<float>& mine, std::vector<float>* all) const override;
+    void gather(const std::vector<uint64_t>& mine, std::vector<uint64_t>* all) const override;
     /// Ends every rank at once with `code` (an error on one rank that the others cannot see).
     [[noreturn]] void abort(int code) const;
 

@@ -1,5 +1,6 @@
 #pragma once
 // A linear float RGB image, row-major, (0,0) at the top-left.
+#include <utility>
 #include <vector>
 
 #include "core/math.h"
@@ -20,5 +21,14 @@ struct Image {
         return *this;
     }
 };
+
+/// Adds `part` to the running sum `sum` of a pass's photon batches (or their layers): the first
+/// part is moved in, so a sum of one part is that part bit for bit.
+inline void addBatch(Image& sum, Image&& part) {
+    if (sum.pixels.empty())
+        sum = std::move(part);
+    else
+        sum += part;
+}
 
 }  // namespace tyndall

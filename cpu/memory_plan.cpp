@@ -28,9 +28,9 @@ constexpr uint64_t kBytesPerPiece = 24 + 32 + 4 + 100;
 constexpr uint64_t kImagesPerPass = 8;
 // AOV layers: LayerAccumulator's double sums (beauty, its three components, the beauty squares).
 constexpr uint64_t kAovAccumulators = 5;
-// Float images an AOV pass adds (app/render_rounds.cpp, PassRenderer::renderPassLayers): its three
-// component images, the secondary stage's two parts, and the packed, gathered and unpacked copies
-// of its four images.
+// Float images an AOV pass adds (PassRenderer::renderPassLayers, the render driver's MPI rounds):
+// its three component images, the secondary stage's two parts, and the packed, gathered and
+// unpacked copies of its four images.
 constexpr uint64_t kAovImagesPerPass = 3 + 2 + 3 * 4;
 // A checkpoint's JSON header (the resolved settings, paths) and layer records: a few KiB.
 constexpr uint64_t kCheckpointHeaderBytes = 64 * 1024;
@@ -56,8 +56,9 @@ ImageBuffers imageBuffers(const RenderSettings& s, int freeFlights, bool aovLaye
         b.output = pixels * (sizeof(Rgb) + 16);               // the mean and the writer's converted copy
         b.gl = pixels * (16 + sizeof(PrimaryRay) + ff);      // RGBA32F target, uploaded rays and distances
     } else {
-        // AOV layers render in rounds, one pass at a time and without GL (app/render_rounds.h); the
-        // EXR writer holds the mean, the four layer images and the 15 interleaved channels.
+        // AOV layers: one pass at a time on the CPU (with GL a second pass may wait for its splat;
+        // its images are not counted here); the EXR writer holds the mean, the four layer images
+        // and the 15 interleaved channels.
         b.passes = pixels * (perPass + kAovImagesPerPass * sizeof(Rgb));
         b.output = pixels * (sizeof(Rgb) * (1 + 4) + 15 * sizeof(float));
     }

@@ -1,38 +1,20 @@
 #include "cpu/pass_renderer.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <string>
 
+#include "core/timing.h"
 #include "cpu/radius_defaults.h"
 
 namespace tyndall {
 
 namespace {
-double secondsSince(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 // Free-flight distances stored per beam and per pixel: only scenes with grid media store any.
 int storedFreeFlights(const Scene& scene, const RenderSettings& settings) {
     for (const Medium& m : scene.media)
         if (!m.homogeneous()) return settings.freeFlightSamples;
     return 0;
-}
-// Test hook TYNDALL_TEST_NAN_PIXEL=X,Y (unset in normal use; docs/production.md, "Test hooks"):
-// the camera stage's radiance at pixel (X, Y) is NaN in every pass, so a test can follow planted
-// NaN samples through the render loop to the accumulator's guard and the end-of-render report.
-void plantNanForTests(Image& radiance) {
-    static const int* xy = [] {
-        static int v[2] = {-1, -1};
-        const char* e = std::getenv("TYNDALL_TEST_NAN_PIXEL");
-        if (e) std::sscanf(e, "%d,%d", &v[0], &v[1]);
-        return v;
-    }();
-    if (xy[0] >= 0 && xy[0] < radiance.width && xy[1] >= 0 && xy[1] < radiance.height)
-        radiance.pixels[size_t(xy[1]) * radiance.width + xy[0]].g = std::nanf("");
 }
 }  // namespace
 
@@ -105,7 +87,7 @@ Image PassRenderer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                           BeamBvh bvh(*m_rt->device(), m_anyNonDiffuse ? photons.beams : kNoBeams, m_bvhKind);
                           SurfacePhotonGrid grid(photons.surfacePhotons);
                           Image radiance = m_camera->traceSecondary(primary, photons, bvh, grid, stats, layers, emission);
-                          if (emission) plantNanForTests(radiance);  // once per pass (its first batch)
+                          if (emission && m_hooks) m_hooks->cameraRadiance(primary.pass, radiance);
                           return radiance;
                       });
 }
@@ -138,17 +120,15 @@ PassLayers PassRenderer::renderPassLayers(uint64_t pass, PassStats* stats) const
     return layers;
 }
 
-namespace {
-void addPart(Image& sum, Image&& part, bool first) {
-    if (first)
-        sum = std::move(part);
-    else
-        sum += part;
+PassLayers PassRenderer::renderPass(uint64_t pass, bool layers, PassStats* stats,
+                                    const std::function<bool()>& abandon) const {
+    PassLayers out;
+    out.beauty = renderBatches(pass, stats, layers ? &out : nullptr, abandon);
+    return out;
 }
-}  // namespace
 
-Image PassRenderer::renderBatches(uint64_t pass, PassStats* stats, PassLayers* layers) const {
-    using Clock = std::chrono::steady_clock;
+Image PassRenderer::renderBatches(uint64_t pass, PassStats* stats, PassLayers* layers,
+                                  const std::function<bool()>& abandon) const {
     PassStats local;
     auto t0 = Clock::now();
     const PrimaryPass primary = tracePrimary(pass);
@@ -156,7 +136,7 @@ Image PassRenderer::renderBatches(uint64_t pass, PassStats* stats, PassLayers* l
     local.cameraSeconds += secondsSince(t0);
     Image image;
     // One batch at a time: its beams and photons are freed before the next is traced.
-    for (uint32_t batch = 0; batch < m_memory.batches; ++batch) {
+    for (uint32_t batch = 0; batch < m_memory.batches && !(abandon && abandon()); ++batch) {
         const bool first = batch == 0;
         auto t1 = Clock::now();
         const PhotonMap photons = tracePhotons(pass, batch);
@@ -168,12 +148,12 @@ Image PassRenderer::renderBatches(uint64_t pass, PassStats* stats, PassLayers* l
         RasterStats raster;
         Image part = splatPrimary(primary.segments, photons, &raster);
         if (layers) {
-            addPart(layers->mediaPrimary, Image(part), first);
-            addPart(layers->mediaSecondary, std::move(secondary.media), first);
-            addPart(layers->surface, std::move(secondary.surface), first);
+            addBatch(layers->mediaPrimary, Image(part));
+            addBatch(layers->mediaSecondary, std::move(secondary.media));
+            addBatch(layers->surface, std::move(secondary.surface));
         }
         part += radiance;
-        addPart(image, std::move(part), first);
+        addBatch(image, std::move(part));
         local.add(photons);
         local.add(camera);
         local.rasterTests += raster.pixelTests;

@@ -19,6 +19,7 @@
 // its media's coefficients may change between passes (the viewer's reset) provided
 // sceneChanged() is called before the next pass; geometry, materials and the number of lights
 // are baked into the ray tracer (build a new PassRenderer for those).
+#include <functional>
 #include <memory>
 
 #include "core/image.h"
@@ -29,6 +30,7 @@
 #include "cpu/embree_scene.h"
 #include "cpu/memory_plan.h"
 #include "cpu/photon_tracer.h"
+#include "cpu/test_hooks.h"
 
 namespace tyndall {
 
@@ -82,6 +84,14 @@ public:
     Image renderPass(uint64_t pass, PassStats* stats = nullptr) const;
     /// renderPass with the image's components kept apart as well.
     PassLayers renderPassLayers(uint64_t pass, PassStats* stats = nullptr) const;
+    /// renderPass (`layers` false: only PassLayers::beauty is filled) or renderPassLayers (true),
+    /// abandoned between stages once `abandon()` says so: the result is then incomplete, for the
+    /// caller to throw away (the render driver's reset and exit).
+    PassLayers renderPass(uint64_t pass, bool layers, PassStats* stats, const std::function<bool()>& abandon) const;
+
+    /// Test faults (cpu/test_hooks.h); null (the default) in normal use. Not owned; set before
+    /// the first pass.
+    void setTestHooks(const TestHooks* hooks) { m_hooks = hooks; }
 
     /// Re-reads what the photon tracer derives from the lights (their sampling distribution and
     /// the media they sit in). Not thread-safe: call with no pass running.
@@ -98,7 +108,8 @@ public:
 
 private:
     /// renderPass, batch by batch; with `layers`, its components are summed there too.
-    Image renderBatches(uint64_t pass, PassStats* stats, PassLayers* layers) const;
+    Image renderBatches(uint64_t pass, PassStats* stats, PassLayers* layers,
+                        const std::function<bool()>& abandon = {}) const;
 
     const Scene& m_scene;
     std::unique_ptr<EmbreeScene> m_rt;
@@ -110,6 +121,7 @@ private:
     std::unique_ptr<PhotonTracer> m_photons;
     std::unique_ptr<CameraTracer> m_camera;
     BeamRasterizer m_rasterizer;
+    const TestHooks* m_hooks = nullptr;
 };
 
 }  // namespace tyndall

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/timing.h"
 #include "gpu/gl_layout.h"
 #include "gpu/gl_program.h"
 #include "gpu/media_table.h"
@@ -13,10 +14,6 @@
 namespace tyndall {
 
 namespace {
-using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 constexpr int kVerticesPerBeam = 6;
 constexpr uint64_t kBeamsPerDraw = 1u << 24;  // keeps the vertex count of one draw in GLsizei

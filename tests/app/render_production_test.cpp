@@ -3,7 +3,8 @@
 // --quiet; AOV layers (names, the three components add up to the beauty image, the beauty image
 // unchanged by --aov, a variance layer that is the variance of the running mean); the convergence
 // CSV; and Open MPI: 2 ranks give the single-process image bit for bit (--passes), agree on one
-// pass count (--time) and record tyndall:ranks.
+// pass count (--time) and record tyndall:ranks; --gpu on with --aov and under two ranks; the GL
+// splat failing mid-render (the render finishes on the CPU with one warning).
 #include <gtest/gtest.h>
 #include <pty.h>
 #include <sys/wait.h>
@@ -17,6 +18,7 @@
 #include "app/progress_meter.h"
 #include "core/image_io.h"
 #include "core/layer_accumulator.h"
+#include "tests/gpu/gpu_test_util.h"
 #include "tests/test_util.h"
 #include "tests/tyndall_cli.h"
 
@@ -299,6 +301,60 @@ TEST(Mpi, CheckpointUnderMpiResumesInOneProcess) {
     r = runTyndall("render --resume " + ck + " --passes 9 -q -o " + resumed);
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_TRUE(tyndall::test::identicalImages(tyndall::readImage(resumed), tyndall::readImage(full)));
+}
+
+// --- --gpu on with layers, under MPI, and when GL fails -------------------------------------
+
+/// `tyndall render --gpu on` works here (an OpenGL context, llvmpipe counts).
+bool haveGl() {
+    static const bool gl = runTyndall("render --size 8x8 --passes 1 --photons 10 --gpu on -q -o " + out("gl_probe.exr"))
+                               .exitCode == 0;
+    return gl;
+}
+
+TEST(Aov, GpuOnSplatsTheMediaPrimaryLayer) {
+    if (!haveGl()) GTEST_SKIP() << "no OpenGL context";
+    const std::string plain = out("gl_beauty.exr"), aov = out("gl_aov.exr"), cpu = out("gl_cpu_aov.exr");
+    const std::string gl = "--size 48x36 --photons 400 --passes 4 -q --gpu on";
+    auto r = runTyndall("render " + gl + " --aov -o " + aov);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("hybrid"), std::string::npos) << r.output;
+    ASSERT_EQ(runTyndall("render " + gl + " -o " + plain).exitCode, 0);
+    ASSERT_EQ(runTyndall("render " + kSmall + " --passes 4 -q --aov -o " + cpu).exitCode, 0);
+    tyndall::Image beauty = tyndall::readImageLayer(aov, "");
+    EXPECT_TRUE(tyndall::test::identicalImages(beauty, tyndall::readImage(plain))) << "--aov changed the GL beauty";
+    for (const char* layer : {"", "media_primary", "media_secondary", "surface"}) {
+        const double rms = tyndall::test::relativeRms(tyndall::readImageLayer(aov, layer), tyndall::readImageLayer(cpu, layer));
+        EXPECT_LT(rms, tyndall::test::kGlCpuParity) << "layer '" << layer << "' against --gpu off";
+    }
+}
+
+TEST(Mpi, GpuOnTwoRanksEqualOneProcess) {
+    if (!haveMpirun()) GTEST_SKIP() << "mpirun not installed (openmpi-bin)";
+    if (!haveGl()) GTEST_SKIP() << "no OpenGL context";
+    const std::string single = out("mpi_gl_single.exr"), two = out("mpi_gl_two.exr");
+    const std::string gl = "--size 48x36 --photons 400 --passes 5 --aov -q --gpu on";
+    ASSERT_EQ(runTyndall("render " + gl + " -o " + single).exitCode, 0);
+    auto r = runMpi(2, "render " + gl + " --threads 1 -o " + two);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("2 ranks, hybrid"), std::string::npos) << r.output;
+    for (const char* layer : {"", "media_primary", "media_secondary", "surface"})
+        EXPECT_TRUE(tyndall::test::identicalImages(tyndall::readImageLayer(two, layer), tyndall::readImageLayer(single, layer)))
+            << "layer '" << layer << "'";
+}
+
+TEST(GlFailure, RenderFinishesOnTheCpuWithOneLine) {
+    // TYNDALL_TEST_GL_FAIL_AFTER_PASS=2: the GL splat of pass 3 on fails as a lost context would.
+    if (!haveGl()) GTEST_SKIP() << "no OpenGL context";
+    const std::string failed = out("gl_failed.exr"), cpu = out("gl_failed_cpu.exr");
+    auto r = runTyndall("render --size 48x36 --photons 400 --passes 6 --gpu on -q -o " + failed,
+                        "TYNDALL_TEST_GL_FAIL_AFTER_PASS=2");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 2) << "one notice and the summary:\n" << r.output;
+    EXPECT_NE(r.output.find("tyndall: warning: the GL splat failed at pass 3"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("6 passes"), std::string::npos) << r.output;
+    ASSERT_EQ(runTyndall("render " + kSmall + " --passes 6 -q -o " + cpu).exitCode, 0);
+    EXPECT_LT(tyndall::test::relativeRms(tyndall::readImage(failed), tyndall::readImage(cpu)), tyndall::test::kGlCpuParity);
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 // The hybrid render loop: with the same seed, GL-splatted and CPU-only renders of the default
 // scene agree up to float rounding; reset and exit (from the display or another thread) throw
 // away the passes in flight and the result equals a fresh render; the queue stays bounded; the
-// --gpu modes choose and fall back as documented.
+// --gpu modes choose and fall back as documented; AOV layers come from the GL splat; a GL failure
+// mid-render finishes on the CPU keeping the passes done.
 #include "hybrid/pass_scheduler.h"
 
 #include <gtest/gtest.h>
@@ -359,4 +360,102 @@ TEST(PassScheduler, BatchedPassesAgreeOnGlAndCpuAndWithTheWholePass) {
     EXPECT_LT(rmsCpu, 1e-5);
     EXPECT_LT(rmsGl, 1e-5);
     if (rmsGl >= 1e-5) tyndall::test::writeEvidence("batched_hybrid_vs_cpu", hybrid.image, reference.image);
+}
+
+namespace {
+/// Fails the GL splat of every pass from `after` on, as a lost context would.
+struct FailGlAfter : TestHooks {
+    explicit FailGlAfter(uint64_t n) : after(n) {}
+    bool failGlSplat(uint64_t pass) const override { return pass >= after; }
+    uint64_t after;
+};
+}  // namespace
+
+TEST(PassScheduler, GlFailureFinishesOnTheCpuKeepingThePassesDone) {
+    // GL fails from pass 2 of 6 on (the splat throws on the GL thread): the render goes on with
+    // one notice; the image is passes 0-1 from the GL splat and passes 2-5 from the CPU, bit for
+    // bit, and agrees with a CPU render to GL/CPU parity. Pass 2's splat was in flight when it
+    // failed: it is rendered again on the CPU, not dropped.
+    const RenderSettings s = smallSettings(6);
+    FailGlAfter hooks(2);
+    SchedulerOptions options;
+    options.hooks = &hooks;
+    PassScheduler failing(GpuMode::On, options);
+    PassRenderer renderer(defaultScene(), s);
+    Accumulator acc(s.width, s.height);
+    std::vector<std::string> notices;
+    std::vector<uint64_t> order;
+    CallbackDisplay display(
+        [&](const Accumulator&, const RenderProgress& p) {
+            order.push_back(p.pass);
+            return DisplayCommand::Continue;
+        },
+        {}, [&](const std::string& line) { notices.push_back(line); });
+    ASSERT_TRUE((failing.bind(defaultScene()), failing.hybrid()));
+    RenderProgress p = failing.run(renderer, acc, 0, display);
+    EXPECT_EQ(p.passesDone, 6u);
+    EXPECT_EQ(order, (std::vector<uint64_t>{0, 1, 2, 3, 4, 5}));
+    ASSERT_EQ(notices.size(), 1u);
+    std::printf("notice: %s\n", notices[0].c_str());
+    EXPECT_NE(notices[0].find("pass 3"), std::string::npos) << notices[0];
+    EXPECT_FALSE(failing.hybrid()) << "the scheduler stays on the CPU after GL failed";
+
+    // The expected sums: two passes through a working GL scheduler, then the CPU's passes.
+    PassScheduler gl(GpuMode::On);
+    Accumulator expected(s.width, s.height);
+    CallbackDisplay twoPasses([](const Accumulator& a, const RenderProgress&) {
+        return a.passCount() == 2 ? DisplayCommand::Exit : DisplayCommand::Continue;
+    });
+    gl.run(renderer, expected, 0, twoPasses);
+    ASSERT_EQ(expected.passCount(), 2u);
+    for (uint64_t pass = 2; pass < 6; ++pass) expected.addPass(renderer.renderPass(pass));
+    EXPECT_TRUE(tyndall::test::identicalImages(acc.mean(), expected.mean()));
+    const double rms = relativeRms(acc.mean(), render(GpuMode::Off, defaultScene(), s).image);
+    std::printf("after the GL failure: relative RMS against the CPU render %.3g\n", rms);
+    EXPECT_LT(rms, kGlCpuParity);
+
+    // A later run of the same scheduler renders on the CPU without a second notice.
+    Accumulator again(s.width, s.height);
+    failing.run(renderer, again, 0, display);
+    EXPECT_EQ(notices.size(), 1u);
+    EXPECT_TRUE(tyndall::test::identicalImages(again.mean(), render(GpuMode::Off, defaultScene(), s).image));
+}
+
+TEST(PassScheduler, AovLayersComeFromTheGlSplat) {
+    // With AOV layers on GL the beauty image is the plain GL render's bit for bit, the three
+    // components add up to it, and each agrees with the CPU's layer to GL/CPU parity.
+    const RenderSettings s = smallSettings(4);
+    PassRenderer renderer(defaultScene(), s, BeamBvh::Kind::FlatCurves, true);
+    CallbackDisplay display([](const Accumulator&, const RenderProgress&) { return DisplayCommand::Continue; });
+    auto layersWith = [&](GpuMode mode) {
+        PassScheduler scheduler(mode);
+        LayerAccumulator layers(s.width, s.height, true);
+        scheduler.run(renderer, layers, 0, display);
+        EXPECT_EQ(scheduler.hybrid(), mode == GpuMode::On);
+        EXPECT_EQ(layers.passCount(), 4u);
+        return layers;
+    };
+    LayerAccumulator gl = layersWith(GpuMode::On), cpu = layersWith(GpuMode::Off);
+    PassScheduler plainScheduler(GpuMode::On);
+    Accumulator plain(s.width, s.height);
+    plainScheduler.run(renderer, plain, 0, display);
+    EXPECT_TRUE(tyndall::test::identicalImages(gl.beauty().mean(), plain.mean())) << "the layers changed the beauty";
+
+    const ImageLayers glLayers = gl.imageLayers(), cpuLayers = cpu.imageLayers();
+    ASSERT_EQ(glLayers.size(), 4u);
+    const Image beauty = gl.beauty().mean();
+    double worst = 0;
+    for (size_t i = 0; i < beauty.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            double sum = double(glLayers[0].second.pixels[i][c]) + glLayers[1].second.pixels[i][c] +
+                         glLayers[2].second.pixels[i][c];
+            worst = std::max(worst, std::abs(sum - beauty.pixels[i][c]) / std::max(double(beauty.pixels[i][c]), 1e-3));
+        }
+    EXPECT_LT(worst, 1e-5) << "media_primary + media_secondary + surface != beauty";
+    for (int k = 0; k < 3; ++k) {
+        const double rms = relativeRms(glLayers[k].second, cpuLayers[k].second);
+        std::printf("layer %s: relative RMS GL vs CPU %.3g\n", glLayers[k].first.c_str(), rms);
+        EXPECT_LT(rms, kGlCpuParity) << glLayers[k].first;
+    }
+    EXPECT_GT(relativeRms(Image(s.width, s.height), glLayers[0].second), 0.5) << "the splat layer is not empty";
 }

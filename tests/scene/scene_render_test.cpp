@@ -12,9 +12,9 @@
 #include <filesystem>
 
 #include "core/image_io.h"
-#include "cpu/progressive_render.h"
 #include "cpu/radius_defaults.h"
 #include "cpu/reference_tracer.h"
+#include "hybrid/pass_scheduler.h"
 #include "tests/scene/scene_test_util.h"
 
 namespace tyndall {
@@ -39,7 +39,9 @@ std::vector<double> renderLuminance(const Scene& scene, int size, int passes, ui
     if (sceneRelativeRadii) rs = withSceneRelativeRadii(rs, scene);
     PassRenderer renderer(scene, rs);
     Accumulator acc(size, size);
-    renderProgressive(renderer, acc, 0);
+    PassScheduler cpu(GpuMode::Off);
+    CallbackDisplay display([](const Accumulator&, const RenderProgress&) { return DisplayCommand::Continue; });
+    cpu.run(renderer, acc, 0, display);
     Image img = acc.mean();
     std::vector<double> lum;
     bool finite = true;
