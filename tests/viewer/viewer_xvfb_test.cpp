@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <nlohmann/json.hpp>
 
 #include "core/image_io.h"
@@ -26,22 +27,41 @@ fs::path outDir(const std::string& name) {
     return d;
 }
 
-/// Runs `tyndall view ARGS --script` with `script` under xvfb-run.
-test::CliRun runView(const fs::path& dir, const std::string& args, const std::string& script) {
+/// Runs the shell script `body` (DIR/run.sh) under xvfb-run: its output and exit status.
+test::CliRun runUnderXvfb(const fs::path& dir, const std::string& body) {
+    fs::path file = dir / "run.sh";
+    std::ofstream(file) << "#!/bin/sh\n" << body;
+    fs::permissions(file, fs::perms::owner_all);
+    return test::runShell("xvfb-run -a -s '-screen 0 1280x1024x24' " + file.string() + " 2>&1");
+}
+
+/// The command line of `tyndall view ARGS --script DIR/script.txt`, `script` written there.
+std::string viewCommand(const fs::path& dir, const std::string& args, const std::string& script) {
     fs::path file = dir / "script.txt";
     std::ofstream(file) << script;
-    std::string cmd = std::string("-a -s '-screen 0 1280x1024x24' ") + TYNDALL_BINARY + " view " + args +
-                      " --script " + file.string();
-    std::string full = "xvfb-run " + cmd + " 2>&1";
-    test::CliRun r;
-    FILE* pipe = popen(full.c_str(), "r");
-    char buf[4096];
-    size_t n;
-    while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) r.output.append(buf, n);
-    int status = pclose(pipe);
-    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
+    return std::string(TYNDALL_BINARY) + " view " + args + " --script " + file.string();
 }
+
+/// Runs `tyndall view ARGS` with `script` under xvfb-run.
+test::CliRun runView(const fs::path& dir, const std::string& args, const std::string& script) {
+    return runUnderXvfb(dir, viewCommand(dir, args, script) + "\n");
+}
+
+/// Runs `tyndall view ARGS` with `script` in the background under xvfb-run and, beside it, the
+/// shell lines `input`, which find the window in $win (xdotool) and send it real input; waits for
+/// the viewer and returns its exit status. `input` usually waits for a file the script saves first.
+test::CliRun runViewWithInput(const fs::path& dir, const std::string& args, const std::string& script,
+                              const std::string& input) {
+    return runUnderXvfb(dir, viewCommand(dir, args, script) + " &\npid=$!\n" +
+                                 "win=$(xdotool search --sync --name 'tyndall view')\n" + input + "wait $pid\n");
+}
+
+/// A shell line that waits until `path` exists.
+std::string waitForFile(const fs::path& path) {
+    return "while [ ! -f " + path.string() + " ]; do sleep 0.2; done\n";
+}
+
+bool haveXdotool() { return std::system("command -v xdotool >/dev/null 2>&1") == 0; }
 
 double meanLuminance(const Image& img, int x0, int y0, int x1, int y1) {
     double sum = 0;
@@ -52,6 +72,8 @@ double meanLuminance(const Image& img, int x0, int y0, int x1, int y1) {
 
 #define SKIP_WITHOUT_XVFB() \
     if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup.sh installs xvfb): viewer tests skipped"
+#define SKIP_WITHOUT_XDOTOOL() \
+    if (!haveXdotool()) GTEST_SKIP() << "xdotool is not installed (scripts/setup.sh installs it): real-input test skipped"
 
 TEST(ViewerCli, WithoutADisplayItSaysWhatIsMissingAndExits1) {
     test::CliRun r = test::runTyndall("view", "-u DISPLAY");
@@ -177,30 +199,18 @@ TEST(ViewerXvfb, EveryBindingRunsAndTheSavedViewStillReproduces) {
 
 TEST(ViewerXvfb, RealMouseDragThroughTheXServerOrbits) {
     SKIP_WITHOUT_XVFB();
-    if (std::system("command -v xdotool >/dev/null 2>&1") != 0)
-        GTEST_SKIP() << "xdotool is not installed (scripts/setup.sh installs it): real-input test skipped";
+    SKIP_WITHOUT_XDOTOOL();
     fs::path d = outDir("xdotool");
     // The viewer waits for one real button release; xdotool drags in the image area (right of the
-    // 330-pixel panel) once the window exists.
-    std::ofstream(d / "script.txt") << "wait-passes 1\nsave " << (d / "before").string()
-                                    << "\nwait-input 1 300\nwait-passes 2\nsave " << (d / "after").string()
-                                    << "\nquit\n";
-    std::ofstream(d / "run.sh") << "#!/bin/sh\n"
-                                << TYNDALL_BINARY << " view " << kSmall << " --script " << (d / "script.txt").string()
-                                << " &\npid=$!\n"
-                                << "while [ ! -f " << (d / "before.json").string() << " ]; do sleep 0.2; done\n"
-                                << "win=$(xdotool search --sync --name 'tyndall view')\n"
-                                << "xdotool mousemove --window $win 394 64 mousedown 1 mousemove --window $win 404 66 "
-                                   "mousemove --window $win 414 68 mousemove --window $win 424 70 mouseup 1\n"
-                                << "wait $pid\n";
-    fs::permissions(d / "run.sh", fs::perms::owner_all);
-    std::string cmd = "xvfb-run -a -s '-screen 0 1280x1024x24' " + (d / "run.sh").string() + " 2>&1";
-    test::CliRun r;
-    FILE* pipe = popen(cmd.c_str(), "r");
-    char buf[4096];
-    for (size_t n; (n = fread(buf, 1, sizeof buf, pipe)) > 0;) r.output.append(buf, n);
-    int status = pclose(pipe);
-    ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << r.output;
+    // 330-pixel panel) once the first view is saved.
+    test::CliRun r = runViewWithInput(
+        d, kSmall,
+        "wait-passes 1\nsave " + (d / "before").string() + "\nwait-input 1 300\nwait-passes 2\nsave " +
+            (d / "after").string() + "\nquit\n",
+        waitForFile(d / "before.json") +
+            "xdotool mousemove --window $win 394 64 mousedown 1 mousemove --window $win 404 66 "
+            "mousemove --window $win 414 68 mousemove --window $win 424 70 mouseup 1\n");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
     nlohmann::json b = nlohmann::json::parse(std::ifstream(d / "before.json"));
     nlohmann::json a = nlohmann::json::parse(std::ifstream(d / "after.json"));
     // The real drag moved the camera (an orbit: the eye moved, the pivot distance kept).
@@ -219,8 +229,7 @@ std::string roomScene(const std::string& intensity) {
 
 TEST(ViewerXvfb, TheSceneFileReloadsOnChangeAndOnF5KeepingTheCameraAndABadFileKeepsTheLastGoodScene) {
     SKIP_WITHOUT_XVFB();
-    if (std::system("command -v xdotool >/dev/null 2>&1") != 0)
-        GTEST_SKIP() << "xdotool is not installed (scripts/setup.sh installs it): real-input test skipped";
+    SKIP_WITHOUT_XDOTOOL();
     fs::path d = outDir("reload");
     const fs::path scene = d / "room.json";
     std::ofstream(scene) << roomScene("1");
@@ -228,31 +237,20 @@ TEST(ViewerXvfb, TheSceneFileReloadsOnChangeAndOnF5KeepingTheCameraAndABadFileKe
     std::ofstream(d / "bad.json") << roomScene("[4, 4]");  // not an RGB triple
     auto stem = [&](const char* name) { return (d / name).string(); };
     // Orbit, then: the file is replaced (a brighter lamp), F5 from the X server, a bad file.
-    std::ofstream(d / "script.txt") << "wait-passes 1\ndrag left 64 64 84 60 4\nwait-passes 1\nsave " << stem("before")
-                                    << "\nwait-reload 1 120\nwait-passes 1\nsave " << stem("changed")
-                                    << "\nwait-reload 2 120\nwait-passes 1\nsave " << stem("keyed")
-                                    << "\nwait-reload 3 120\nwait-passes 1\nsave " << stem("bad") << "\nquit\n";
-    auto waitFor = [&](const char* name) {
-        return std::string("while [ ! -f ") + stem(name) + ".json ]; do sleep 0.2; done\n";
+    std::ostringstream script;
+    script << "wait-passes 1\ndrag left 64 64 84 60 4\nwait-passes 1\nsave " << stem("before")
+           << "\nwait-reload 1 120\nwait-passes 1\nsave " << stem("changed")
+           << "\nwait-reload 2 120\nwait-passes 1\nsave " << stem("keyed")
+           << "\nwait-reload 3 120\nwait-passes 1\nsave " << stem("bad") << "\nquit\n";
+    auto replaceScene = [&](const char* with) {
+        return "sleep 1.1; cp " + (d / with).string() + " " + scene.string() + ".new; mv " + scene.string() +
+               ".new " + scene.string() + "\n";
     };
-    std::ofstream(d / "run.sh") << "#!/bin/sh\n"
-                                << TYNDALL_BINARY << " view " << scene.string() << " " << kSmall << " --script "
-                                << (d / "script.txt").string() << " &\npid=$!\n"
-                                << waitFor("before") << "sleep 1.1; cp " << (d / "brighter.json").string() << " "
-                                << scene.string() << ".new; mv " << scene.string() << ".new " << scene.string() << "\n"
-                                << waitFor("changed") << "win=$(xdotool search --sync --name 'tyndall view')\n"
-                                << "xdotool key --window $win F5\n"
-                                << waitFor("keyed") << "sleep 1.1; cp " << (d / "bad.json").string() << " "
-                                << scene.string() << ".new; mv " << scene.string() << ".new " << scene.string()
-                                << "\nwait $pid\n";
-    fs::permissions(d / "run.sh", fs::perms::owner_all);
-    std::string cmd = "xvfb-run -a -s '-screen 0 1280x1024x24' " + (d / "run.sh").string() + " 2>&1";
-    test::CliRun r;
-    FILE* pipe = popen(cmd.c_str(), "r");
-    char buf[4096];
-    for (size_t n; (n = fread(buf, 1, sizeof buf, pipe)) > 0;) r.output.append(buf, n);
-    int status = pclose(pipe);
-    ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << r.output;
+    test::CliRun r = runViewWithInput(d, scene.string() + " " + kSmall, script.str(),
+                                      waitForFile(stem("before") + ".json") + replaceScene("brighter.json") +
+                                          waitForFile(stem("changed") + ".json") + "xdotool key --window $win F5\n" +
+                                          waitForFile(stem("keyed") + ".json") + replaceScene("bad.json"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
     auto view = [&](const char* name) { return nlohmann::json::parse(std::ifstream(d / (std::string(name) + ".json"))); };
     nlohmann::json before = view("before"), changed = view("changed"), keyed = view("keyed"), bad = view("bad");
     // The file's change shows (4x the lamp), the orbited camera stays.

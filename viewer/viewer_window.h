@@ -1,0 +1,159 @@
+#pragma once
+// The viewer window behind runViewer (viewer/viewer_app.h), private to viewer/: one class whose
+// parts live in viewer_app.cpp (the window's life and its frame loop), viewer_input.cpp (mouse,
+// keys and the script), viewer_scene.cpp (the edited scene, its render loops, reload and save)
+// and viewer_panel.cpp (the Dear ImGui panel). Everything runs on the UI thread.
+#ifndef GLFW_INCLUDE_NONE
+#define GLFW_INCLUDE_NONE
+#endif
+#include <GLFW/glfw3.h>
+
+#include <algorithm>
+#include <chrono>
+#include <deque>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cpu/embree_scene.h"
+#include "viewer/camera_controller.h"
+#include "viewer/image_view_gl.h"
+#include "viewer/view_script.h"
+#include "viewer/viewer_app.h"
+
+namespace tyndall {
+
+using Clock = std::chrono::steady_clock;
+inline double seconds(Clock::time_point t) { return std::chrono::duration<double>(t.time_since_epoch()).count(); }
+
+constexpr int kPanelWidth = 330;
+constexpr double kFrameSeconds = 1.0 / 60.0;  // the most frames a second the window draws
+// Frames drawn after an input event whatever else happens, so the panel's hover, press and release
+// states settle (Dear ImGui updates them one frame late).
+constexpr int kSettleFrames = 3;
+// With nothing new the UI thread sleeps in the event queue; it wakes this often only to check
+// script time-outs and render errors, and draws nothing unless something changed.
+constexpr double kIdleWakeSeconds = 0.5;
+constexpr double kScenePollSeconds = 0.5;  // how often the scene file's modification time is read
+constexpr double kDoubleClickSeconds = 0.35;
+
+/// Per light: colour (max channel 1) and power (the max channel), edited apart.
+struct LightUi {
+    float colour[3] = {1, 1, 1};
+    float power = 1;
+};
+/// Per medium: the coefficients at density scale 1, and the scale.
+struct MediumUi {
+    float sigmaS[3] = {0, 0, 0};
+    float sigmaA[3] = {0, 0, 0};
+    float g = 0;
+    float densityScale = 1;
+    bool heterogeneous = false;
+};
+
+class Viewer {
+public:
+    explicit Viewer(ViewerOptions& o) : m_o(o) {}
+    /// Opens the window, runs until quit, closes it (runViewer).
+    int run();
+
+private:
+    // The steps of run(), in order (viewer_app.cpp).
+    void openWindow();          ///< GLFW's window and GL context (Error without a display or GL 3.3)
+    void startScene();          ///< the edited scene, the camera controller, the render loops
+    void installCallbacks();    ///< GLFW input callbacks and Dear ImGui (viewer_input.cpp)
+    void waitForEvents();       ///< sleeps in the event queue unless a frame is due
+    bool takeImages();          ///< uploads the loops' new images; true when one arrived
+    void countImage();          ///< the statistics of a new image of the first loop
+    void notePreviewTime();
+    void drawFrame(std::chrono::steady_clock::time_point frameStart);
+    void closeWindow();         ///< stops the loops, frees ImGui and the window (safe at any step)
+    /// The window's size in screen coordinates: the panel, the image (twice with compare).
+    int windowWidth() const { return kPanelWidth + m_o.settings.width * (m_o.compare ? 2 : 1) + (m_o.compare ? 4 : 0); }
+    int windowHeight() const { return std::max(m_o.settings.height, 200); }
+
+    // Input, from GLFW callbacks and from the script; coordinates in image pixels.
+    void press(int button, float x, float y, int mods);
+    void move(float x, float y);
+    void release(int button, float x, float y);
+    void doubleClick(float x, float y);
+    void scroll(float x, float y, float steps);
+    void key(const std::string& name);
+    bool imageArea(double wx, double wy, float* x, float* y) const;
+
+    void initEditUi();
+    void startLoops();
+    void reloadScene();
+    void pollSceneFile();
+    void pushEdits();
+    void pushSettings();
+    void resetControllerTo(const Camera& camera);
+    void save(const std::string& stem);
+    void screenshot(const std::string& path);
+    void drawPanel();
+    void drawHelp();
+    bool stepScript(bool* acted);
+    void inputArrived() { m_redraw = std::max(m_redraw, kSettleFrames); }
+    bool refinedAtRest(uint64_t passes) const;
+    void writeStats();
+
+    static Viewer* self(GLFWwindow* w) { return static_cast<Viewer*>(glfwGetWindowUserPointer(w)); }
+
+    ViewerOptions& m_o;
+    GLFWwindow* m_window = nullptr;
+    std::unique_ptr<ImageViewGl> m_view;
+    std::vector<std::unique_ptr<RenderLoop>> m_loops;
+    std::vector<ViewFrame> m_frames;
+    std::unique_ptr<EmbreeScene> m_picker;
+    CameraController m_camera;
+    Scene m_edited;  // lights and media as edited (camera: m_camera)
+    std::vector<LightUi> m_lightUi;
+    std::vector<MediumUi> m_mediumUi;
+    float m_environmentScale = 1, m_environmentRotation = 0;  // the environment's sliders
+    RenderSettings m_settings;
+    int m_selectedLight = 0;
+    int m_cameraIndex = 0;
+    float m_exposure = 1;
+    bool m_help = false;
+    bool m_quit = false;
+    int m_saves = 0;
+    std::string m_status;
+    int m_redraw = kSettleFrames;  // frames to draw whether or not a new image arrives
+    uint64_t m_reloads = 0;        // reloads tried (a bad file counts: wait-reload)
+    std::filesystem::file_time_type m_sceneTime{};
+    double m_nextPoll = 0;
+
+    int m_dragButton = -1, m_dragMods = 0;
+    float m_lastX = 0, m_lastY = 0;
+    double m_lastPressTime = -1;
+    float m_lastPressX = -1e9, m_lastPressY = -1e9;
+
+    // Script.
+    std::vector<ScriptEvent> m_script;
+    size_t m_scriptNext = 0;
+    double m_waitUntil = 0;
+    uint64_t m_waitFrames = 0;
+    double m_waitPassesSince = 0;
+    uint64_t m_windowReleases = 0;  // mouse-button releases from the window system (wait-input)
+
+    // Statistics for --stats and the HUD.
+    std::vector<double> m_frameSeconds;
+    uint64_t m_imagesShown = 0;  // published images of the first loop taken and drawn
+    // Input change -> first image of the new view: during a drag (a preview image) and on release
+    // or at rest (the first refined pass).
+    std::vector<double> m_latencies, m_refineLatencies;
+    struct PendingChange {
+        uint64_t version;
+        double time;
+        bool refine;
+    };
+    std::deque<PendingChange> m_pendingChanges;
+    uint64_t m_previewImages = 0;
+    std::vector<double> m_previewSetup, m_previewJob;  // per preview image: job setup, setup + passes
+    double m_refinePassRate = 0, m_previewPassRate = 0;  // passes/s of the newest job of each mode
+    double m_previewSeconds = 0;
+    double m_previewSince = -1;
+};
+
+}  // namespace tyndall
