@@ -149,29 +149,26 @@ RenderStart startResumed(RenderOptions& o, const CLI::App* cmd, bool root) {
     return r;
 }
 
-/// Periodic checkpoints of one run (rank 0): every `every` seconds and at the end.
+/// Periodic checkpoints of one run (rank 0): every `every` seconds and at the end. A failed
+/// write, the last one included, is a warning (CheckpointWrites): the render goes on.
 class Checkpointer {
 public:
     Checkpointer(std::string path, double every, RenderRecord& record, double elapsedBefore)
-        : m_path(std::move(path)), m_every(every), m_record(record), m_elapsedBefore(elapsedBefore),
+        : m_writes(path), m_path(std::move(path)), m_every(every), m_record(record), m_elapsedBefore(elapsedBefore),
           m_stall(RenderTestHooks::fromEnvironment().checkpointStall()) {}
     bool enabled() const { return !m_path.empty(); }
     void write(const LayerAccumulator& acc, double runElapsed) {
         m_record.elapsed = m_elapsedBefore + runElapsed;
-        saveCheckpoint(m_path, makeCheckpoint(m_record, acc), m_stall);
+        m_writes.save(makeCheckpoint(m_record, acc), acc.passCount(), m_stall);
         m_last = Clock::now();
     }
-    /// A failed periodic write is a warning: the render goes on.
     void ifDue(const LayerAccumulator& acc, double runElapsed) {
-        if (!enabled() || secondsSince(m_last) < m_every) return;
-        try {
-            write(acc, runElapsed);
-        } catch (const Error& e) {
-            std::fprintf(stderr, "\ntyndall: warning: %s (rendering goes on)\n", e.what());
-        }
+        if (enabled() && secondsSince(m_last) >= m_every) write(acc, runElapsed);
     }
+    const CheckpointWrites& writes() const { return m_writes; }
 
 private:
+    CheckpointWrites m_writes;
     std::string m_path;
     double m_every;
     RenderRecord& m_record;
@@ -256,7 +253,10 @@ void runRender(RenderOptions& o, CLI::App* cmd, int& exitCode) {
                 start.scene.name.c_str(), (unsigned long long)acc.passCount(), (unsigned long long)p.totals.photonPaths,
                 (unsigned long long)p.totals.beams, p.elapsedSeconds, p.passesDone / std::max(p.elapsedSeconds, 1e-9),
                 renderedHow(ranks, scheduler).c_str(), interrupted ? " [interrupted]" : "", record.output.c_str());
-    if (!o.checkpoint.empty()) std::printf("checkpoint -> %s\n", o.checkpoint.c_str());
+    if (checkpoints.writes().failures())
+        std::fprintf(stderr, "tyndall: warning: %s\n", checkpoints.writes().summary().c_str());
+    else if (checkpoints.enabled())
+        std::printf("checkpoint -> %s\n", o.checkpoint.c_str());
     exitCode = interrupted ? 130 : 0;
 }
 }  // namespace

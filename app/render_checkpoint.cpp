@@ -71,6 +71,30 @@ Checkpoint makeCheckpoint(const RenderRecord& r, std::vector<std::pair<std::stri
     return c;
 }
 
+bool CheckpointWrites::save(const Checkpoint& checkpoint, uint64_t passes, const std::function<void()>& midWrite) {
+    ++m_writes;
+    try {
+        saveCheckpoint(m_path, checkpoint, midWrite);
+    } catch (const Error& e) {
+        if (m_failures++ == 0)
+            std::fprintf(stderr,
+                         "\ntyndall: warning: checkpoints are failing: %s; the render goes on, the previous "
+                         "checkpoint is kept, and later failures are counted silently\n",
+                         e.what());
+        return false;
+    }
+    m_anyGood = true;
+    m_lastGoodPasses = passes;
+    return true;
+}
+
+std::string CheckpointWrites::summary() const {
+    if (m_failures == 0) return "";
+    return std::to_string(m_failures) + " of " + std::to_string(m_writes) + " checkpoint writes failed; '" + m_path +
+           "' " + (m_anyGood ? "holds the checkpoint of pass " + std::to_string(m_lastGoodPasses)
+                             : std::string("holds no checkpoint written by this run"));
+}
+
 RenderRecord readRecord(const Checkpoint& c, const std::string& where) {
     const nlohmann::json& j = c.header;
     if (!j.is_object() || j.value("format", "") != kFormat)

@@ -4,6 +4,7 @@
 // option, a hash of the scene, the resolved render settings (the original target included), the
 // output path and exposure, whether AOV layers are kept, the passes done and the seconds spent.
 #include <cstdint>
+#include <functional>
 #include <string>
 
 #include "core/checkpoint.h"
@@ -39,6 +40,25 @@ Checkpoint makeCheckpoint(const RenderRecord& record, std::vector<std::pair<std:
 inline Checkpoint makeCheckpoint(const RenderRecord& record, const LayerAccumulator& acc) {
     return makeCheckpoint(record, acc.named());
 }
+/// The checkpoint writes of one render. A write that fails (a full disk, a missing folder) leaves
+/// the previous checkpoint as it was (writes are atomic: core/checkpoint.h); the first failure is
+/// reported in one line on stderr, later ones are counted, and the render goes on.
+class CheckpointWrites {
+public:
+    explicit CheckpointWrites(std::string path) : m_path(std::move(path)) {}
+    /// Saves `checkpoint` (`passes` done); false when the write failed.
+    bool save(const Checkpoint& checkpoint, uint64_t passes, const std::function<void()>& midWrite = {});
+    uint64_t failures() const { return m_failures; }
+    /// After a render with failures: "N of M checkpoint writes failed; '<path>' holds the
+    /// checkpoint of pass K" (or "... holds no checkpoint of this render"); "" when none failed.
+    std::string summary() const;
+
+private:
+    std::string m_path;
+    uint64_t m_writes = 0, m_failures = 0, m_lastGoodPasses = 0;
+    bool m_anyGood = false;
+};
+
 /// Reads the record back; Error "<where>: ..." for a checkpoint of another kind or version.
 RenderRecord readRecord(const Checkpoint& checkpoint, const std::string& where);
 

@@ -32,7 +32,9 @@ public:
         return v;
     }
     const char* take(size_t n) {
-        if (n > m_end - m_at) throw Error(m_file + ": malformed checkpoint (a block runs past the end)");
+        if (n > m_end - m_at)
+            throw Error(m_file + ": malformed checkpoint (a block of " + std::to_string(n) + " bytes at byte " +
+                        std::to_string(m_at) + " runs past the end, " + std::to_string(m_end - m_at) + " bytes left)");
         const char* p = m_b.data() + m_at;
         m_at += n;
         return p;
@@ -126,8 +128,11 @@ Checkpoint parseCheckpoint(const std::string& bytes, const std::string& file) {
         if (w <= 0 || hgt <= 0 || w > 65536 || hgt > 65536)
             throw Error(file + ": malformed checkpoint (layer '" + name + "' is " + std::to_string(w) + "x" +
                         std::to_string(hgt) + ")");
-        std::vector<double> sums(size_t(w) * size_t(hgt) * 3);
-        std::memcpy(sums.data(), r.take(sums.size() * sizeof(double)), sums.size() * sizeof(double));
+        // The declared size is checked against the bytes present before anything is allocated.
+        const size_t values = size_t(w) * size_t(hgt) * 3;
+        const char* data = r.take(values * sizeof(double));
+        std::vector<double> sums(values);
+        std::memcpy(sums.data(), data, values * sizeof(double));
         c.layers.emplace_back(std::move(name), Accumulator::fromSums(w, hgt, passes, rejected, std::move(sums)));
     }
     if (!r.done()) throw Error(file + ": malformed checkpoint (bytes after the last layer)");

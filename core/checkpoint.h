@@ -35,7 +35,8 @@ struct Checkpoint {
 /// The file's bytes; parseCheckpoint(serializeCheckpoint(c)) == c.
 std::string serializeCheckpoint(const Checkpoint& checkpoint);
 /// Throws Error "<file>: ..." for a foreign file (magic), a truncated or altered one (checksum)
-/// and a malformed one (sizes, JSON).
+/// and a malformed one (sizes, JSON). Every declared size (header, names, layers) is checked
+/// against the bytes left before anything of that size is allocated.
 Checkpoint parseCheckpoint(const std::string& bytes, const std::string& file);
 
 /// Writes `bytes` to `path` atomically (see above); `midWrite`, when given, runs after the first
