@@ -254,9 +254,7 @@ Scene loadScene(CommonOptions& o, std::vector<std::string>* cameraNames, std::ve
         SceneLoadOptions options;
         options.camera = o.camera;
         options.environment = o.environment;
-        const CLI::Option* given = o.command ? o.command->get_option_no_throw("--load-memory") : nullptr;
-        options.loadMemoryBytes = given && given->count() > 0 ? std::min(o.loadMemoryMiB, uint64_t(1) << 40) << 20
-                                                                      : defaultLoadMemoryBytes();
+        options.loadMemoryBytes = loadMemoryBytes(o);
         file = loadSceneFile(o.scene, options);
     }
     // The command's own defaults (bench's photon count), then the scene's render block, then the
@@ -267,6 +265,11 @@ Scene loadScene(CommonOptions& o, std::vector<std::string>* cameraNames, std::ve
     if (cameraNames) *cameraNames = file.cameras;
     if (cameras) *cameras = file.cameraViews;
     return std::move(file.scene);
+}
+
+uint64_t loadMemoryBytes(const CommonOptions& o) {
+    const CLI::Option* given = o.command ? o.command->get_option_no_throw("--load-memory") : nullptr;
+    return given && given->count() > 0 ? std::min(o.loadMemoryMiB, uint64_t(1) << 40) << 20 : defaultLoadMemoryBytes();
 }
 
 void checkOutputWritable(const std::string& path) {

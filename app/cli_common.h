@@ -60,6 +60,8 @@ void finishOptions(CommonOptions& o);
 /// options given on the command line win over it (o.settings is updated and re-validated).
 /// `cameraNames`/`cameras` (optional) receive the scene's selectable cameras (the viewer's list).
 Scene loadScene(CommonOptions& o, std::vector<std::string>* cameraNames = nullptr, std::vector<Camera>* cameras = nullptr);
+/// The loading memory budget in bytes: --load-memory when given, else defaultLoadMemoryBytes().
+uint64_t loadMemoryBytes(const CommonOptions& o);
 /// Throws Error (naming the file) when `path` cannot be written, before anything is rendered.
 void checkOutputWritable(const std::string& path);
 /// Caps TBB (and Embree through it) at `threads` workers for the life of the returned object.

@@ -114,7 +114,8 @@ RenderStart startResumed(RenderOptions& o, const CLI::App* cmd, bool root) {
     RenderStart r;
     rejectWithResume(cmd);
     const std::string where = "checkpoint '" + o.resume + "'";
-    Checkpoint ck = loadCheckpoint(o.resume);
+    const LoadBudget budget(loadMemoryBytes(c));
+    Checkpoint ck = loadCheckpoint(o.resume, &budget);
     r.record = readRecord(ck, where);
     RenderRecord& record = r.record;
     c.scene = record.scenePath;

@@ -7,9 +7,9 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 #include "core/error.h"
+#include "core/load_budget.h"
 
 namespace tyndall {
 
@@ -185,12 +185,20 @@ void saveCheckpoint(const std::string& path, const Checkpoint& checkpoint, const
     writeFileAtomically(path, serializeCheckpoint(checkpoint), midWrite);
 }
 
-Checkpoint loadCheckpoint(const std::string& path) {
+Checkpoint loadCheckpoint(const std::string& path, const LoadBudget* budget) {
+    namespace fs = std::filesystem;
+    const std::string where = "checkpoint '" + path + "'";
+    std::error_code ec;
+    if (!fs::exists(path, ec)) throw Error(where + ": cannot be opened (no such file?)");
+    if (!fs::is_regular_file(path, ec)) throw Error(where + ": not a regular file");
+    const uint64_t length = fs::file_size(path, ec);
+    if (ec) throw Error(where + ": cannot be read: " + ec.message());
+    if (budget) budget->check(2 * length, where + " (" + describeBytes(length) + ", read and parsed)");
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error("checkpoint '" + path + "': cannot be opened (no such file?)");
-    std::ostringstream s;
-    s << in.rdbuf();
-    return parseCheckpoint(s.str(), "checkpoint '" + path + "'");
+    std::string bytes(size_t(length), '\0');
+    if (!in || !in.read(bytes.data(), std::streamsize(length)))
+        throw Error(where + ": cannot be read (" + systemError() + ")");
+    return parseCheckpoint(bytes, where);
 }
 
 }  // namespace tyndall

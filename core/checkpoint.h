@@ -24,6 +24,8 @@
 
 namespace tyndall {
 
+class LoadBudget;
+
 struct Checkpoint {
     nlohmann::json header = nlohmann::json::object();
     std::vector<std::pair<std::string, Accumulator>> layers;  ///< named, e.g. "beauty" first
@@ -44,8 +46,10 @@ Checkpoint parseCheckpoint(const std::string& bytes, const std::string& file);
 /// naming the file when it cannot be written; the old file is then untouched.
 void writeFileAtomically(const std::string& path, const std::string& bytes, const std::function<void()>& midWrite = {});
 void saveCheckpoint(const std::string& path, const Checkpoint& checkpoint, const std::function<void()>& midWrite = {});
-/// Reads and parses; Error "checkpoint '<path>': ..." when missing or bad.
-Checkpoint loadCheckpoint(const std::string& path);
+/// Reads and parses; Error "checkpoint '<path>': ..." when missing or bad. With a budget, the
+/// file's length is checked before it is read: reading holds the file's bytes and the layers they
+/// become (twice its length), refused as LoadBudget::check refuses.
+Checkpoint loadCheckpoint(const std::string& path, const LoadBudget* budget = nullptr);
 
 /// 64-bit FNV-1a, continued from `hash` (the scene hash uses it).
 uint64_t fnv1a(const void* data, size_t size, uint64_t hash = 0xcbf29ce484222325ull);

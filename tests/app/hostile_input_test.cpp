@@ -12,10 +12,13 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <cstring>
 #include <fstream>
+#include <functional>
 #include <random>
 #include <string>
 
+#include "core/checkpoint.h"
 #include "tests/test_util.h"
 #include "tests/tyndall_cli.h"
 
@@ -32,17 +35,21 @@ struct Timed {
     double seconds = 0;
 };
 
-/// `tyndall render <scene>` (tiny, CPU only) under the memory and time limits.
-Timed renderLimited(const std::string& scene, const std::string& extra = "") {
+/// `tyndall <args>` under the memory and time limits.
+Timed runLimited(const std::string& args) {
     const std::string cmd = "sh -c 'ulimit -v " + std::to_string(kLimitKiB) + " && exec timeout 60 " +
-                            std::string(TYNDALL_BINARY) + " render " + scene + " " + extra +
-                            " --size 8x8 --passes 1 --photons 100 --gpu off -o " + tyndall::test::outputDir() +
-                            "/hostile.png 2>&1'";
+                            std::string(TYNDALL_BINARY) + " " + args + " 2>&1'";
     auto t0 = std::chrono::steady_clock::now();
     Timed t;
     t.run = tyndall::test::runShell(cmd);
     t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return t;
+}
+
+/// `tyndall render <scene>` (tiny, CPU only) under the memory and time limits.
+Timed renderLimited(const std::string& scene, const std::string& extra = "") {
+    return runLimited("render " + scene + " " + extra + " --size 8x8 --passes 1 --photons 100 --gpu off -o " +
+                      tyndall::test::outputDir() + "/hostile.png");
 }
 
 std::string folder() {
@@ -146,7 +153,9 @@ TEST(HostileInput, VdbDeclaringAHugeMemoryIsRefusedBeforeItIsRead) {
         EXPECT_NE(t.run.output.find("declares-10tb.vdb': grid 'density' (the memory it records): needs 10 TiB"),
                   std::string::npos);
         EXPECT_NE(t.run.output.find("--load-memory"), std::string::npos);
-        if (!extra.empty()) EXPECT_NE(t.run.output.find("(4096 MiB)"), std::string::npos);
+        if (!extra.empty()) {
+            EXPECT_NE(t.run.output.find("(4096 MiB)"), std::string::npos);
+        }
         EXPECT_LT(t.seconds, kSeconds);
     }
 }
@@ -166,7 +175,9 @@ TEST(HostileInput, GltfAccessorWithAHugeCountIsRefusedByTheBudget) {
         EXPECT_NE(t.run.output.find("POSITION: accessor 0: 400000000 elements of 3 components: needs"),
                   std::string::npos);
         EXPECT_NE(t.run.output.find("--load-memory"), std::string::npos);
-        if (!extra.empty()) EXPECT_NE(t.run.output.find("(1024 MiB)"), std::string::npos);
+        if (!extra.empty()) {
+            EXPECT_NE(t.run.output.find("(1024 MiB)"), std::string::npos);
+        }
         EXPECT_LT(t.seconds, kSeconds);
     }
 }
@@ -204,6 +215,61 @@ TEST(HostileInput, TextureDeclaringAHugeSizeIsRefusedFromItsHeader) {
     EXPECT_NE(t.run.output.find("a 100000 x 100000 image of 4 channels: needs"), std::string::npos);
     EXPECT_NE(t.run.output.find("--load-memory"), std::string::npos);
     EXPECT_LT(t.seconds, kSeconds);
+}
+
+/// A real checkpoint of an 8x8 render, then rewritten by `edit` with a valid checksum.
+std::string forgedCheckpoint(const std::string& name, const std::function<void(std::string&)>& edit) {
+    const std::string path = folder() + "/" + name + ".ckpt";
+    CliRun made = tyndall::test::runTyndall("render --size 8x8 --passes 1 --photons 100 --gpu off --quiet -o " +
+                                            folder() + "/ckpt.png --checkpoint " + path);
+    EXPECT_EQ(made.exitCode, 0) << made.output;
+    std::ifstream in(path, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    in.close();
+    bytes.resize(bytes.size() - 8);
+    edit(bytes);
+    const uint64_t sum = tyndall::checksum64(bytes.data(), bytes.size());
+    bytes.append(reinterpret_cast<const char*>(&sum), 8);
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+    return path;
+}
+
+TEST(HostileInput, CheckpointDeclaringAHugeImageIsRefusedBeforeItIsAllocated) {
+    // The first layer says 16000 x 16000 (6 GB of sums, over the 3 GiB limit); the file holds
+    // 8 x 8. The checksum is valid: only the declared size gives it away.
+    const std::string path = forgedCheckpoint("huge-image", [](std::string& b) {
+        uint64_t headerSize;
+        uint32_t nameSize;
+        std::memcpy(&headerSize, &b[8], 8);
+        std::memcpy(&nameSize, &b[16 + headerSize + 4], 4);
+        ASSERT_EQ(b.substr(16 + headerSize + 8, nameSize), "beauty");
+        const int32_t side = 16000;
+        std::memcpy(&b[16 + headerSize + 8 + nameSize], &side, 4);
+        std::memcpy(&b[16 + headerSize + 12 + nameSize], &side, 4);
+    });
+    Timed t = runLimited("render --resume " + path + " --quiet");
+    SCOPED_TRACE(t.run.output);
+    EXPECT_EQ(t.run.exitCode, 1);
+    EXPECT_NE(t.run.output.find("checkpoint '" + path + "': malformed checkpoint (a block of 6144000000 bytes"),
+              std::string::npos);
+    EXPECT_LT(t.seconds, kSeconds);
+}
+
+TEST(HostileInput, CheckpointLargerThanTheLoadingBudgetIsRefusedBeforeItIsRead) {
+    // 40 GiB (sparse): the default budget under a 3 GiB limit is 2.25 GiB.
+    const std::string path = folder() + "/huge-file.ckpt";
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << "TYNCKPT\x01";
+    fs::resize_file(path, uint64_t(40) << 30);
+    for (const std::string extra : {"", "--load-memory 1024"}) {
+        Timed t = runLimited("render --resume " + path + " --quiet " + extra);
+        SCOPED_TRACE(extra + ": " + t.run.output);
+        EXPECT_EQ(t.run.exitCode, 1);
+        EXPECT_NE(t.run.output.find("checkpoint '" + path + "' (40960 MiB, read and parsed): needs 81920 MiB"),
+                  std::string::npos);
+        EXPECT_NE(t.run.output.find(extra.empty() ? "raise --load-memory" : "(1024 MiB)"), std::string::npos);
+        EXPECT_LT(t.seconds, kSeconds);
+    }
+    fs::remove(path);
 }
 
 }  // namespace
