@@ -158,7 +158,8 @@ const std::pair<const char*, const char*> kOptionKeys[] = {
     {"--simd", "simd"},
     {"--direct-light", "direct_light"},
     {"--surface-boundary", "surface_boundary"},
-    {"--max-path-length", "max_path_length"}};
+    {"--max-path-length", "max_path_length"},
+    {"--region", "region"}};
 
 /// settings.validate(), its errors naming the command-line option.
 void validateOptions(const RenderSettings& settings) {
@@ -204,6 +205,15 @@ void addPathLengthOption(CLI::App* cmd, CommonOptions& o) {
         ->capture_default_str();
 }
 
+void addRegionOption(CLI::App* cmd, CommonOptions& o) {
+    cmd->add_option("--region", o.region,
+                    "Render region X Y W H in pixels (top-left origin): only those pixels are traced and splatted, "
+                    "the others stay 0; they equal the whole image's at the same seed and passes (default: the "
+                    "whole image)")
+        ->expected(4)
+        ->allow_extra_args(false);
+}
+
 void addSimdOption(CLI::App* cmd, CommonOptions& o) {
     addOnOffOption(cmd, "--simd", o.settings.simd,
                    "on|off: the CPU beam splat's SIMD kernel; off runs the scalar estimator (its definition)");
@@ -216,7 +226,22 @@ void finishOptions(CommonOptions& o) {
     o.settings.width = std::stoi(m[1]);
     o.settings.height = std::stoi(m[2]);
     if (!(o.exposure > 0) || !std::isfinite(o.exposure)) throw Error("--exposure must be a positive number");
-    validateOptions(o.settings);
+    if (!o.region.empty()) {
+        const std::vector<int>& r = o.region;
+        if (r.size() != 4 || r[0] < 0 || r[1] < 0 || r[2] < 1 || r[3] < 1)
+            throw Error("--region: expected X Y W H in pixels, X and Y >= 0, W and H >= 1 (got " +
+                        [&] {
+                            std::string got;
+                            for (int v : r) got += (got.empty() ? "" : " ") + std::to_string(v);
+                            return got;
+                        }() +
+                        ")");
+        o.settings.region = PixelRegion{r[0], r[1], r[2], r[3]};
+    }
+    // The region is checked against the image size in loadScene: the scene's render block may set it.
+    RenderSettings unsized = o.settings;
+    unsized.region = PixelRegion{};
+    validateOptions(unsized);
 }
 
 namespace {

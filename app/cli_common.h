@@ -22,6 +22,7 @@ struct CommonOptions {
     float exposure = 1.0f;
     uint64_t loadMemoryMiB = LoadBudget::kDefaultMiB;  ///< --load-memory: what loading the scene may allocate
     RenderSettings settings;
+    std::vector<int> region;      ///< --region X Y W H as given (finishOptions checks and sets settings.region)
     CLI::App* command = nullptr;  ///< the subcommand, to tell options given from defaults
 };
 
@@ -43,6 +44,8 @@ void addPpbOptions(CLI::App* cmd, CommonOptions& o);
 void addGpuOption(CLI::App* cmd, CommonOptions& o, const std::string& help);
 /// --max-path-length N (RenderSettings::maxPathLength): render and reference.
 void addPathLengthOption(CLI::App* cmd, CommonOptions& o);
+/// --region X Y W H (RenderSettings::region): render and view.
+void addRegionOption(CLI::App* cmd, CommonOptions& o);
 /// Adds --simd on|off (RenderSettings::simd); part of addPpbOptions.
 void addSimdOption(CLI::App* cmd, CommonOptions& o);
 /// --direct-light on|off and --surface-boundary on|off (part of addPpbOptions; bench adds them alone).

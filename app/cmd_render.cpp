@@ -268,6 +268,7 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
     addSceneAndOutputOptions(cmd, o->common, "tyndall.png");
     addPpbOptions(cmd, o->common);
     addPathLengthOption(cmd, o->common);
+    addRegionOption(cmd, o->common);
     addGpuOption(cmd, o->common,
                  "Primary-beam splatting on OpenGL: auto (a hardware GPU when there is one, else the CPU), "
                  "on (OpenGL or fail; llvmpipe counts), off (CPU only, never touches OpenGL)");

@@ -31,6 +31,7 @@ void addViewCommand(CLI::App& app, int& exitCode) {
     CommonOptions& c = o->common;
     addSceneAndOutputOptions(cmd, c, "");
     addPpbOptions(cmd, c);
+    addRegionOption(cmd, c);
     addGpuOption(cmd, c, "Primary-beam splatting on OpenGL: auto, on or off (as for `tyndall render`)");
     cmd->add_option("--exposure", o->exposure, "Display exposure (also + / - and the panel)")->capture_default_str();
     cmd->add_option("--script", o->script, "Scripted input (tests, benchmarks; format in docs/viewer.md)")

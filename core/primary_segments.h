@@ -8,6 +8,7 @@
 
 #include "core/math.h"
 #include "core/medium.h"
+#include "core/pixel_region.h"
 
 namespace tyndall {
 
@@ -23,6 +24,9 @@ struct PrimarySegments {
     int width = 0;
     int height = 0;
     std::vector<PrimaryRay> rays;  ///< row-major, (0,0) top-left
+    /// The pixels traced (RenderSettings::region resolved: the whole image when it has none). Rays
+    /// outside it are stale; the splatters leave those pixels 0 and never read them.
+    PixelRegion region;
     /// Heterogeneous media: `freeFlightsPerRay` collision distances per pixel along the stretch
     /// (from `origin`); empty when the scene has no density-grid medium.
     std::vector<float> freeFlights;

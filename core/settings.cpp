@@ -38,6 +38,11 @@ void RenderSettings::validate() const {
     auto fail = [](const char* key, const std::string& problem) { throw SettingError(key, problem); };
     if (width <= 0 || height <= 0 || width > 16384 || height > 16384)
         fail("size", "must be in 1..16384 per side (got " + std::to_string(width) + "x" + std::to_string(height) + ")");
+    if (!region.fits(width, height))
+        fail("region", "must be X Y W H with W, H >= 1 inside the " + std::to_string(width) + "x" +
+                           std::to_string(height) + " image (got " + std::to_string(region.x) + " " +
+                           std::to_string(region.y) + " " + std::to_string(region.width) + " " +
+                           std::to_string(region.height) + ")");
     if (!(alpha > 0.0 && alpha < 1.0)) fail("alpha", "must lie strictly between 0 and 1 (got " + std::to_string(alpha) + ")");
     if (passes == 0 && timeBudget <= 0) fail("passes", "must be positive");
     if (!(timeBudget >= 0) || !std::isfinite(timeBudget)) fail("time", "must be a non-negative number of seconds");
@@ -56,7 +61,7 @@ void RenderSettings::validate() const {
 }
 
 nlohmann::json RenderSettings::toJson() const {
-    return {{"width", width},
+    nlohmann::json j = {{"width", width},
             {"height", height},
             {"passes", passes},
             {"time", timeBudget},
@@ -78,6 +83,8 @@ nlohmann::json RenderSettings::toJson() const {
             {"simd", onOffText(simd)},
             {"direct_light", onOffText(directLight)},
             {"surface_boundary", onOffText(surfaceBoundary)}};
+    if (!region.whole()) j["region"] = {region.x, region.y, region.width, region.height};
+    return j;
 }
 
 namespace {
@@ -109,6 +116,20 @@ void read(const nlohmann::json& j, const char* key, GpuMode& out, const std::str
     out = *mode;
 }
 
+void read(const nlohmann::json& j, const char* key, PixelRegion& out, const std::string& where) {
+    auto it = j.find(key);
+    if (it == j.end()) return;
+    if (it->is_null()) {
+        out = PixelRegion{};
+        return;
+    }
+    bool ok = it->is_array() && it->size() == 4;
+    for (size_t i = 0; ok && i < 4; ++i) ok = (*it)[i].is_number_integer() && (*it)[i].get<int64_t>() >= 0 &&
+                                              (*it)[i].get<int64_t>() <= 16384;
+    if (!ok) throw Error(where + "/" + key + ": expected [x, y, width, height] in pixels (or null: the whole image)");
+    out = PixelRegion{(*it)[0].get<int>(), (*it)[1].get<int>(), (*it)[2].get<int>(), (*it)[3].get<int>()};
+}
+
 void read(const nlohmann::json& j, const char* key, bool& out, const std::string& where) {
     auto it = j.find(key);
     if (it == j.end()) return;
@@ -129,7 +150,7 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
     static const char* kKeys[] = {"width", "height", "passes", "time", "photons", "alpha", "radius",
                                   "surface_radius", "radius_offset", "planned_paths", "photon_angle", "seed", "threads",
                                   "max_photon_bounces", "max_camera_bounces", "free_flights", "gpu", "memory", "simd",
-                                  "direct_light", "surface_boundary", "max_path_length"};
+                                  "direct_light", "surface_boundary", "max_path_length", "region"};
     for (auto it = j.begin(); it != j.end(); ++it) {
         bool known = false;
         for (const char* k : kKeys) known |= it.key() == k;
@@ -137,6 +158,7 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
     }
     read(j, "width", s.width, where);
     read(j, "height", s.height, where);
+    read(j, "region", s.region, where);
     read(j, "passes", s.passes, where);
     read(j, "time", s.timeBudget, where);
     read(j, "photons", s.photonsPerPass, where);

@@ -9,6 +9,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "core/error.h"
+#include "core/pixel_region.h"
 
 namespace tyndall {
 
@@ -38,6 +39,11 @@ public:
 struct RenderSettings {
     int width = 512;
     int height = 512;
+    /// The render region: only these pixels are traced and splatted, the others stay 0; their
+    /// values are those of the whole image's render bit for bit (same passes: the region changes
+    /// no random stream, radius or photon). No region (the default) = the whole image. JSON
+    /// "region": [x, y, width, height], written only when set.
+    PixelRegion region;
     uint64_t passes = 64;            ///< stop after this many passes (when timeBudget == 0)
     double timeBudget = 0.0;         ///< seconds; > 0 renders passes until the budget is spent
     uint32_t photonsPerPass = 4000;  ///< photon paths emitted per pass (the bench uses 1000)

@@ -267,6 +267,10 @@ void fillBlock(const PrimarySegments& primary, int y0, int y1, SplatBlock* block
 Image BeamRasterizer::rasterize(const PrimarySegments& primary, const PhotonMap& photons, RasterStats* stats) const {
     const int w = primary.width, h = primary.height;
     const int bands = (h + kBand - 1) / kBand;
+    // The render region (the whole image without one): beams and rows outside it are skipped, its
+    // pixels get exactly what they get in the whole image (each sums its beams in index order).
+    const PixelRegion region = primary.region.whole() ? PixelRegion{0, 0, w, h} : primary.region;
+    const int firstBand = region.y / kBand, endBand = (region.y + region.height + kBand - 1) / kBand;
     Image out(w, h);
     const std::vector<PhotonBeam>& beams = photons.beams;
 
@@ -285,9 +289,13 @@ Image BeamRasterizer::rasterize(const PrimarySegments& primary, const PhotonMap&
         if (!fp.fullScreen) {
             float y0 = std::min(fp.ay - fp.ra, fp.by - fp.rb), y1 = std::max(fp.ay + fp.ra, fp.by + fp.rb);
             float x0 = std::min(fp.ax - fp.ra, fp.bx - fp.rb), x1 = std::max(fp.ax + fp.ra, fp.bx + fp.rb);
-            if (x1 < 0 || x0 > float(w) || y1 < 0 || y0 > float(h)) continue;
-            b0 = std::max(0, int(std::floor(y0 / kBand)));
-            b1 = std::min(bands - 1, int(std::floor(y1 / kBand)));
+            if (x1 < float(region.x) || x0 > float(region.x + region.width) || y1 < float(region.y) ||
+                y0 > float(region.y + region.height))
+                continue;
+            b0 = std::max(firstBand, int(std::floor(y0 / kBand)));
+            b1 = std::min(endBand - 1, int(std::floor(y1 / kBand)));
+        } else {
+            b0 = firstBand, b1 = endBand - 1;
         }
         for (int b = b0; b <= b1; ++b) bandBeams[b].push_back(i);
         binned += uint64_t(b1 - b0 + 1);
@@ -295,8 +303,9 @@ Image BeamRasterizer::rasterize(const PrimarySegments& primary, const PhotonMap&
 
     std::atomic<uint64_t> tests{0};
     tbb::enumerable_thread_specific<SimdScratch> scratch;
-    tbb::parallel_for(0, bands, [&](int band) {
+    tbb::parallel_for(firstBand, endBand, [&](int band) {
         const int y0 = band * kBand, y1 = std::min(h, y0 + kBand);
+        const int rowBegin = std::max(y0, region.y), rowEnd = std::min(y1, region.y + region.height);
         uint64_t localTests = 0;
         const bool simd = m_kernel == SplatKernel::Simd && !bandBeams[band].empty();
         SplatBlock* block = nullptr;
@@ -312,12 +321,13 @@ Image BeamRasterizer::rasterize(const PrimarySegments& primary, const PhotonMap&
             const Medium& medium = m_scene.media[beams[b].medium];
             SplatBeam sb;
             if (simd) sb = splatBeam(m_scene, photons, b);
-            for (int y = y0; y < y1; ++y) {
+            for (int y = rowBegin; y < rowEnd; ++y) {
                 float sx0, sx1;
                 if (!footprintRowSpan(fps[b], float(y) + 0.5f, &sx0, &sx1)) continue;
-                // Pixels whose centre x + 0.5 lies in [sx0, sx1].
+                // Pixels whose centre x + 0.5 lies in [sx0, sx1], inside the region.
                 int x0 = int(std::max(0.0f, std::ceil(std::max(sx0, -1.0f) - 0.5f)));
                 int x1 = int(std::min(float(w - 1), std::floor(std::min(sx1, float(w) + 1.0f) - 0.5f)));
+                x0 = std::max(x0, region.x), x1 = std::min(x1, region.x + region.width - 1);
                 if (x1 < x0) continue;
                 localTests += uint64_t(x1 - x0 + 1);
                 size_t row = size_t(y) * w;

@@ -68,6 +68,18 @@ void CameraTracer::lightsChanged() {
 }
 
 namespace {
+// The secondary stage's tiles: kTile x kTile pixels, row by row inside, from the image's corner.
+constexpr int kTile = 8;
+
+/// The whole tiles that `region` touches, inside the w x h image: what the primary stage traces and
+/// the secondary stage walks for a render region.
+PixelRegion secondaryTiles(const PixelRegion& region, int w, int h) {
+    const int x0 = region.x / kTile * kTile, y0 = region.y / kTile * kTile;
+    const int x1 = std::min(w, (region.x + region.width + kTile - 1) / kTile * kTile);
+    const int y1 = std::min(h, (region.y + region.height + kTile - 1) / kTile * kTile);
+    return PixelRegion{x0, y0, x1 - x0, y1 - y0};
+}
+
 struct ThreadScratch {
     std::vector<BeamHitRecord> hits;
     BeamQueryCache beamCache;  // reset at every tile's start: results independent of the thread count
@@ -148,11 +160,13 @@ PrimaryPass CameraTracer::tracePrimary(uint64_t pass) const {
     primary.height = h;
     m_segmentPool->take(size_t(w) * h, size_t(w) * h * nff, primary);  // every entry written below
     primary.freeFlightsPerRay = nff;
+    primary.region = m_settings.region.in(w, h);
+    const PixelRegion region = secondaryTiles(primary.region, w, h);
     out.hits = acquireHits(size_t(w) * h);
     std::vector<PrimaryHit>& hits = *out.hits;
 
-    tbb::parallel_for(0, h, [&](int y) {
-        for (int x = 0; x < w; ++x) {
+    tbb::parallel_for(region.y, region.y + region.height, [&](int y) {
+        for (int x = region.x; x < region.x + region.width; ++x) {
             const uint64_t pixel = uint64_t(y) * w + x;
             Rng jitter = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::PixelJitter);
             const Vec2 film = pixelJitter(m_settings.seed, pass, pixel);
@@ -182,7 +196,7 @@ PrimaryPass CameraTracer::tracePrimary(uint64_t pass) const {
             }
         }
     });
-    out.rays = uint64_t(w) * h;
+    out.rays = uint64_t(region.width) * uint64_t(region.height);
     return out;
 }
 
@@ -200,21 +214,26 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
     const EnvironmentLight* environment = emission && m_scene.environment ? &*m_scene.environment : nullptr;
 
     // Tiles of kTile x kTile pixels, row by row inside: neighbouring paths reuse each other's beam
-    // candidates (BeamQueryCache) and surface-photon cells.
-    constexpr int kTile = 8;
-    const int tilesX = (w + kTile - 1) / kTile, tilesY = (h + kTile - 1) / kTile;
+    // candidates (BeamQueryCache) and surface-photon cells. With a render region, its tiles: every
+    // pixel of each is traced, so the cache sees what it sees in the whole image's render, and
+    // the region's pixels alone are stored (the others stay 0).
+    const PixelRegion& stored = primary.segments.region;
+    const PixelRegion region = secondaryTiles(stored, w, h);
+    const int tilesX = (region.width + kTile - 1) / kTile, tilesY = (region.height + kTile - 1) / kTile;
     tbb::parallel_for(0, tilesX * tilesY, [&](int tile) {
         ThreadScratch& tls = scratch.local();
         tls.freeFlights.resize(std::max(nff, 1));
         tls.beamCache.reset();
         const int tx = tile % tilesX, ty = tile / tilesX;
         for (int i = 0; i < kTile * kTile; ++i) {
-            const int x = tx * kTile + i % kTile, y = ty * kTile + i / kTile;
-            if (x >= w || y >= h) continue;
+            const int x = region.x + tx * kTile + i % kTile, y = region.y + ty * kTile + i / kTile;
+            if (x >= region.x + region.width || y >= region.y + region.height) continue;
+            const bool keep = stored.contains(x, y);
             const uint64_t pixel = uint64_t(y) * w + x;
             const PrimaryHit& ph = (*primary.hits)[pixel];
             Rgb throughput = ph.throughput, L, Lmedia, Lsurface;
             auto store = [&]() {
+                if (!keep) return;
                 radiance.at(x, y) = L;
                 if (layers) {
                     layers->media.at(x, y) = Lmedia;

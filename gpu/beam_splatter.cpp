@@ -197,6 +197,10 @@ Image GlBeamSplatter::splat(const PrimarySegments& primary, const PhotonMap& pho
     gl.ClearNamedFramebufferfv(b.framebuffer, GL_COLOR, 0, zero);
     gl.BindFramebuffer(GL_FRAMEBUFFER, b.framebuffer);
     gl.Viewport(0, 0, w, h);
+    // A render region: fragments there only (GL's rows run bottom-up); the rest stays cleared.
+    const PixelRegion region = primary.region.whole() ? PixelRegion{0, 0, w, h} : primary.region;
+    gl.Enable(GL_SCISSOR_TEST);
+    gl.Scissor(region.x, h - region.y - region.height, region.width, region.height);
     gl.Disable(GL_DEPTH_TEST);
     gl.Disable(GL_CULL_FACE);
     gl.Enable(GL_BLEND);
@@ -210,6 +214,7 @@ Image GlBeamSplatter::splat(const PrimarySegments& primary, const PhotonMap& pho
         gl.DrawArrays(GL_TRIANGLES, GLint(first * kVerticesPerBeam), GLsizei(count * kVerticesPerBeam));
     }
     if (m_countFragments) gl.EndQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB);
+    gl.Disable(GL_SCISSOR_TEST);
     gl.Finish();
     local.drawSeconds = secondsSince(t1);
 

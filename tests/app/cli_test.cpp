@@ -122,7 +122,7 @@ TEST(Cli, HelpListsEveryOptionWithDefaults) {
     const std::map<std::string, std::set<std::string>> expected = {
         {"render", join({scene, output, ppb,
                          {"--gpu", "--checkpoint", "--checkpoint-every", "--resume", "--quiet", "--progress-every", "--aov",
-                          "--reference", "--convergence", "--max-path-length"}})},
+                          "--reference", "--convergence", "--max-path-length", "--region"}})},
         {"reference", join({scene, output, {"--spp", "--max-depth", "--max-path-length", "--no-nee"}})},
         {"bench", join({scene, {"--passes", "--photons", "--no-hybrid", "--radius", "--radius-offset", "--simd",
                             "--direct-light", "--surface-boundary"}})},
@@ -194,6 +194,9 @@ TEST(Cli, BadValuesGiveOneLineNamingTheOption) {
                                            {"bench --photons many", "--photons"},
                                            {"render --direct-light maybe -o " + out, "--direct-light"},
                                            {"render --surface-boundary maybe -o " + out, "--surface-boundary"},
+                                           {"render --size 64x48 --region 60 40 10 10 -o " + out, "--region"},
+                                           {"render --region 1 2 3 -o " + out, "--region"},
+                                           {"render --region 1 2 0 4 -o " + out, "--region"},
                                            {"render --frobnicate", "--frobnicate"}}) {
         CliRun r = runTyndall(c.args);
         EXPECT_NE(r.exitCode, 0) << c.args;
@@ -285,6 +288,35 @@ TEST(Cli, WithoutAnyGlLibraryAutoFallsBackAndOnFails) {
     CliRun off = runTyndall(common + "off", noGl);
     EXPECT_EQ(off.exitCode, 0) << off.output;
     EXPECT_EQ(lineCount(off.output), 1) << off.output;
+}
+
+TEST(Cli, RenderRegionHasTheWholeImagesPixelsThereAndZeroElsewhere) {
+    const std::string dir = tyndall::test::outputDir() + "/";
+    const std::string common = "render --gpu off --passes 2 --photons 300 --size 64x48 --seed 9 -o ";
+    CliRun whole = runTyndall(common + dir + "cli_region_whole.exr");
+    CliRun part = runTyndall(common + dir + "cli_region_part.exr --region 10 7 30 20");
+    ASSERT_EQ(whole.exitCode, 0) << whole.output;
+    ASSERT_EQ(part.exitCode, 0) << part.output;
+    tyndall::Image a = tyndall::readImage(dir + "cli_region_whole.exr"), b = tyndall::readImage(dir + "cli_region_part.exr");
+    ASSERT_EQ(b.width, 64);
+    ASSERT_EQ(b.height, 48);
+    int different = 0, outsideLit = 0, insideLit = 0;
+    for (int y = 0; y < 48; ++y)
+        for (int x = 0; x < 64; ++x) {
+            bool inside = x >= 10 && x < 40 && y >= 7 && y < 27;
+            const tyndall::Rgb &p = a.at(x, y), &q = b.at(x, y);
+            if (inside) different += p.r != q.r || p.g != q.g || p.b != q.b, insideLit += !q.isBlack();
+            else outsideLit += !q.isBlack();
+        }
+    EXPECT_EQ(different, 0);
+    EXPECT_EQ(outsideLit, 0);
+    EXPECT_GT(insideLit, 300);
+    nlohmann::json settings =
+        nlohmann::json::parse(tyndall::readImageAttribute(dir + "cli_region_part.exr", "tyndall:settings"));
+    EXPECT_EQ(settings.at("region"), nlohmann::json({10, 7, 30, 20}));
+    EXPECT_EQ(nlohmann::json::parse(tyndall::readImageAttribute(dir + "cli_region_whole.exr", "tyndall:settings"))
+                  .count("region"),
+              0u);
 }
 
 TEST(Cli, ExrMetadataHoldsTheSettingsThatMadeIt) {
