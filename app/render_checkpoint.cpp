@@ -20,6 +20,31 @@ uint64_t hashRgb(const Rgb& c, uint64_t h) {
     float f[3] = {c.r, c.g, c.b};
     return fnv1a(f, sizeof f, h);
 }
+template <class T>
+uint64_t hashValue(const T& v, uint64_t h) {
+    return fnv1a(&v, sizeof v, h);
+}
+
+/// A grid medium's fields as the passes see them: the density's bounds, mass and maximum, and the
+/// density and source term sigma_a Le at the centres of a 16^3 lattice over those bounds (so a
+/// grid file rewritten behind an unchanged scene file, or an emission grid, scale or temperature
+/// mapping that changed, changes the hash).
+uint64_t hashGridMedium(const Medium& m, uint64_t h) {
+    const Bounds3 b = m.density->bounds();
+    h = hashValue(b.lo, hashValue(b.hi, h));
+    h = hashValue(m.density->integratedDensity(), hashValue(m.density->maxDensity(), h));
+    if (b.empty()) return h;
+    constexpr int kSide = 16;
+    const Vec3 cell = b.diagonal() * (1.0f / kSide);
+    for (int k = 0; k < kSide; ++k)
+        for (int j = 0; j < kSide; ++j)
+            for (int i = 0; i < kSide; ++i) {
+                const Vec3 p = b.lo + Vec3((i + 0.5f) * cell.x, (j + 0.5f) * cell.y, (k + 0.5f) * cell.z);
+                h = hashValue(m.density->density(p), h);
+                if (m.emissive()) h = hashRgb(m.sourceAt(p), h);
+            }
+    return h;
+}
 }  // namespace
 
 uint64_t sceneHash(const std::string& scenePath, const Scene& scene) {
@@ -40,8 +65,11 @@ uint64_t sceneHash(const std::string& scenePath, const Scene& scene) {
     for (const Material& m : scene.materials) h = hashRgb(m.emission, hashRgb(m.albedo, h));
     for (const Medium& m : scene.media) {
         h = hashRgb(m.sigmaA, hashRgb(m.sigmaS, h));
-        bool grid = m.density != nullptr;
-        h = fnv1a(&grid, 1, h);
+        h = hashValue(m.g, h);
+        h = hashRgb(m.emission, h);
+        const uint8_t kinds[2] = {m.density != nullptr, m.emissionField != nullptr};
+        h = fnv1a(kinds, sizeof kinds, h);
+        if (m.density) h = hashGridMedium(m, h);
     }
     uint64_t lights = scene.lights.size();
     return fnv1a(&lights, sizeof lights, h);
