@@ -80,6 +80,24 @@ uint64_t voxelCount(const ProceduralSmoke& s) {
     return saturatingVoxelCount(side, std::ceil(double(s.height) / s.voxelSize) + 1, side);
 }
 
+namespace {
+constexpr float kFireSmokeSpread = 1.6f;  // the smoke column's radius at the top, in flame radii
+constexpr float kFireWobble = 0.15f;      // lateral drift of the column's axis, in flame radii
+
+void fireDims(const ProceduralFire& f, int64_t dims[3]) {
+    const double reach = double(f.radius) * (kFireSmokeSpread + kFireWobble) + 2.0 * f.voxelSize;
+    dims[0] = dims[2] = int64_t(std::ceil(2.0 * reach / f.voxelSize)) + 1;
+    dims[1] = int64_t(std::ceil(double(f.height) / f.voxelSize)) + 1;
+}
+}  // namespace
+
+uint64_t voxelCount(const ProceduralFire& f) {
+    const double side = std::ceil(2.0 * (double(f.radius) * (kFireSmokeSpread + kFireWobble) + 2.0 * f.voxelSize) /
+                                  f.voxelSize) + 1;  // as fireDims
+    const uint64_t one = saturatingVoxelCount(side, std::ceil(double(f.height) / f.voxelSize) + 1, side);
+    return one > UINT64_MAX / 2 ? UINT64_MAX : 2 * one;
+}
+
 uint64_t voxelCount(const RollingFog& f) {
     double n[3];
     for (int a = 0; a < 3; ++a) n[a] = std::ceil(double(f.hi[a] - f.lo[a]) / f.voxelSize) + 1;  // as fogDims
@@ -142,6 +160,57 @@ std::shared_ptr<const VdbDensityGrid> makeRollingFog(const RollingFog& f) {
         }
     Affine3 indexToWorld = Affine3::scaleTranslate(Vec3(f.voxelSize), f.lo);
     return VdbDensityGrid::fromDense(dims, values, indexToWorld, "procedural rolling fog");
+}
+
+FireGrids makeProceduralFire(const ProceduralFire& f) {
+    int64_t d64[3];
+    fireDims(f, d64);
+    const int dims[3] = {int(d64[0]), int(d64[1]), int(d64[2])};
+    const float reach = float(d64[0] - 1) * 0.5f * f.voxelSize;
+    const Vec3 lo = f.base + Vec3(-reach, 0.0f, -reach);
+    const size_t n = size_t(dims[0]) * dims[1] * dims[2];
+    std::vector<float> density(n, 0.0f), temperature(n, 0.0f);
+    const float R = f.radius, top = std::max(f.flameHeight, 1e-3f);
+    for (int j = 0; j < dims[1]; ++j) {
+        const float y = float(j) * f.voxelSize;  // height above the foot
+        const float hf = y / top, h = y / f.height;
+        const Vec3 axis =
+            f.base + Vec3(kFireWobble * R * std::sin(2.1f * y + 0.4f), y, kFireWobble * R * 0.7f * std::sin(1.6f * y));
+        // Flames: a cone tapering to the tips; smoke: a column widening above them.
+        const float flameRadius = R * std::pow(std::max(0.0f, 1.0f - 0.85f * hf), 0.7f);
+        const float smokeRadius = R * (0.5f + (kFireSmokeSpread - 0.5f) * std::sqrt(clampValue(h, 0.0f, 1.0f)));
+        const float cooling = 1.0f - 0.45f * clampValue(hf, 0.0f, 1.0f);  // the core cools as it rises
+        const float smokeRise = smoothstep(0.5f * top, 1.1f * top, y) * (1.0f - smoothstep(0.6f * f.height, f.height, y));
+        for (int k = 0; k < dims[2]; ++k)
+            for (int i = 0; i < dims[0]; ++i) {
+                const Vec3 p = lo + Vec3(float(i) * f.voxelSize, y, float(k) * f.voxelSize);
+                const float r = std::hypot(p.x - axis.x, p.z - axis.z);
+                // Noise advected upward (stretched vertically) so the flames break into tongues.
+                const Vec3 q(p.x + 0.2f * std::sin(4.0f * y), p.y * 0.45f - 0.3f, p.z + 0.2f * std::cos(3.3f * y));
+                const float n = fbm(q * f.noiseFrequency, f.seed);
+                const float edge = flameRadius * (0.55f + 0.9f * n);
+                const float flame = edge > 0 ? (1.0f - smoothstep(0.35f * edge, edge, r)) *
+                                                   smoothstep(0.25f, 0.55f, n + 0.3f * (1.0f - hf))
+                                             : 0.0f;
+                const float core = std::exp(-(r * r) / (0.35f * R * R + 1e-12f));
+                float t = f.temperature * flame * cooling * (0.75f + 0.25f * core);
+                // The smoke above the flames: warm at first (dim red at most), cooling as it rises.
+                const float m = fbm(q * (0.7f * f.noiseFrequency) + Vec3(5.3f, 1.1f, 2.9f), f.seed + 17);
+                const float smokeEdge = smokeRadius * (0.7f + 0.6f * m);
+                const float smoke = smokeRise * (1.0f - smoothstep(0.45f * smokeEdge, smokeEdge, r)) * smoothstep(0.3f, 0.6f, m);
+                const float warm = 0.5f * f.temperature * std::exp(-3.0f * std::max(0.0f, y - top) / std::max(f.height - top, 1e-3f));
+                t = std::max(t, smoke * warm);
+                const float d = std::max(0.4f * flame, smoke) * f.densityScale;
+                const size_t at = (size_t(k) * dims[1] + j) * dims[0] + i;
+                density[at] = d > 1e-3f * f.densityScale ? d : 0.0f;
+                temperature[at] = t > 0.01f * f.temperature ? t : 0.0f;
+            }
+    }
+    const Affine3 indexToWorld = Affine3::scaleTranslate(Vec3(f.voxelSize), lo);
+    FireGrids g;
+    g.density = VdbDensityGrid::fromDense(dims, density, indexToWorld, "procedural fire (density)");
+    g.temperature = VdbDensityGrid::fromDense(dims, temperature, indexToWorld, "procedural fire (temperature)");
+    return g;
 }
 
 }  // namespace tyndall

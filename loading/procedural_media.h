@@ -5,8 +5,10 @@
 //   of the built-in heterogeneous scene (loading/default_smoke_scene.h) and of `tyndall compare`
 //   without a scene;
 // - rolling fog: a ground-hugging layer whose thickness and density roll in long horizontal
-//   banks (the street lamp's heterogeneous variant).
-// Both are fog volumes with values in [0, densityScale] (1 by default).
+//   banks (the street lamp's heterogeneous variant);
+// - fire: a flame and its smoke as two grids, density and temperature (kelvin), for a medium
+//   that emits through a blackbody (core/grid_emission.h).
+// Densities are fog volumes with values in [0, densityScale] (1 by default).
 #include <cstdint>
 #include <memory>
 
@@ -39,12 +41,39 @@ struct RollingFog {
     uint32_t seed = 11;
 };
 
+/// A fire on the ground: flame tongues over a disc of `radius` at `base`, carved by fractal noise
+/// advected upward, hottest in the core at the foot (`temperature` kelvin) and cooling with
+/// height until, at `flameHeight`, the gas no longer glows in the visible; above it a widening
+/// column of smoke, cool, rising to `height`. Density: thin soot in the flames (about 0.4),
+/// smoke up to 1 above them (times densityScale). Temperature: a fog volume in kelvin, 0 outside
+/// the flames and the warm smoke (nothing below 1% of `temperature` is kept).
+struct ProceduralFire {
+    Vec3 base{0.0f, 0.0f, 0.0f};  ///< world position of the fire's foot (on the floor)
+    float radius = 0.3f;           ///< world units: the flames' base radius
+    float flameHeight = 0.8f;      ///< world units from the foot to the tips of the flames
+    float height = 2.0f;           ///< world units from the foot to where the smoke has faded
+    float temperature = 2100.0f;   ///< kelvin in the core at the foot
+    float voxelSize = 0.025f;      ///< world units (cubic voxels)
+    float noiseFrequency = 3.0f;   ///< base noise frequency, 1 / world unit
+    float densityScale = 1.0f;     ///< multiplies the density (not the temperature)
+    uint32_t seed = 3;
+};
+
+struct FireGrids {
+    std::shared_ptr<const VdbDensityGrid> density;
+    std::shared_ptr<const VdbDensityGrid> temperature;  ///< kelvin
+};
+
 /// Voxels a procedural grid with these parameters would hold (checked by scene loading before
-/// building one); UINT64_MAX when that does not fit 64 bits.
+/// building one); UINT64_MAX when that does not fit 64 bits. The fire's count is both its grids'.
 uint64_t voxelCount(const ProceduralSmoke& params);
 uint64_t voxelCount(const RollingFog& params);
+uint64_t voxelCount(const ProceduralFire& params);
 
 /// Builds the fog layer as an OpenVDB fog volume (values in [0, 1]) wrapped as a density grid.
 std::shared_ptr<const VdbDensityGrid> makeRollingFog(const RollingFog& params = {});
+
+/// Builds the fire's two grids (OpenVDB fog volumes on one lattice).
+FireGrids makeProceduralFire(const ProceduralFire& params = {});
 
 }  // namespace tyndall

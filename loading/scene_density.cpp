@@ -4,6 +4,7 @@
 //               "transform": {"scale": 0.3, "rotate": {...}, "translate": [0, 0.05, 0]}}
 //   "density": {"procedural": "smoke", "base": [0.45, 0, -1.3], "height": 2.7, ...}
 //   "density": {"procedural": "rolling_fog", "min": [-10, 0, -4], "max": [10, 3, 10], ...}
+//   "density": {"procedural": "fire", "base": [0, 0, 0], "radius": 0.3, ...}   (+ "temperature")
 //
 // Exactly one of "file" and "procedural". File grids: "grid" (default: "density", else the first
 // float grid), "scale" (>= 0, default 1), "transform" (applied after the file's own index-to-world
@@ -32,7 +33,8 @@ uint32_t readSeed(JsonObject& obj, uint32_t fallback) {
 }
 
 std::shared_ptr<const DensityGrid> readProcedural(JsonObject& obj, const JsonValue& kind, float scale,
-                                                  const SceneLoadOptions& options, uint64_t* proceduralVoxels) {
+                                                  const SceneLoadOptions& options, uint64_t* proceduralVoxels,
+                                                  DensityChannels* channels) {
     const std::string type = kind.string();
     auto checkSize = [&](uint64_t voxels) {
         const uint64_t limit = options.maxProceduralVoxels, before = *proceduralVoxels;
@@ -78,14 +80,35 @@ std::shared_ptr<const DensityGrid> readProcedural(JsonObject& obj, const JsonVal
         checkSize(voxelCount(f));
         return makeRollingFog(f);
     }
-    kind.fail("expected \"smoke\" or \"rolling_fog\", got " + kind.describe());
+    if (type == "fire") {
+        ProceduralFire f;
+        f.base = obj.vec3("base", f.base);
+        f.radius = float(obj.number("radius", f.radius, 1e-3, 1e4));
+        f.flameHeight = float(obj.number("flame_height", f.flameHeight, 1e-3, 1e4));
+        f.height = float(obj.number("height", f.height, 1e-3, 1e4));
+        if (f.flameHeight > f.height) obj.get("flame_height")->fail("'flame_height' must not exceed 'height'");
+        f.temperature = float(obj.number("temperature", f.temperature, 1.0, 1e6));
+        f.voxelSize = float(obj.number("voxel_size", f.voxelSize, 1e-4, 1e4));
+        f.noiseFrequency = float(obj.number("noise_frequency", f.noiseFrequency, 1e-4, 1e4));
+        f.seed = readSeed(obj, f.seed);
+        f.densityScale = scale;
+        obj.finish();
+        checkSize(voxelCount(f));
+        FireGrids g = makeProceduralFire(f);
+        if (channels) {
+            channels->procedural = "fire";
+            channels->grids = {{"density", g.density}, {"temperature", g.temperature}};
+        }
+        return g.density;
+    }
+    kind.fail("expected \"smoke\", \"rolling_fog\" or \"fire\", got " + kind.describe());
 }
 
 }  // namespace
 
 std::shared_ptr<const DensityGrid> readDensity(JsonObject& obj, const std::string& baseDir,
                                                const SceneLoadOptions& options, uint64_t* proceduralVoxels,
-                                               VdbGridSource* fileGrid) {
+                                               DensityChannels* channels) {
     auto file = obj.get("file");
     auto procedural = obj.get("procedural");
     const float scale = float(obj.number("scale", 1.0, 0.0, 1e6));
@@ -94,7 +117,7 @@ std::shared_ptr<const DensityGrid> readDensity(JsonObject& obj, const std::strin
     if (procedural) {
         if (obj.has("grid") || obj.has("transform"))
             obj.fail("'grid' and 'transform' apply to file grids; procedural grids take world-space parameters");
-        return readProcedural(obj, *procedural, scale, options, proceduralVoxels);
+        return readProcedural(obj, *procedural, scale, options, proceduralVoxels, channels);
     }
     if (!options.allowExternalFiles) file->fail("references to other files are disabled");
     VdbGridSource source;
@@ -106,7 +129,7 @@ std::shared_ptr<const DensityGrid> readDensity(JsonObject& obj, const std::strin
         source.transform = toAffine3(readTransform(tobj));
     }
     obj.finish();
-    if (fileGrid) *fileGrid = source;
+    if (channels) channels->file = source;
     try {
         return VdbDensityGrid::load(source, options.warn, options.budget.get());
     } catch (const Error& e) {

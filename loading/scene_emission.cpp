@@ -9,10 +9,12 @@
 //                "temperature_scale": k, "temperature_offset": t0}
 //                                         Le(p) = s * blackbody((temperature(p) - t0) * k kelvin)
 //
-// Grids come from the density's own file, through the density's transform; they may have another
+// Grids come from the density's own file, through the density's transform, or from the grids a
+// procedural fire builds beside its density ("temperature", kelvin); they may have another
 // resolution or voxel transform than the density (both are sampled at world points). They must
-// be float fog-style grids (0 outside their voxels); negative voxels read as 0
-// (loading/vdb_grid.h). Defaults: color [1, 1, 1], scale 1, temperature_scale 1,
+// be float grids; negative voxels read as 0 (loading/vdb_grid.h). A positive background is the
+// field's value away from its voxels (an ambient temperature; voxels below it read as it), and
+// emission stays where the density is (the source term is sigma_a * density * Le). Defaults: color [1, 1, 1], scale 1, temperature_scale 1,
 // temperature_offset 0.
 #include "core/error.h"
 #include "core/grid_emission.h"
@@ -20,7 +22,7 @@
 
 namespace tyndall {
 
-void readEmission(const JsonValue& value, const VdbGridSource& densityFile, const SceneLoadOptions& options,
+void readEmission(const JsonValue& value, const DensityChannels& channels, const SceneLoadOptions& options,
                   Medium& m) {
     auto needsAbsorption = [&]() {
         if (m.sigmaA.isBlack())
@@ -51,23 +53,36 @@ void readEmission(const JsonValue& value, const VdbGridSource& densityFile, cons
         color = obj.rgb("color", Rgb(1.0f));
     }
     obj.finish();
-    if (!m.density || densityFile.file.empty())
-        value.fail("an emission grid is read from the medium's density file: give the medium a \"density\" "
-                   "with a \"file\"");
+    auto make = [&](std::shared_ptr<const DensityGrid> values, float ambient) {
+        if (blackbody)
+            m.emissionField = std::make_shared<GridEmission>(std::move(values), bb, ambient);
+        else
+            m.emissionField = std::make_shared<GridEmission>(std::move(values), color, scale, ambient);
+    };
+    if (m.density && !channels.procedural.empty()) {
+        needsAbsorption();
+        std::string names;
+        for (const auto& [gridName, values] : channels.grids) {
+            if (gridName == name) return make(values, 0.0f);
+            names += (names.empty() ? "'" : ", '") + gridName + "'";
+        }
+        grid.fail("procedural " + channels.procedural + " has no grid named '" + name + "' (its grids: " + names + ")");
+    }
+    if (!m.density || channels.file.file.empty())
+        value.fail("an emission grid is read from the medium's density file or procedural fire: give the medium a "
+                   "\"density\" with a \"file\" or \"procedural\": \"fire\"");
     needsAbsorption();
-    VdbGridSource source = densityFile;
+    VdbGridSource source = channels.file;
     source.grid = name;
     source.scale = 1.0f;
+    source.ambientBackground = true;
     std::shared_ptr<const VdbDensityGrid> values;
     try {
         values = VdbDensityGrid::load(source, options.warn, options.budget.get());
     } catch (const Error& e) {
         grid.fail(e.what());
     }
-    if (blackbody)
-        m.emissionField = std::make_shared<GridEmission>(values, bb);
-    else
-        m.emissionField = std::make_shared<GridEmission>(values, color, scale);
+    make(values, values->background());
 }
 
 }  // namespace tyndall

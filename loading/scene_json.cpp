@@ -144,7 +144,7 @@ Medium readMedium(JsonObject& obj, const std::string& baseDir, const SceneLoadOp
     obj.finish();
     if (m.sigmaT().maxComponent() <= 0.0f)
         obj.fail("medium '" + m.name + "' has sigma_s + sigma_a = 0: it would be vacuum");
-    VdbGridSource densityFile;
+    DensityChannels channels;
     if (density) {
         Rgb t = m.sigmaT();
         if (std::abs(t.r - t.g) > 1e-5f * t.r || std::abs(t.r - t.b) > 1e-5f * t.r)
@@ -152,9 +152,9 @@ Medium readMedium(JsonObject& obj, const std::string& baseDir, const SceneLoadOp
                      "' has a density grid, which needs grey extinction (sigma_s + sigma_a equal in r, g, b); "
                      "put the colour in the albedo");
         JsonObject d = density->object();
-        m.density = readDensity(d, baseDir, options, proceduralVoxels, &densityFile);
+        m.density = readDensity(d, baseDir, options, proceduralVoxels, &channels);
     }
-    if (emission) readEmission(*emission, densityFile, options, m);
+    if (emission) readEmission(*emission, channels, options, m);
     return m;
 }
 

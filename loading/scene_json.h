@@ -4,6 +4,8 @@
 // function so the format stays easy to extend (heterogeneous media add keys in readMedium).
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/density_grid.h"
 #include "loading/json_reader.h"
@@ -25,22 +27,27 @@ Material readMaterial(JsonObject& obj);
 /// relative grid files; `proceduralVoxels` as for readDensity.
 Medium readMedium(JsonObject& obj, const std::string& baseDir, const SceneLoadOptions& options,
                   uint64_t* proceduralVoxels);
+/// Where a medium's emission grids come from: the density's file, or the other grids a procedural
+/// density built beside it (the fire's "temperature").
+struct DensityChannels {
+    VdbGridSource file;  ///< the density's file grid; empty `file` for procedural or no density
+    std::string procedural;  ///< the procedural kind ("fire"), empty for files
+    std::vector<std::pair<std::string, std::shared_ptr<const DensityGrid>>> grids;  ///< procedural, by name
+};
 /// A medium's "density" object (scene_density.cpp, docs/scene-format.md): an OpenVDB grid from a
-/// file ("file", "grid", "scale", "transform") or a procedural one ("procedural": "smoke" or
-/// "rolling_fog" with its parameters, "scale"). Errors name the JSON place. `proceduralVoxels`
-/// counts the scene's procedural voxels so far: a procedural grid adds its own, and one that would
-/// take the total past options.maxProceduralVoxels is an error before anything is built.
-/// `fileGrid`, when given, receives the file grid's source (empty `file` for procedural grids):
-/// where a medium's emission grid is read from.
+/// file ("file", "grid", "scale", "transform") or a procedural one ("procedural": "smoke",
+/// "rolling_fog" or "fire" with its parameters, "scale"). Errors name the JSON place.
+/// `proceduralVoxels` counts the scene's procedural voxels so far: a procedural grid adds its own,
+/// and one that would take the total past options.maxProceduralVoxels is an error before anything
+/// is built. `channels`, when given, receives where the medium's emission grids are read from.
 std::shared_ptr<const DensityGrid> readDensity(JsonObject& obj, const std::string& baseDir,
                                                const SceneLoadOptions& options, uint64_t* proceduralVoxels,
-                                               VdbGridSource* fileGrid = nullptr);
+                                               DensityChannels* channels = nullptr);
 /// A medium's "emission" (scene_emission.cpp, docs/scene-format.md) into `m`: an rgb Le, or for a
-/// grid medium read from a file an object naming a grid of the same file: {"grid", "color",
-/// "scale"} or {"grid", "blackbody": true, "scale", "temperature_scale", "temperature_offset"}.
-/// `densityFile`: the density's file grid (empty `file` when the density is procedural or absent).
-/// Errors name the JSON place.
-void readEmission(const JsonValue& value, const VdbGridSource& densityFile, const SceneLoadOptions& options,
+/// grid medium an object naming a grid of the density's file or of its procedural grids:
+/// {"grid", "color", "scale"} or {"grid", "blackbody": true, "scale", "temperature_scale",
+/// "temperature_offset"}. Errors name the JSON place.
+void readEmission(const JsonValue& value, const DensityChannels& channels, const SceneLoadOptions& options,
                   Medium& m);
 /// "transform": {"scale": s | [sx, sy, sz], "rotate": {"axis": [x, y, z], "degrees": d},
 /// "translate": [x, y, z]}, applied in that order (shapes and density grids).

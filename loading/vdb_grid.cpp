@@ -60,6 +60,7 @@ struct VdbDensityGrid::Impl {
     std::string label;
     std::string name;
     float scale = 1.0f;
+    float background = 0;  // taken out of the values (VdbGridSource::ambientBackground)
     Affine3 indexToWorld, worldToIndex;
     bool empty = true;
     openvdb::CoordBBox positiveBox;  // index bounds of the voxels holding a value > 0
@@ -104,7 +105,7 @@ void initializeOpenVdb() {
 std::shared_ptr<const VdbDensityGrid> makeVdbDensityGrid(openvdb::FloatGrid::ConstPtr grid,
                                                          const Affine3& sceneTransform, float scale,
                                                          const std::string& label, int majorantBlock,
-                                                         LoadBudget* budget) {
+                                                         LoadBudget* budget, float background) {
     auto fail = [&](const std::string& what) { throw Error(label + ": " + what); };
     if (!(scale >= 0) || !std::isfinite(scale)) fail("density scale must be a finite number >= 0");
     if (!grid->transform().isLinear())
@@ -119,6 +120,7 @@ std::shared_ptr<const VdbDensityGrid> makeVdbDensityGrid(openvdb::FloatGrid::Con
     impl->label = label;
     impl->name = grid->getName();
     impl->scale = scale;
+    impl->background = background;
     impl->indexToWorld = sceneTransform * affineFromOpenVdb(grid->transform().baseMap()->getAffineMap()->getMat4());
     float det = impl->indexToWorld.determinant();
     if (!(std::abs(det) > 0) || !std::isfinite(det))
@@ -305,8 +307,18 @@ std::shared_ptr<const VdbDensityGrid> VdbDensityGrid::load(const VdbGridSource& 
     if (!base->isType<openvdb::FloatGrid>()) throw Error(at + ": damaged: its tree is not a float tree");
     if (base->getGridClass() == openvdb::GRID_LEVEL_SET)
         throw Error(at + " is a level set (signed distance), not a density; convert it to a fog volume");
-    return makeVdbDensityGrid(openvdb::gridConstPtrCast<openvdb::FloatGrid>(base), source.transform, source.scale, at,
-                              kMajorantBlock, budget);
+    openvdb::FloatGrid::ConstPtr grid = openvdb::gridConstPtrCast<openvdb::FloatGrid>(base);
+    const float background = grid->background();
+    if (source.ambientBackground && background > 0.0f && std::isfinite(background)) {
+        // The background's stored copies (inactive tiles and voxels) become 0 first, then every
+        // value is its excess over the background.
+        openvdb::FloatGrid::Ptr shifted = grid->deepCopy();
+        openvdb::tools::changeBackground(shifted->tree(), 0.0f);
+        for (auto it = shifted->tree().beginValueAll(); it; ++it) it.setValue(std::max(*it - background, 0.0f));
+        shifted->tree().prune();
+        return makeVdbDensityGrid(shifted, source.transform, source.scale, at, kMajorantBlock, budget, background);
+    }
+    return makeVdbDensityGrid(grid, source.transform, source.scale, at, kMajorantBlock, budget);
 }
 
 std::shared_ptr<const VdbDensityGrid> VdbDensityGrid::fromDense(const int dims[3], const std::vector<float>& values,
@@ -363,6 +375,9 @@ const std::string& VdbDensityGrid::label() const {
 }
 const std::string& VdbDensityGrid::gridName() const {
     return m_impl->name;
+}
+float VdbDensityGrid::background() const {
+    return m_impl->background;
 }
 uint64_t VdbDensityGrid::activeVoxelCount() const {
     return m_impl->activeVoxels;

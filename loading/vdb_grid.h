@@ -5,7 +5,8 @@
 // What a grid means:
 // - Values are a float fog volume (OpenVDB's convention: 0 = empty). Level sets, non-float grids
 //   and frustum transforms are rejected with an Error; negative voxel values are clamped to 0; a
-//   background value must be <= 0 (treated as 0).
+//   background value must be <= 0 (treated as 0), except for emission and temperature channels
+//   (VdbGridSource::ambientBackground).
 // - density(p) = scale * trilinear interpolation of the voxel values, voxel (i, j, k) centred at
 //   index-space point (i, j, k) (OpenVDB's BoxSampler), at index point worldToIndex(p). The
 //   world <- index map is the file's index-to-world transform (anisotropic voxels, rotations)
@@ -48,6 +49,11 @@ struct VdbGridSource {
     std::string grid;
     float scale = 1.0f;  ///< density multiplier, >= 0
     Affine3 transform;   ///< scene transform applied after the file's index-to-world map
+    /// Emission and temperature channels: a positive background is the field's value away from
+    /// the voxels (an ambient temperature), not an error. It is taken out of the values (each
+    /// becomes max(v - background, 0), so the grid is again 0 outside its voxels and voxels below
+    /// the background read as it) and kept as background(); the caller adds it back.
+    bool ambientBackground = false;
 };
 
 class VdbDensityGrid : public DensityGrid {
@@ -92,6 +98,9 @@ public:
     /// "file 'x' grid 'density'" or the label given to fromDense.
     const std::string& label() const;
     const std::string& gridName() const;
+    /// The positive background taken out of the values (VdbGridSource::ambientBackground); 0 when
+    /// there was none.
+    float background() const;
     uint64_t activeVoxelCount() const;
     /// Edge of the majorant cells actually used, in voxels.
     int majorantBlock() const;

@@ -21,10 +21,11 @@ void initializeOpenVdb();
 /// the values. `label` prefixes error messages ("vdb file 'x': grid 'density'"). Throws Error for
 /// a frustum or singular transform, a positive background or a bad scale. May copy the grid to
 /// clamp negative values. `budget` (may be null) is asked for the majorant grid and the dense copy
-/// kept for lookups before they are built.
+/// kept for lookups before they are built. `background` is what VdbDensityGrid::background()
+/// reports (the caller has already taken it out of the values).
 std::shared_ptr<const VdbDensityGrid> makeVdbDensityGrid(openvdb::FloatGrid::ConstPtr grid,
                                                          const Affine3& sceneTransform, float scale,
                                                          const std::string& label, int majorantBlock,
-                                                         LoadBudget* budget = nullptr);
+                                                         LoadBudget* budget = nullptr, float background = 0.0f);
 
 }  // namespace tyndall

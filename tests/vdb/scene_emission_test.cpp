@@ -128,6 +128,52 @@ TEST(SceneEmission, ConstantGridAndBlackbodyEmission) {
     EXPECT_NEAR(atCorner.r, (blackbodyRgb((0 - 100) * 1.5f) * 3.0f).r, 1e-6f);  // T = -150 K: nothing
 }
 
+/// ambient.vdb: "density" 1 on index 0..4 of voxels of 0.1 (world [0, 0.4]^3); "temperature" of
+/// background 1500 (an ambient temperature) with 3000 on index 0..1 and 1000 (below the
+/// background) at index 3, on the same voxels.
+void writeAmbientFile() {
+    openvdb::initialize();
+    auto density = openvdb::FloatGrid::create(0.0f);
+    density->setName("density");
+    density->setTransform(openvdb::math::Transform::createLinearTransform(0.1));
+    auto temperature = openvdb::FloatGrid::create(1500.0f);
+    temperature->setName("temperature");
+    temperature->setTransform(openvdb::math::Transform::createLinearTransform(0.1));
+    for (int k = 0; k < 5; ++k)
+        for (int j = 0; j < 5; ++j)
+            for (int i = 0; i < 5; ++i) density->tree().setValue(openvdb::Coord(i, j, k), 1.0f);
+    for (int k = 0; k < 2; ++k)
+        for (int j = 0; j < 2; ++j)
+            for (int i = 0; i < 2; ++i) temperature->tree().setValue(openvdb::Coord(i, j, k), 3000.0f);
+    temperature->tree().setValue(openvdb::Coord(3, 3, 3), 1000.0f);
+    openvdb::io::File(dir() + "/ambient.vdb").write({density, temperature});
+}
+
+// A temperature grid whose background is positive (an ambient temperature) loads; the ambient
+// temperature is the field's value away from its voxels, but the medium emits only where its
+// density is: nothing anywhere else in the temperature grid's (unbounded) domain.
+TEST(SceneEmission, APositiveBackgroundIsAnAmbientValueAndEmitsOnlyInTheDensity) {
+    writeAmbientFile();
+    json j = sceneWith({{"grid", "temperature"}, {"blackbody", true}, {"scale", 2}});
+    j["media"][0]["density"] = {{"file", "ambient.vdb"}};
+    SceneFile f = load("ambient.json", j);
+    const Medium& m = f.scene.media[0];
+    const Rgb hot = blackbodyRgb(3000.0f) * 2.0f, ambient = blackbodyRgb(1500.0f) * 2.0f;
+    ASSERT_GT(ambient.maxComponent(), 0.0f) << "the ambient temperature must glow for the test to mean anything";
+    auto expectNear = [](const Rgb& a, const Rgb& b, const char* what) {
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(a[c], b[c], 1e-4f * b.maxComponent() + 1e-9f) << what << " channel " << c;
+    };
+    // In the density: the hot voxels, the ambient elsewhere, and a voxel below the ambient reads as it.
+    expectNear(m.sourceAt(Vec3(0.05f, 0.05f, 0.05f)), hot * 0.5f, "hot voxels");  // sigma_a 0.5 x density 1
+    expectNear(m.sourceAt(Vec3(0.25f, 0.25f, 0.05f)), ambient * 0.5f, "ambient in the density");
+    expectNear(m.sourceAt(Vec3(0.3f, 0.3f, 0.3f)), ambient * 0.5f, "a voxel below the ambient");
+    // Out of the density, near and far, the source is zero though Le is the ambient's.
+    for (const Vec3& p : {Vec3(0.7f, 0.2f, 0.2f), Vec3(-2.0f, 1.0f, 2.5f), Vec3(2.9f, -2.9f, 0.0f)}) {
+        expectNear(m.emissionAt(p), ambient, "Le away from the voxels");
+        EXPECT_TRUE(m.sourceAt(p).isBlack()) << "emits outside the density at " << p.x << " " << p.y << " " << p.z;
+    }
+}
+
 TEST(SceneEmission, BadInputIsAOneLineErrorNamingThePlace) {
     writeFireFile();
     struct Case {
