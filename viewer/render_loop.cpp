@@ -21,6 +21,7 @@ RenderSettings previewSettings(const RenderSettings& full, const PreviewOptions&
     s.width = std::max(1, full.width / scale);
     s.height = std::max(1, full.height / scale);
     s.photonsPerPass = std::max<uint32_t>(1, full.photonsPerPass / uint32_t(std::max(preview.photonDivisor, 1)));
+    s.region = PixelRegion{};  // a preview shows the whole view
     return s;
 }
 

@@ -16,7 +16,7 @@
 //   drag BUTTON X0 Y0 X1 Y1 [STEPS] [MODS]   press, STEPS moves (default 10, one per frame), release
 //   double-click X Y              sets the pivot to the surface under (X, Y)
 //   scroll X Y STEPS              the wheel: STEPS > 0 dollies in
-//   key NAME                      F, 1-9, plus, minus, space, R, S, H, F5, escape (as typed)
+//   key NAME                      F, 1-9, plus, minus, space, R, S, H, B, F5, escape (as typed)
 //   exposure VALUE                sets the display exposure
 //   save STEM                     writes STEM.exr, STEM.png and STEM.json (as the S key)
 //   screenshot FILE               the window's pixels as PNG

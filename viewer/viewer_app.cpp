@@ -115,7 +115,7 @@ bool Viewer::takeImages() {
         std::string err = m_loops[i]->error();
         if (!err.empty()) throw Error("view: rendering failed: " + err);
         if (!m_loops[i]->latest(&m_frames[i])) continue;
-        m_view->upload(int(i), m_frames[i].mean);
+        m_view->upload(int(i), displayImage(i));
         arrived = true;
         if (i == 0) countImage();
     }
@@ -151,6 +151,7 @@ void Viewer::drawFrame(Clock::time_point frameStart) {
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
     drawPanel();
+    drawRegionOutline();
     if (m_help) drawHelp();
     ImGui::Render();
 

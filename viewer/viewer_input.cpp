@@ -31,6 +31,13 @@ void Viewer::press(int button, float x, float y, int mods) {
     m_lastPressTime = t, m_lastPressX = x, m_lastPressY = y;
     m_dragButton = button, m_dragMods = mods;
     m_lastX = x, m_lastY = y;
+    if (button == 0 && (m_regionArmed || (mods & kModAlt))) {
+        // A region drag edits no scene: no preview passes.
+        m_drawingRegion = true;
+        m_regionArmed = false;
+        m_regionStartX = x, m_regionStartY = y;
+        return;
+    }
     for (auto& loop : m_loops) loop->beginInteraction();
 }
 
@@ -39,6 +46,10 @@ void Viewer::move(float x, float y) {
     float dx = x - m_lastX, dy = y - m_lastY;
     m_lastX = x, m_lastY = y;
     if (dx == 0 && dy == 0) return;
+    if (m_drawingRegion) {
+        inputArrived();  // the outline follows the cursor
+        return;
+    }
     if (m_dragButton == 0 && (m_dragMods & (kModShift | kModCtrl)) && !m_edited.lights.empty()) {
         SurfaceHit hit;
         bool found = m_picker->intersect(m_camera.ray(x, y), &hit);
@@ -55,8 +66,23 @@ void Viewer::release(int button, float x, float y) {
     if (m_dragButton != button) return;
     move(x, y);
     m_dragButton = -1;
+    if (m_drawingRegion) {
+        m_drawingRegion = false;
+        PixelRegion r = dragRegion();
+        if (r.width >= 2 && r.height >= 2) setRegion(r);
+        else m_status = "region: drag a rectangle of at least 2 x 2 pixels";
+        return;
+    }
     m_pendingChanges.push_back({m_loops[0]->control().version() + 1, seconds(Clock::now()), true});
     for (auto& loop : m_loops) loop->endInteraction();
+}
+
+PixelRegion Viewer::dragRegion() const {
+    const int w = m_o.settings.width, h = m_o.settings.height;
+    auto clampTo = [](float v, int n) { return std::clamp(int(std::floor(v)), 0, n); };
+    int x0 = clampTo(std::min(m_regionStartX, m_lastX), w), x1 = clampTo(std::max(m_regionStartX, m_lastX) + 1, w);
+    int y0 = clampTo(std::min(m_regionStartY, m_lastY), h), y1 = clampTo(std::max(m_regionStartY, m_lastY) + 1, h);
+    return PixelRegion{x0, y0, x1 - x0, y1 - y0};
 }
 
 void Viewer::doubleClick(float x, float y) {
@@ -105,6 +131,13 @@ void Viewer::key(const std::string& name) {
         save(m_o.saveStem + "-" + std::to_string(++m_saves));
     } else if (name == "H") {
         m_help = !m_help;
+    } else if (name == "B") {
+        if (!m_settings.region.whole()) {
+            setRegion(PixelRegion{});
+        } else {
+            m_regionArmed = !m_regionArmed;
+            m_status = m_regionArmed ? "region: drag a rectangle on the image" : "";
+        }
     }
 }
 
@@ -231,6 +264,7 @@ void Viewer::installCallbacks() {
             case GLFW_KEY_R: v->key("R"); break;
             case GLFW_KEY_S: v->key("S"); break;
             case GLFW_KEY_H: v->key("H"); break;
+            case GLFW_KEY_B: v->key("B"); break;
             case GLFW_KEY_F5: v->key("F5"); break;
             case GLFW_KEY_SPACE: v->key("space"); break;
             case GLFW_KEY_KP_ADD: v->key("plus"); break;

@@ -13,6 +13,8 @@ const char* kBindings[][2] = {
     {"wheel", "dolly toward / away from the pivot"},
     {"double-click", "set the pivot (and focus) on a surface"},
     {"ctrl/shift + left drag", "move the selected light (a spot aims at the cursor)"},
+    {"alt + left drag", "draw a render region: only it refines"},
+    {"B", "draw a region with the next left drag; with one, clear it"},
     {"F", "frame the scene"},
     {"1 - 9", "pick a camera"},
     {"+ / -", "exposure up / down"},
@@ -33,6 +35,22 @@ void Viewer::drawHelp() {
     ImGui::Begin("Keys and mouse (H closes)", &m_help, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove);
     for (const auto& b : kBindings) ImGui::Text("%-24s %s", b[0], b[1]);
     ImGui::End();
+}
+
+void Viewer::drawRegionOutline() {
+    const PixelRegion& set = m_settings.region;
+    if (set.whole() && !m_drawingRegion) return;
+    ImDrawList* draw = ImGui::GetForegroundDrawList();
+    const int gap = m_o.compare ? 4 : 0;
+    for (size_t i = 0; i < m_loops.size(); ++i) {
+        const float x0 = float(kPanelWidth + int(i) * (m_o.settings.width + gap));
+        auto outline = [&](const PixelRegion& r, ImU32 colour) {
+            draw->AddRect(ImVec2(x0 + float(r.x) - 1, float(r.y) - 1),
+                          ImVec2(x0 + float(r.x + r.width) + 1, float(r.y + r.height) + 1), colour);
+        };
+        if (!set.whole()) outline(set, IM_COL32(255, 200, 60, 200));
+        if (m_drawingRegion) outline(dragRegion(), IM_COL32(255, 255, 255, 230));
+    }
 }
 
 void Viewer::drawPanel() {
@@ -70,6 +88,16 @@ void Viewer::drawPanel() {
     if (ImGui::Button("Restart")) key("R");
     ImGui::SameLine();
     if (ImGui::Button("Save")) key("S");
+    const PixelRegion& region = m_settings.region;
+    if (region.whole()) {
+        if (ImGui::Button(m_regionArmed ? "Drag on the image..." : "Draw region (B)")) key("B");
+        ImGui::SameLine();
+        ImGui::TextDisabled("whole image");
+    } else {
+        if (ImGui::Button("Clear region (B)")) key("B");
+        ImGui::SameLine();
+        ImGui::Text("%d %d %d x %d", region.x, region.y, region.width, region.height);
+    }
 
     // A slider held is an interaction (preview passes); its release refines.
     auto interactive = [&](bool edited) {

@@ -120,6 +120,37 @@ void Viewer::pushEdits() {
     for (auto& loop : m_loops) loop->setEdits(edits);
 }
 
+void Viewer::setRegion(const PixelRegion& region) {
+    m_settings.region = region;
+    m_regionArmed = false;
+    pushSettings();
+    inputArrived();
+    m_status = region.whole() ? "region cleared: the whole image refines"
+                              : "region " + std::to_string(region.x) + " " + std::to_string(region.y) + " " +
+                                    std::to_string(region.width) + " " + std::to_string(region.height) +
+                                    ": only it refines";
+}
+
+const Image& Viewer::displayImage(size_t i) {
+    const ViewFrame& f = m_frames[i];
+    m_backdrops.resize(m_frames.size());
+    const PixelRegion& region = f.settings.region;
+    if (region.whole()) {
+        m_backdrops[i] = f.mean;  // a preview's smaller image too: stretched under a region
+        return f.mean;
+    }
+    // Outside the region: the last whole image (a preview after a drag), black before there is one.
+    const Image& back = m_backdrops[i];
+    m_composite = Image(f.mean.width, f.mean.height);
+    for (int y = 0; y < f.mean.height; ++y)
+        for (int x = 0; x < f.mean.width; ++x) {
+            if (region.contains(x, y)) m_composite.at(x, y) = f.mean.at(x, y);
+            else if (back.width > 0)
+                m_composite.at(x, y) = back.at(x * back.width / f.mean.width, y * back.height / f.mean.height);
+        }
+    return m_composite;
+}
+
 void Viewer::pushSettings() {
     for (auto& loop : m_loops) loop->setSettings(m_settings);
 }

@@ -93,6 +93,15 @@ private:
     void screenshot(const std::string& path);
     void drawPanel();
     void drawHelp();
+    /// The render region (RenderSettings::region): set (a new refinement of those pixels only) or
+    /// cleared (PixelRegion{}); the status line says which.
+    void setRegion(const PixelRegion& region);
+    /// The rectangle of the region drag under way, in image pixels, inside the image.
+    PixelRegion dragRegion() const;
+    /// The region's outline (and the one being drawn) over the image.
+    void drawRegionOutline();
+    /// What loop i's newest frame shows: a region frame over the last whole image (viewer_scene.cpp).
+    const Image& displayImage(size_t i);
     bool stepScript(bool* acted);
     void inputArrived() { m_redraw = std::max(m_redraw, kSettleFrames); }
     bool refinedAtRest(uint64_t passes) const;
@@ -125,6 +134,13 @@ private:
     double m_nextPoll = 0;
 
     int m_dragButton = -1, m_dragMods = 0;
+    // The render region: an Alt + left drag draws one, as does a left drag after B or the panel's
+    // button (armed); B or the button clears one.
+    bool m_regionArmed = false;
+    bool m_drawingRegion = false;
+    float m_regionStartX = 0, m_regionStartY = 0;
+    std::vector<Image> m_backdrops;  // per loop: the last whole image shown, under a region's frames
+    Image m_composite;
     float m_lastX = 0, m_lastY = 0;
     double m_lastPressTime = -1;
     float m_lastPressX = -1e9, m_lastPressY = -1e9;

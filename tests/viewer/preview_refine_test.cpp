@@ -62,6 +62,10 @@ TEST(PreviewSettings, ReduceResolutionAndPhotonsOnly) {
     EXPECT_EQ(p.photonsPerPass, 1000u);
     EXPECT_EQ(p.alpha, 0.7);
     EXPECT_EQ(p.seed, full.seed);
+    // A render region is in full-resolution pixels: the preview shows the whole view.
+    full.region = {300, 200, 100, 50};
+    EXPECT_TRUE(previewSettings(full, PreviewOptions{2, 4}).region.whole());
+    EXPECT_NO_THROW(previewSettings(full, PreviewOptions{2, 4}).validate());
     RenderSettings tiny = previewSettings(RenderSettings{}, PreviewOptions{10000, 100000});
     EXPECT_GE(tiny.width, 1);
     EXPECT_GE(tiny.photonsPerPass, 1u);

@@ -218,6 +218,48 @@ TEST(ViewerXvfb, RealMouseDragThroughTheXServerOrbits) {
     expectRenderReproduces(d, "after");
 }
 
+TEST(ViewerXvfb, AnAltDragDrawsARenderRegionThatGoesIntoTheViewFileAndIsReadBack) {
+    SKIP_WITHOUT_XVFB();
+    SKIP_WITHOUT_XDOTOOL();
+    fs::path d = outDir("region");
+    auto stem = [&](const char* name) { return (d / name).string(); };
+    // Alt + left drag from window (350, 30) to (410, 70): image pixels (20, 30) to (80, 70), the
+    // image area being right of the 330-pixel panel.
+    test::CliRun r = runViewWithInput(
+        d, kSmall,
+        "wait-passes 1\nsave " + stem("before") + "\nwait-input 1 300\nwait-passes 2\nsave " + stem("region") +
+            "\nscreenshot " + stem("window.png") + "\nquit\n",
+        waitForFile(stem("before") + ".json") +
+            // A person's pace: the X server may deliver a burst's button press after its warps.
+            "xdotool mousemove --window $win 350 30; sleep 0.3; xdotool keydown alt mousedown 1; sleep 0.3\n"
+            "xdotool mousemove --window $win 380 50; sleep 0.3; xdotool mousemove --window $win 410 70; sleep 0.3\n"
+            "xdotool mouseup 1 keyup alt\n");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    auto view = [&](const char* name) { return nlohmann::json::parse(std::ifstream(d / (std::string(name) + ".json"))); };
+    EXPECT_EQ(view("before")["render"].count("region"), 0u);
+    ASSERT_EQ(view("region")["render"]["region"], nlohmann::json({20, 30, 61, 41})) << r.output;
+    EXPECT_EQ(view("region")["edits"], view("before")["edits"]) << "a region drag moved the camera";
+    // The saved image refined the region alone; `tyndall render` of the view file does the same.
+    Image saved = readImage(stem("region") + ".exr");
+    EXPECT_EQ(meanLuminance(saved, 0, 0, 128, 30), 0.0);
+    EXPECT_GT(meanLuminance(saved, 20, 30, 81, 71), 0.005);
+    expectRenderReproduces(d, "region");
+    // The window keeps the last whole image around the region.
+    Image window = readImage(stem("window.png"));
+    EXPECT_GT(meanLuminance(window, 330, 0, 458, 25), 0.005) << "outside the region (and its outline) the window went black";
+
+    // Opened again, the view file's region refines; B clears it; B and a drag draw a new one.
+    test::CliRun again = runView(d, stem("region") + ".json --gpu off",
+                                 "wait-passes 1\nsave " + stem("reread") + "\nkey B\nwait-passes 1\nsave " +
+                                     stem("cleared") + "\nkey B\ndrag left 10 10 30 20 3\nwait-passes 1\nsave " +
+                                     stem("keyed") + "\nquit\n");
+    ASSERT_EQ(again.exitCode, 0) << again.output;
+    EXPECT_EQ(view("reread")["render"]["region"], nlohmann::json({20, 30, 61, 41}));
+    EXPECT_EQ(view("cleared")["render"].count("region"), 0u);
+    EXPECT_EQ(view("keyed")["render"]["region"], nlohmann::json({10, 10, 21, 11}));
+    EXPECT_GT(meanLuminance(readImage(stem("cleared") + ".exr"), 0, 0, 128, 30), 0.005);
+}
+
 /// A one-room scene whose lamp has `intensity`.
 std::string roomScene(const std::string& intensity) {
     return R"({"name": "room", "materials": [{"name": "wall", "albedo": 0.5}],
