@@ -11,8 +11,8 @@
 //     metal part is its conductor instead with probability metallic (one number drawn), which is
 //     Glossy when rough, Specular when smooth;
 //   - Glossy: GGX conductor (rough Mirror) or rough dielectric (core/microfacet.h);
-//   - Specular: delta mirror, smooth dielectric (Fresnel's choice of reflection or refraction),
-//     Interface (straight through, switching the medium: pbrt's empty BSDF).
+//   - Specular: delta mirror, smooth dielectric (Fresnel's choice of reflection or refraction; a
+//     thin one's choice of reflection or passing straight through, Material::thin), Interface (straight through, switching the medium: pbrt's empty BSDF).
 // Then sample() draws a direction from the component, f() and pdf() evaluate it toward any.
 //
 // Random numbers, from the caller's path stream and in this order: at() draws at most one (the
@@ -117,6 +117,7 @@ private:
     Vec3 m_wo;  ///< -dIn, world
     Rgb m_rho;  ///< baseColor: diffuse reflectance, conductor F0, mirror and dielectric tint
     float m_ior = 1.5f;
+    bool m_thin = false;  ///< Material::thin
     MediumId m_medium = kVacuum, m_beyond = kVacuum;
     // The chosen component's parts, set by at() for the kinds that have them (the others cost
     // nothing to build: every vertex of every path builds a Bsdf).
@@ -152,6 +153,7 @@ Bsdf Bsdf::at(const Scene& scene, const SurfaceHit& hit, const SurfacePoint& sp,
     b.m_wo = -dIn;
     b.m_rho = sp.baseColor;
     b.m_ior = mat.ior;
+    b.m_thin = mat.thin;
     b.m_medium = medium;
     b.m_beyond = b.m_side.entering ? mesh.interiorMedium : mesh.exteriorMedium;
     // The component choice: one lobe choice for every tracer.
@@ -254,6 +256,18 @@ inline bool Bsdf::sampleDelta(float u, BsdfSample* s, Rgb* w) const {
             return true;
         case MaterialType::Dielectric: {
             *w = Rgb(1.0f);
+            if (m_thin) {
+                // The slab's reflectance (internal bounces included); the rest goes straight on.
+                if (u < fresnelThinSlab(dot(m_wo, m_ns), m_ior)) {
+                    s->wi = reflect(m_wo, m_side.nsf);
+                    return dot(s->wi, m_side.nf) > 0;
+                }
+                s->wi = -m_wo;
+                *w = m_rho;
+                s->medium = m_beyond;
+                s->lobe = kLobeTransmission | kLobeSpecular;
+                return true;
+            }
             const float F = fresnelDielectric(dot(m_wo, m_ns), m_ior);
             Vec3 wt;
             // Total internal reflection where the shading normal disagrees with F.

@@ -22,6 +22,18 @@ inline float fresnelDielectric(float cosThetaI, float eta) {
     return 0.5f * (rParl * rParl + rPerp * rPerp);
 }
 
+/// Reflectance of a thin slab of relative index `eta` (both faces parallel, the same medium on both
+/// sides) for light arriving with cosine `cosThetaI` from either side: the first face's Fresnel R
+/// plus the light that enters and leaves after 1, 3, 5, ... internal reflections,
+/// R' = R + T^2 R / (1 - R^2) with T = 1 - R (R is the same at the inner faces by reciprocity). The
+/// slab transmits 1 - R' (no absorption); 1 where the first face reflects totally (eta < 1).
+inline float fresnelThinSlab(float cosThetaI, float eta) {
+    const float R = fresnelDielectric(std::abs(cosThetaI), eta);
+    if (!(R < 1.0f)) return 1.0f;
+    const float T = 1.0f - R;
+    return R + T * T * R / (1.0f - R * R);
+}
+
 /// Mirror `wo` (pointing away from the surface) about `n`.
 inline Vec3 reflect(const Vec3& wo, const Vec3& n) { return -wo + n * (2.0f * dot(wo, n)); }
 

@@ -54,6 +54,13 @@ GltfMaterialMapping mapGltfMaterial(const GltfMaterialInput& in) {
         m.albedo = in.baseColor;
         m.ior = in.ior;
         m.transmission = in.transmission;
+        // glTF: without KHR_materials_volume, or with a thicknessFactor of 0, the material is
+        // thin-walled (no refraction, no volume).
+        const bool thinWalled = !in.hasVolume || in.thickness == 0.0f;
+        if (thinWalled && in.roughness > Material::kSmoothRoughness)
+            note("rough thin-walled", "rough and thin-walled (no volume): rendered as rough glass bounding a solid");
+        else
+            m.thin = thinWalled;
     } else if (in.metallic >= 1.0f && !in.metallicRoughnessTexture) {
         m.type = MaterialType::Mirror;  // a GGX conductor when roughness > Material::kSmoothRoughness
         m.albedo = in.baseColor;
@@ -72,6 +79,9 @@ GltfMaterialMapping mapGltfMaterial(const GltfMaterialInput& in) {
     if (in.hasVolume) {
         if (m.type != MaterialType::Dielectric) {
             note("volume without transmission", "KHR_materials_volume ignored: the material is not transmissive");
+        } else if (m.thin) {
+            if (std::isfinite(in.attenuationDistance))
+                note("thin-walled volume", "KHR_materials_volume ignored: thicknessFactor 0 makes the material thin-walled");
         } else if (std::isfinite(in.attenuationDistance)) {
             Medium med;
             med.name = in.name + " volume";

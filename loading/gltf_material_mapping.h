@@ -4,6 +4,10 @@
 //   transmission > 0 (KHR_materials_transmission)     -> Dielectric, ior (KHR_materials_ior),
 //                                                       tint = baseColorFactor, roughness (GGX
 //                                                       transmission above Material::kSmoothRoughness);
+//                                                       thin-walled (Material::thin) without
+//                                                       KHR_materials_volume or with its
+//                                                       thicknessFactor 0, as glTF says (when rough:
+//                                                       rough glass bounding a solid, noted);
 //                                                       transmission < 1 (or a transmissionTexture,
 //                                                       read by the loader) mixes in the diffuse base
 //   else metallic = 1 without metallicRoughnessTexture -> Mirror (GGX conductor when rough),
@@ -13,7 +17,7 @@
 //                                                       baseColorFactor, mixed per point with the
 //                                                       conductor by metallic (x texture B)
 //   emissiveFactor * emissiveStrength                 -> emission (radiance, W m^-2 sr^-1)
-//   KHR_materials_volume on a Dielectric              -> absorbing medium inside the mesh:
+//   KHR_materials_volume on a solid Dielectric        -> absorbing medium inside the mesh:
 //        sigma_a = -ln(attenuationColor) / attenuationDistance, sigma_s = 0
 // Everything else is approximated or ignored, and each such case is reported in `notes`
 // (the loader warns once per kind). docs/scene-format.md has the full table.

@@ -124,6 +124,12 @@ Material readMaterial(JsonObject& obj, const std::string& baseDir, const SceneLo
         if (m.type != MaterialType::Dielectric) t->fail("transmission applies to dielectric materials only");
         m.transmission = float(t->number(0.0, 1.0));
     }
+    if (auto t = obj.get("thin")) {
+        if (m.type != MaterialType::Dielectric) t->fail("thin applies to dielectric materials only");
+        m.thin = t->boolean();
+        if (m.thin && m.isRough())
+            t->fail("a thin dielectric must be smooth (roughness at most 0.05): rough thin sheets are not modelled");
+    }
     m.transmissionTexture =
         readTexture(obj, "transmission_texture", TextureEncoding::Linear, scale, baseDir, options, scene);
     if (m.transmissionTexture.present() && m.type != MaterialType::Dielectric)

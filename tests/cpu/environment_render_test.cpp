@@ -3,14 +3,19 @@
 // with shadow rays and through the reference path tracer with MIS; photons from the environment
 // alone (shadow rays off) giving an open plane its closed-form irradiance pi L; and PPB against the
 // path tracer under a non-uniform map with a sun (written here as an EXR and read back), on a
-// diffuse floor and sphere, through a glass sphere and a mirror, and in fog filling the scene.
+// diffuse floor and sphere, through a glass sphere and a mirror, and in fog filling the scene. Thin-
+// walled glass: a pane's transmittance and reflectance against the thin slab's closed form, a
+// thin-walled sphere under a constant sky (every pixel the sky), and PPB against the path tracer
+// on a thin-walled sphere full of smoke lit by the map alone.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include "core/environment_light.h"
+#include "core/fresnel.h"
 #include "core/image_io.h"
 #include "cpu/embree_scene.h"
 #include "cpu/pass_renderer.h"
@@ -260,24 +265,25 @@ Scene sunnyScene(bool fog) {
     return s;
 }
 
-/// `glassNoise`: the standard error allowed in the glass ball's region relative to its mean (the
-/// sun's caustic on the floor seen through it and the sun's refraction in it are the noisiest
-/// parts of both renderers); 3% elsewhere.
-void comparePpbWithReference(const Scene& s, const char* name, uint32_t photons, int passes, uint32_t spp,
-                             double bias, double glassNoise) {
+/// PPB (8 batches of `passes` passes) against the path tracer (`spp`) per region (the pixels wholly
+/// on one mesh, or wholly sky: kMiss): relative difference within 4 combined standard errors plus
+/// `bias`. `noisy`: the mesh whose region may have a standard error up to `noisyShare` of its mean
+/// (a glass ball: the sun's caustic seen through it and its refraction are the noisiest parts of
+/// both renderers); 3% elsewhere.
+void comparePpbWithReference(const Scene& s, const char* name, const std::vector<int>& regions,
+                             const std::vector<std::string>& names, uint32_t photons, int passes, uint32_t spp,
+                             double bias, int noisy, double noisyShare) {
     const int size = 24;
     std::vector<int> classes = pixelClasses(s, size);
-    const std::vector<int> regions = {0, 1, 2, 3, kMiss};
-    const char* names[] = {"floor", "ball", "glass ball", "mirror", "sky"};
     Image ppbMean, refMean;
     std::vector<Estimate> ppb = ppbRegions(s, ppbSettings(size, photons, true), 8, passes, classes, regions, &ppbMean);
     std::vector<Estimate> ref = referenceRegions(s, size, spp, classes, regions, &refMean);
     for (size_t k = 0; k < regions.size(); ++k) {
         const double se = std::sqrt(ppb[k].se * ppb[k].se + ref[k].se * ref[k].se);
-        std::printf("%s, %s: PPB %.5f +- %.5f, reference %.5f +- %.5f\n", name, names[k], ppb[k].mean, ppb[k].se,
-                    ref[k].mean, ref[k].se);
+        std::printf("%s, %s: PPB %.5f +- %.5f, reference %.5f +- %.5f\n", name, names[k].c_str(), ppb[k].mean,
+                    ppb[k].se, ref[k].mean, ref[k].se);
         EXPECT_GT(ref[k].mean, 0.02) << names[k];
-        EXPECT_LT(se, (regions[k] == 2 ? glassNoise : 0.03) * ref[k].mean) << names[k] << ": too noisy to test";
+        EXPECT_LT(se, (regions[k] == noisy ? noisyShare : 0.03) * ref[k].mean) << names[k] << ": too noisy to test";
         // 4 standard errors plus the surface kernel's and the beams' bias.
         EXPECT_NEAR(ppb[k].mean / ref[k].mean, 1.0, 4 * se / ref[k].mean + bias) << names[k];
     }
@@ -287,12 +293,149 @@ void comparePpbWithReference(const Scene& s, const char* name, uint32_t photons,
     }
 }
 
+const std::vector<int> kSunnyRegions = {0, 1, 2, 3, kMiss};
+const std::vector<std::string> kSunnyNames = {"floor", "ball", "glass ball", "mirror", "sky"};
+
 TEST(EnvironmentRender, SunnyMapPpbAgreesWithThePathTracerOnDiffuseGlassAndMirror) {
-    comparePpbWithReference(sunnyScene(false), "env_sun", 8000, 16, 1024, 0.03, 0.05);
+    comparePpbWithReference(sunnyScene(false), "env_sun", kSunnyRegions, kSunnyNames, 8000, 16, 1024, 0.03, 2, 0.05);
 }
 
 TEST(EnvironmentRender, SunnyMapInFogPpbAgreesWithThePathTracer) {
-    comparePpbWithReference(sunnyScene(true), "env_sun_fog", 8000, 8, 512, 0.04, 0.06);
+    comparePpbWithReference(sunnyScene(true), "env_sun_fog", kSunnyRegions, kSunnyNames, 8000, 8, 512, 0.04, 2, 0.06);
+}
+
+// ---- 4. Thin-walled glass ----
+
+Material thinGlass(Rgb tint) {
+    Material m;
+    m.name = "thin glass";
+    m.type = MaterialType::Dielectric;
+    m.thin = true;
+    m.ior = 1.5f;
+    m.albedo = tint;
+    return m;
+}
+
+TEST(EnvironmentRender, ThinSheetTransmitsAndReflectsTheSlabsShareInPpbAndThePathTracer) {
+    // A thin pane seen at about 60 degrees through a narrow camera: straight behind it (no
+    // refraction offset) a red emitter of radiance 1, in its mirror direction a blue one: red reads
+    // the pane's transmittance 1 - R', blue its reflectance R' = R + T^2 R / (1 - R^2), R Fresnel's
+    // at the ray's angle (computed per pixel here). Black, non-reflecting emitters: nothing else.
+    Scene s;
+    s.name = "thin-pane";
+    s.source = "<test>";
+    s.materials.push_back(thinGlass(Rgb(1.0f)));
+    Material red = diffuse("red", Rgb(0.0f)), blue = diffuse("blue", Rgb(0.0f));
+    red.emission = Rgb(1.0f, 0.0f, 0.0f);
+    blue.emission = Rgb(0.0f, 0.0f, 1.0f);
+    s.materials.push_back(red);
+    s.materials.push_back(blue);
+    // The pane at z = -3 turned 60 degrees about y: normal (sin 60, 0, cos 60).
+    const float c = 0.5f, sn = std::sqrt(3.0f) / 2;
+    const Vec3 n(sn, 0, c), along(c, 0, -sn);
+    s.meshes.push_back(makeQuad("pane", Vec3(0, 0, -3) - along * 1.0f - Vec3(0, 1, 0), along * 2.0f, {0, 2, 0}, 0));
+    // Behind the pane (along -z), facing the camera; in the mirror direction of -z about n, facing back.
+    s.meshes.push_back(makeQuad("red", {-3, -3, -8}, {6, 0, 0}, {0, 6, 0}, 1));
+    const Vec3 mirrored = reflect(Vec3(0, 0, 1), n);  // the reflected ray's direction
+    const Frame f(-mirrored);
+    const Vec3 centre = Vec3(0, 0, -3) + mirrored * 5.0f;
+    s.meshes.push_back(makeQuad("blue", centre - f.s * 3.0f - f.t * 3.0f, f.s * 6.0f, f.t * 6.0f, 2));
+    // Emitters emit from their front faces: toward the pane.
+    ASSERT_GT(dot(s.meshes[1].geometricNormal(0), Vec3(0, 0, 1)), 0.0f);
+    ASSERT_LT(dot(s.meshes[2].geometricNormal(0), mirrored), 0.0f);
+    s.camera = Camera::lookAt({0, 0, 0}, {0, 0, -3}, {0, 1, 0}, 0.1f);
+    s.finalize();
+    s.validate();
+    const int size = 16;
+    // The closed form per pixel, at its centre ray's angle.
+    double expectT = 0, expectR = 0;
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            const Ray ray = s.camera.generateRay(x + 0.5f, y + 0.5f, size, size, {0.5f, 0.5f});
+            const double R = fresnelDielectric(std::abs(dot(ray.d, n)), 1.5f), T = 1 - R;
+            const double slab = R + T * T * R / (1 - R * R);
+            expectR += slab / (size * size);
+            expectT += (1 - slab) / (size * size);
+        }
+    auto channelMean = [&](const Image& img, int ch) {
+        double sum = 0;
+        for (const Rgb& p : img.pixels) sum += p[ch];
+        return sum / double(img.pixels.size());
+    };
+    ReferenceSettings rs;
+    rs.width = rs.height = size;
+    rs.samplesPerPixel = 256;
+    rs.seed = 3;
+    EmbreeScene rt(s);
+    const Image ref = ReferenceTracer(rt, rs).render().mean;
+    PassRenderer renderer(s, ppbSettings(size, 100, true));
+    const Image ppb = test::renderPpbPasses(renderer, 0, 256);
+    // Each path reflects or transmits: the share is binomial over size^2 x 256 paths.
+    const double n2 = double(size) * size * 256, sigma = std::sqrt(expectR * expectT / n2);
+    std::printf("thin pane: reflectance %.5f (path tracer %.5f, PPB %.5f), transmittance %.5f (%.5f, %.5f), "
+                "binomial sigma %.5f\n",
+                expectR, channelMean(ref, 2), channelMean(ppb, 2), expectT, channelMean(ref, 0), channelMean(ppb, 0),
+                sigma);
+    EXPECT_GT(expectR, 0.15);  // the slab reflects about twice one face's 0.09 here
+    for (const Image* img : {&ref, &ppb}) {
+        EXPECT_NEAR(channelMean(*img, 2), expectR, 5 * sigma + 1e-4) << "reflectance";
+        EXPECT_NEAR(channelMean(*img, 0), expectT, 5 * sigma + 1e-4) << "transmittance";
+        EXPECT_EQ(channelMean(*img, 1), 0.0);
+    }
+}
+
+TEST(EnvironmentRender, ThinWalledSphereReflectsAndTransmitsEverythingUnderAConstantSky) {
+    // A closed thin-walled sphere of tint 1 holding vacuum, under a constant environment L: every
+    // path leaves by reflection or transmission, so every pixel reads L (a white furnace for the
+    // slab's R' + T' = 1 and for the crossings).
+    const float L = 1.7f;
+    Scene s;
+    s.name = "thin-furnace";
+    s.source = "<test>";
+    s.materials.push_back(thinGlass(Rgb(1.0f)));
+    s.meshes.push_back(makeSphere("bubble", Vec3(0.0f), 0.5f, 3, 0));
+    s.environment = EnvironmentLight::constant(Rgb(L));
+    s.camera = Camera::lookAt({0.3f, 0.4f, 2.2f}, {0, 0, 0}, {0, 1, 0}, 0.6f);
+    s.finalize();
+    s.validate();
+    const int size = 16;
+    std::vector<int> classes = pixelClasses(s, size);
+    std::vector<Estimate> ppb = ppbRegions(s, ppbSettings(size, 200, true), 2, 4, classes, {0}, nullptr);
+    std::vector<Estimate> ref = referenceRegions(s, size, 16, classes, {0}, nullptr);
+    EXPECT_NEAR(ppb[0].mean, L, 1e-4);
+    EXPECT_NEAR(ref[0].mean, L, 1e-4);
+}
+
+/// The sunny sky over a floor and a closed thin-walled glass sphere (a bulb) full of smoke, nothing
+/// else: the environment's light reaches the smoke only through the thin wall.
+Scene smokeBulbScene() {
+    Scene s;
+    s.name = "env-smoke-bulb";
+    s.source = "<test>";
+    s.materials.push_back(diffuse("floor", Rgb(0.6f)));
+    s.materials.push_back(thinGlass(Rgb(0.95f, 0.9f, 0.85f)));
+    s.meshes.push_back(makeQuad("floor", {-1.5f, 0, 1.5f}, {3, 0, 0}, {0, 0, -3}, 0));
+    s.meshes.push_back(makeSphere("bulb", {0.0f, 0.45f, 0.0f}, 0.42f, 3, 1));
+    Medium smoke;
+    smoke.name = "smoke";
+    smoke.sigmaS = Rgb(2.5f, 2.0f, 1.5f);
+    smoke.sigmaA = Rgb(0.2f);
+    smoke.g = 0.3f;
+    s.media.push_back(smoke);
+    s.meshes[1].interiorMedium = 0;
+    s.environment = sunnySky();
+    s.camera = Camera::lookAt({0.2f, 1.1f, 2.4f}, {0, 0.35f, 0.0f}, {0, 1, 0}, 0.7f);
+    s.finalize();
+    s.validate();
+    return s;
+}
+
+TEST(EnvironmentRender, ThinWalledSphereHoldingSmokePpbAgreesWithThePathTracer) {
+    const Scene s = smokeBulbScene();
+    ASSERT_EQ(s.meshes[1].interiorMedium, 0);
+    ASSERT_EQ(s.meshes[1].exteriorMedium, kVacuum);
+    comparePpbWithReference(s, "env_smoke_bulb", {0, 1, kMiss}, {"floor", "bulb", "sky"}, 8000, 8, 512, 0.04, 1,
+                            0.04);
 }
 
 }  // namespace

@@ -203,7 +203,8 @@ TEST(GltfLoader, VolumeBecomesAbsorbingMediumInsideClosedMeshesOnly) {
          {"extensions",
           {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
            {"KHR_materials_ior", {{"ior", 1.33}}},
-           {"KHR_materials_volume", {{"attenuationColor", {0.5, 0.25, 1.0}}, {"attenuationDistance", 2.0}}}}}});
+           {"KHR_materials_volume",
+            {{"attenuationColor", {0.5, 0.25, 1.0}}, {"attenuationDistance", 2.0}, {"thicknessFactor", 1.0}}}}}});
     b.addNode({{"name", "block"}, {"mesh", b.addCube("block", mat)}});
     b.addNode({{"name", "sheet"},
                {"mesh", b.addMesh("sheet", {0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, 2}, mat)},
@@ -336,6 +337,35 @@ TEST(GltfMaterialMapping, TransmissionBecomesDielectricWithIorAndTint) {
     EXPECT_FLOAT_EQ(m.material.albedo.b, 0.7f);
     EXPECT_TRUE(m.notes.empty());
     EXPECT_FALSE(m.interior);
+    EXPECT_TRUE(m.material.thin);  // no KHR_materials_volume: thin-walled, as glTF says
+}
+
+TEST(GltfMaterialMapping, ThinWalledUnlessAVolumeHasThickness) {
+    GltfMaterialInput in = input("bulb");
+    in.transmission = 1.0f;
+    in.roughness = 0.0f;
+    in.hasVolume = true;
+    in.attenuationDistance = 2.0f;
+    in.attenuationColor = Rgb(0.5f);
+    in.thickness = 0.0f;  // glTF: a thicknessFactor of 0 is thin-walled, the volume ignored (noted)
+    GltfMaterialMapping thin = mapGltfMaterial(in);
+    EXPECT_TRUE(thin.material.thin);
+    EXPECT_FALSE(thin.interior);
+    ASSERT_EQ(thin.notes.size(), 1u);
+    EXPECT_EQ(thin.notes[0].kind, "thin-walled volume");
+    in.thickness = 0.2f;
+    GltfMaterialMapping solid = mapGltfMaterial(in);
+    EXPECT_FALSE(solid.material.thin);
+    EXPECT_TRUE(solid.interior);
+    EXPECT_TRUE(solid.notes.empty());
+    // Rough and thin-walled: rough glass bounding a solid (a rough thin sheet is not modelled), noted.
+    in.hasVolume = false;
+    in.roughness = 0.4f;
+    GltfMaterialMapping rough = mapGltfMaterial(in);
+    EXPECT_FALSE(rough.material.thin);
+    EXPECT_TRUE(rough.material.isGlossy());
+    ASSERT_EQ(rough.notes.size(), 1u);
+    EXPECT_EQ(rough.notes[0].kind, "rough thin-walled");
 }
 
 TEST(GltfMaterialMapping, MetalsBecomeSmoothOrGgxConductors) {
@@ -362,6 +392,8 @@ TEST(GltfMaterialMapping, RoughTransmissionIsGgxGlass) {
     GltfMaterialInput in = input("frosted");
     in.transmission = 1.0f;
     in.roughness = 0.4f;
+    in.hasVolume = true;
+    in.thickness = 1.0f;
     GltfMaterialMapping m = mapGltfMaterial(in);
     EXPECT_EQ(m.material.type, MaterialType::Dielectric);
     EXPECT_TRUE(m.material.isGlossy());
@@ -427,6 +459,7 @@ TEST(GltfMaterialMapping, ApproximationsAreNotedByKind) {
 TEST(GltfMaterialMapping, PartialTransmissionIsAMixWithTheDiffuseBase) {
     GltfMaterialInput in = input("frosted");
     in.metallic = 0.0f;
+    in.roughness = 0.0f;
     in.transmission = 0.3f;
     GltfMaterialMapping m = mapGltfMaterial(in);
     EXPECT_TRUE(m.notes.empty());

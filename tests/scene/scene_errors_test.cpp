@@ -48,6 +48,20 @@ TEST(SceneErrors, ValidBaseSceneLoads) {
     EXPECT_EQ(errorOf([] { loadSceneFile(writeTestFile("valid.json", validScene().dump())); }), "");
 }
 
+TEST(SceneErrors, ThinNeedsASmoothDielectric) {
+    json j = validScene();
+    j["materials"][1]["thin"] = true;
+    EXPECT_EQ(errorOf([&] { loadSceneFile(writeTestFile("thin.json", j.dump())); }), "");
+    j["materials"][0]["thin"] = true;
+    expectError("thin-diffuse.json", j.dump(), "/materials/0/thin", "thin applies to dielectric materials only");
+    j = validScene();
+    j["materials"][1]["thin"] = true;
+    j["materials"][1]["roughness"] = 0.3;
+    expectError("thin-rough.json", j.dump(), "/materials/1/thin", "a thin dielectric must be smooth");
+    j["materials"][1]["thin"] = "yes";
+    expectError("thin-type.json", j.dump(), "/materials/1/thin", "expected");
+}
+
 TEST(SceneErrors, JsonSyntax) {
     expectError("syntax.json", "{\n  \"materials\": [\n    {\"name\": \"a\",}\n  ]\n}", "line 3, column",
                 "syntax error");
@@ -64,7 +78,7 @@ TEST(SceneErrors, UnknownKeys) {
     j["materials"][0]["albdo"] = 0.5;
     expectError("unknown-material-key.json", j.dump(), "/materials/0/albdo",
                 "expected one of: albedo, albedo_texture, emission, emission_texture, ior, metallic, name, normal_scale, "
-                "normal_texture, roughness, roughness_texture, texture_scale, transmission, transmission_texture, type");
+                "normal_texture, roughness, roughness_texture, texture_scale, thin, transmission, transmission_texture, type");
     j = validScene();
     j["shapes"][1]["radios"] = 1;
     expectError("unknown-shape-key.json", j.dump(), "/shapes/1/radios", "unknown key");
