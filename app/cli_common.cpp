@@ -158,6 +158,7 @@ const std::pair<const char*, const char*> kOptionKeys[] = {
     {"--simd", "simd"},
     {"--direct-light", "direct_light"},
     {"--surface-boundary", "surface_boundary"},
+    {"--equiangular", "equiangular"},
     {"--max-path-length", "max_path_length"},
     {"--region", "region"}};
 
@@ -194,6 +195,9 @@ void addDirectLightOption(CLI::App* cmd, CommonOptions& o) {
     addOnOffOption(cmd, "--surface-boundary", o.settings.surfaceBoundary,
                    "on|off: divide the surface photon kernel by the part of its disc that lies on the "
                    "surface, so edges and corners are not darkened; off = the plain kernel (docs/algorithm.md)");
+    addOnOffOption(cmd, "--equiangular", o.settings.equiangular,
+                   "on|off: single scattering from point and spot lights along camera rays in media by "
+                   "equiangular sampling; off = those lights' first photon beams (docs/algorithm.md)");
 }
 
 void addPathLengthOption(CLI::App* cmd, CommonOptions& o) {

@@ -142,6 +142,8 @@ RenderRecord readRecord(const Checkpoint& c, const std::string& where) {
         if (!j.at("settings").contains("direct_light")) r.settings.directLight = false;
         // ... and from before --surface-boundary with the plain kernel.
         if (!j.at("settings").contains("surface_boundary")) r.settings.surfaceBoundary = false;
+        // ... and from before --equiangular with beams alone.
+        if (!j.at("settings").contains("equiangular")) r.settings.equiangular = false;
         r.output = j.at("output").get<std::string>();
         r.exposure = j.at("exposure").get<float>();
         r.aov = j.at("aov").get<bool>();

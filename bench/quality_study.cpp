@@ -27,6 +27,7 @@ RenderSettings withLegacyDefaults(RenderSettings s, const Scene& scene) {
     s.photonAngle = 0;
     s.directLight = false;
     s.surfaceBoundary = false;
+    s.equiangular = false;
     return s;
 }
 
@@ -76,15 +77,19 @@ struct Variant {
 
 /// The rows of one scene: equal work compares radius choices at `passes`; equal time the legacy
 /// defaults with today's (and, given `passes`, the radii planned for it).
-std::vector<Variant> variantsFor(const Scene& scene, const RenderSettings& base, uint64_t passes, bool equalTime) {
+std::vector<Variant> variantsFor(const Scene& scene, const RenderSettings& base, uint64_t passes, bool equalTime,
+                                 bool legacy) {
     std::vector<Variant> variants;
-    variants.push_back({"LEGACY", withLegacyDefaults(base, scene)});
+    if (legacy) variants.push_back({"LEGACY", withLegacyDefaults(base, scene)});
     RenderSettings open = base;
     open.plannedPaths = RadiusDefaults::kOpenEndedPathsPerPixel * uint64_t(base.width) * uint64_t(base.height);
     if (equalTime) {
         // What `tyndall render --time S` resolves (the open-ended plan), then, given a pass
         // count, the same planned for it (`--planned-paths`).
         variants.push_back({"DEFAULTS (--TIME)", open});
+        RenderSettings switched = open;
+        switched.equiangular = !open.equiangular;
+        variants.push_back({switched.equiangular ? "EQUIANGULAR ON" : "EQUIANGULAR OFF", switched});
         if (passes > 0) {
             RenderSettings planned = base;
             planned.plannedPaths = passes * uint64_t(base.photonsPerPass);
@@ -153,10 +158,10 @@ Curve studyRow(const Scene& scene, const Variant& v, const Reference& ref, uint6
     PixelFootprint fp = measurePixelFootprint(renderer.rayTracer(), scene.camera, r.width, r.height);
     double rEnd = renderer.radii().beamRadiusOf(runs.back().passesDone * r.photonsPerPass);
     std::printf("  %-16s %-18s %7.0f %8.1f %8.2f%% %8.2f%% %+8.2f%% %8.2f   (radius %.4g, surface %.4g, offset %llu, "
-                "photon angle %.3g, direct light %s, boundary %s)\n",
+                "photon angle %.3g, direct light %s, boundary %s, equiangular %s)\n",
                 scene.name.c_str(), v.label.c_str(), passesDone, cpu, 100 * e.relRmse, 100 * e.relRmse99,
                 100 * e.relBias, rEnd / fp.beam(1.0), r.radius, r.surfaceRadius, (unsigned long long)r.radiusOffset,
-                r.photonAngle, onOffText(r.directLight), onOffText(r.surfaceBoundary));
+                r.photonAngle, onOffText(r.directLight), onOffText(r.surfaceBoundary), onOffText(r.equiangular));
     std::fflush(stdout);
     return curve;
 }
@@ -210,6 +215,8 @@ void runQualityStudy(const RenderSettings& settings, const QualityStudyOptions& 
     std::vector<PlotPanel> panels;
     for (const auto& [entry, fromLibrary] : sceneEntries(o)) {
         auto [file, passes] = fileAndPasses(entry, equalTime);
+        const std::string stem = std::filesystem::path(file).stem().string();
+        if (!o.only.empty() && std::find(o.only.begin(), o.only.end(), stem) == o.only.end()) continue;
         SceneFile sf = loadSceneFile(file, {});
         if (fromLibrary) {
             sf.scene = withoutSpecularSurfaces(sf.scene);
@@ -221,7 +228,7 @@ void runQualityStudy(const RenderSettings& settings, const QualityStudyOptions& 
         base.timeBudget = 0;
         Reference ref = loadOrRenderReference(scene, scene.name, base, o.referenceDir, o.referenceSpp);
         std::vector<Curve> curves;
-        for (const Variant& v : variantsFor(scene, base, passes, equalTime))
+        for (const Variant& v : variantsFor(scene, base, passes, equalTime, o.legacy))
             curves.push_back(studyRow(scene, v, ref, passes, o));
         panels.push_back({scene.name, std::move(curves)});
     }

@@ -17,8 +17,10 @@
 // with T threads busy the two differ by about T (docs/performance.md). The image is still a pure
 // function of the pass count: the budget only decides where the render stops, so a row is
 // reproduced by rendering its printed pass count. The settings: legacy, today's defaults as
-// `tyndall render --time` resolves them (the open-ended plan) and, given FILE:PASSES, the automatic
-// radii planned for that pass count. The plot: error against CPU seconds.
+// `tyndall render --time` resolves them (the open-ended plan), the same with --equiangular switched
+// (single scattering from point and spot lights by equiangular sampling or by their first beams:
+// cpu/equiangular.h) and, given FILE:PASSES, the automatic radii planned for that pass count. The
+// plot: error against CPU seconds.
 // With a library folder its scenes are added, made valid for the path tracer (withoutSpecularSurfaces).
 #include <string>
 #include <vector>
@@ -44,10 +46,15 @@ struct QualityStudyOptions {
     std::string library;
     /// A folder for each row's final image per seed (<scene>-<row>-seed<N>.exr); "" = none.
     std::string imageDir;
+    /// Only the scenes whose file name without its extension is one of these; empty = all.
+    std::vector<std::string> only;
+    /// The LEGACY row (false leaves it out, for studies of today's settings alone).
+    bool legacy = true;
 };
 
 /// The LEGACY row's settings: `s` with the scene-relative radii (withSceneRelativeRadii), no photon
-/// cone, surfaces lit by photons alone (no shadow rays) and the plain surface kernel.
+/// cone, surfaces lit by photons alone (no shadow rays), the plain surface kernel and the media lit
+/// by beams alone (no equiangular sampling).
 RenderSettings withLegacyDefaults(RenderSettings s, const Scene& scene);
 
 /// Runs the study; `base` carries size, seed, threads, photons and alpha. Prints a table.

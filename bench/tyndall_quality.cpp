@@ -53,6 +53,10 @@ void addOptions(CLI::App& cli, Options& o) {
                    "given (default: none)");
     cli.add_option("--images", o.study.imageDir,
                    "Write every row's final image per seed, <dir>/<scene>-<row>-seed<N>.exr (default: none)");
+    cli.add_option("--only", o.study.only,
+                   "Only the scenes (of --scene and --library) whose file name without .json is this, repeatable "
+                   "(default: all)");
+    cli.add_flag("!--no-legacy", o.study.legacy, "Leave out the LEGACY row (default: with it)");
     cli.add_option("--plot", o.study.plot,
                    "Write PREFIX.csv and the gnuplot script PREFIX.gp, and run gnuplot for PREFIX.png: error against "
                    "passes, or against CPU seconds with --cpu-seconds (default: none)");

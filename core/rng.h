@@ -15,6 +15,7 @@ enum class StreamPurpose : uint32_t {
     Transmittance = 5,
     DirectLight = 6,  ///< a camera path's shadow rays (--direct-light): drawn apart from its own stream
     PixelJitterRotation = 7,  ///< a pixel's offset of the film jitter's sequence (core/pixel_jitter.h)
+    Equiangular = 8,  ///< a camera path's equiangular single scattering (cpu/equiangular.h)
     Test = 99,
 };
 

@@ -82,7 +82,8 @@ nlohmann::json RenderSettings::toJson() const {
             {"memory", memoryMiB},
             {"simd", onOffText(simd)},
             {"direct_light", onOffText(directLight)},
-            {"surface_boundary", onOffText(surfaceBoundary)}};
+            {"surface_boundary", onOffText(surfaceBoundary)},
+            {"equiangular", onOffText(equiangular)}};
     if (!region.whole()) j["region"] = {region.x, region.y, region.width, region.height};
     return j;
 }
@@ -150,7 +151,7 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
     static const char* kKeys[] = {"width", "height", "passes", "time", "photons", "alpha", "radius",
                                   "surface_radius", "radius_offset", "planned_paths", "photon_angle", "seed", "threads",
                                   "max_photon_bounces", "max_camera_bounces", "free_flights", "gpu", "memory", "simd",
-                                  "direct_light", "surface_boundary", "max_path_length", "region"};
+                                  "direct_light", "surface_boundary", "max_path_length", "region", "equiangular"};
     for (auto it = j.begin(); it != j.end(); ++it) {
         bool known = false;
         for (const char* k : kKeys) known |= it.key() == k;
@@ -189,6 +190,7 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
     read(j, "simd", s.simd, where);
     read(j, "direct_light", s.directLight, where);
     read(j, "surface_boundary", s.surfaceBoundary, where);
+    read(j, "equiangular", s.equiangular, where);
     return s;
 }
 

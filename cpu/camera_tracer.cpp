@@ -50,6 +50,10 @@ CameraTracer::CameraTracer(const EmbreeScene& rt, const RenderSettings& settings
     : m_rt(rt), m_scene(rt.scene()), m_settings(settings) {
     for (const Medium& m : m_scene.media) m_anyHeterogeneous |= !m.homogeneous();
     if (settings.surfaceBoundary) m_boundary = std::make_unique<SurfaceBoundary>(m_scene, m_rt);
+    if (settings.equiangular && !m_scene.media.empty()) {
+        m_equiangular = std::make_unique<EquiangularScattering>(m_rt);
+        if (!m_equiangular->any()) m_equiangular.reset();
+    }
     if (settings.directLight) {
         lightsChanged();
         // Photons from glossy and plastic surfaces (kPhotonDirect ones among them, for their
@@ -240,8 +244,21 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                     layers->surface.at(x, y) = Lsurface;
                 }
             };
-            // The primary segment's medium emission (the splatters add its beams).
+            // The primary segment's medium emission (the splatters add its beams) and, with
+            // --equiangular on, its single scattering from point and spot lights (a light path of
+            // two segments), once per pass like the emission.
             if (emission) L = Lmedia = ph.emitted;
+            const int maxLength = m_settings.maxPathLength;
+            Rng equiangularRng = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::Equiangular);
+            if (m_equiangular && emission && (maxLength == 0 || maxLength >= 2)) {
+                const PrimaryRay& pr = primary.segments.rays[pixel];
+                if (pr.medium != kVacuum && pr.tMax > 0) {
+                    const float* ff = nff > 0 ? &primary.segments.freeFlights[pixel * size_t(nff)] : nullptr;
+                    const Rgb single = m_equiangular->estimate(pr.medium, pr.origin, pr.dir, pr.tMax, ff, nff, equiangularRng);
+                    L += single;
+                    Lmedia += single;
+                }
+            }
             if (!ph.surface) {
                 // Straight from the camera to the environment: its visible background.
                 if (environment && environment->visible() && !throughput.isBlack()) {
@@ -269,7 +286,6 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
             // reached `hit` (1 = primary; Interface crossings start none). A photon estimate here
             // joins a photon path of s segments into a light path of segment + s, a shadow ray
             // makes segment + 1; those beyond the cap are left out.
-            const int maxLength = m_settings.maxPathLength;
             int segment = 1;
             auto photonWithinCap = [&](const SurfacePhoton& p) {
                 return maxLength == 0 || segment + int(p.segments) <= maxLength;
@@ -415,6 +431,8 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                         tls.stats.beamQueries++;
                         tls.stats.beamHits += tls.hits.size();
                         emitted += gatherBeams(m_scene, photons, tls.hits, medium, seg.o, seg.d, ff, nff, maxBeamSegment);
+                        if (m_equiangular && emission)
+                            emitted += m_equiangular->estimate(medium, seg.o, seg.d, seg.tMax, ff, nff, equiangularRng);
                     }
                     Rgb media = throughput * emitted;
                     L += media;

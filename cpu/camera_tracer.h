@@ -15,7 +15,10 @@
 //                                           divided by its kernel's coverage, cpu/surface_boundary.h)
 //                                           and, with --direct-light on,
 //                                           a shadow ray to a light (cpu/direct_light.h) for the
-//                                           light that arrives there without scattering; a path
+//                                           light that arrives there without scattering; with
+//                                           --equiangular on, every segment in a medium (the
+//                                           primary one too) adds the single scattering of point
+//                                           and spot lights (cpu/equiangular.h); a path
 //                                           that leaves the scene adds the environment's radiance
 //                                           (Scene::environment; one straight from the camera only
 //                                           when it is visible)
@@ -25,7 +28,8 @@
 // Deterministic: pixel p of pass i takes its film jitter from pixelJitter(seed, i, p) (a
 // low-discrepancy sequence over the passes, core/pixel_jitter.h), draws its lens sample and its
 // primary stored distances from Rng::forKey(seed, i, p, PixelJitter), the rest of its path from (seed, i, p, CameraPath) and
-// its shadow ray from (seed, i, p, DirectLight), so the split changes no bit of the image.
+// its shadow ray from (seed, i, p, DirectLight) and its equiangular samples from (seed, i, p,
+// Equiangular), so the split changes no bit of the image.
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -37,6 +41,7 @@
 #include "cpu/beam_bvh.h"
 #include "cpu/direct_light.h"
 #include "cpu/embree_scene.h"
+#include "cpu/equiangular.h"
 #include "cpu/surface_boundary.h"
 #include "cpu/surface_photon_grid.h"
 
@@ -143,6 +148,9 @@ private:
     std::unique_ptr<DirectLight> m_direct;
     /// --surface-boundary on: the surface kernel's coverage at edges (cpu/surface_boundary.h).
     std::unique_ptr<SurfaceBoundary> m_boundary;
+    /// --equiangular on (and a point or spot light): single scattering along every camera segment
+    /// in a medium (cpu/equiangular.h); null otherwise.
+    std::unique_ptr<EquiangularScattering> m_equiangular;
     bool m_skipDirectPhotons = false;  ///< the diffuse gather must test kPhotonDirect (glossy photons)
     std::shared_ptr<HitPool> m_hitPool = std::make_shared<HitPool>();
     std::shared_ptr<PrimarySegmentPool> m_segmentPool = std::make_shared<PrimarySegmentPool>();

@@ -11,15 +11,15 @@ namespace {
 constexpr int kMaxInterfaceCrossings = 256;
 }  // namespace
 
-Rgb DirectLight::shadowTransmittance(const Vec3& origin, const DirectLightSample& light, MediumId medium,
-                                     Rng& rng) const {
-    const Scene& scene = m_rt.scene();
+Rgb shadowTransmittance(const EmbreeScene& rt, const Vec3& origin, const DirectLightSample& light, MediumId medium,
+                        Rng& rng) {
+    const Scene& scene = rt.scene();
     const Vec3 d = light.wi;
     const bool finite = std::isfinite(light.distance);
     // Stop just short of an emissive triangle so the shadow ray does not hit the light itself; where
     // float rounding of an oblique hit still finds that triangle first (it did at cos 0.6, 2.4 units
     // away), reaching it is arriving.
-    const Vec3 target = light.delta ? light.point : m_rt.offsetOrigin(light.point, light.normal, -d);
+    const Vec3 target = light.delta ? light.point : rt.offsetOrigin(light.point, light.normal, -d);
     const EmissiveTriangle* emitter =
         !light.delta && light.source >= int(scene.lights.size()) &&
                 light.source < int(scene.lights.size() + scene.emitters.size())
@@ -30,11 +30,11 @@ Rgb DirectLight::shadowTransmittance(const Vec3& origin, const DirectLightSample
     for (int crossing = 0; crossing <= kMaxInterfaceCrossings; ++crossing) {
         if (!(ray.tMax > 0)) return tr;
         SurfaceHit hit;
-        bool surface = m_rt.intersect(ray, &hit);
+        bool surface = rt.intersect(ray, &hit);
         float tEnd = surface ? hit.t : ray.tMax;
         if (medium != kVacuum) {
             Ray seg;
-            if (m_rt.mediumSegment(ray.o, d, tEnd, &seg)) {
+            if (rt.mediumSegment(ray.o, d, tEnd, &seg)) {
                 tr *= estimateTransmittance(scene.media[medium], seg, seg.tMax, rng);
                 if (tr.isBlack()) return tr;
             }
@@ -44,7 +44,7 @@ Rgb DirectLight::shadowTransmittance(const Vec3& origin, const DirectLightSample
         const TriangleMesh& mesh = scene.meshes[hit.mesh];
         if (scene.materials[mesh.material].type != MaterialType::Interface) return Rgb(0.0f);
         medium = dot(d, hit.ng) < 0 ? mesh.interiorMedium : mesh.exteriorMedium;
-        ray.o = m_rt.offsetOrigin(hit.p, hit.ng, d);
+        ray.o = rt.offsetOrigin(hit.p, hit.ng, d);
         ray.tMax = finite ? dot(target - ray.o, d) : kInfinity;
     }
     return Rgb(0.0f);

@@ -31,15 +31,23 @@ inline float diffuseCosine(const HitSide& side, const Vec3& wi) {
     return dot(wi, side.nf) > 0 ? std::max(0.0f, dot(wi, side.nsf)) : 0.0f;
 }
 
+/// Light arriving at `origin` along `light`'s direction, starting in `medium`: the product of the
+/// transmittances of the medium segments on the way (analytic in homogeneous media, ratio tracking
+/// in grid media: draws from `rng` only there), or 0 when a surface other than an Interface blocks
+/// it. Stops just short of an emissive triangle. DirectLight's shadow rays and the equiangular
+/// estimator's (cpu/equiangular.h).
+Rgb shadowTransmittance(const EmbreeScene& rt, const Vec3& origin, const DirectLightSample& light, MediumId medium,
+                        Rng& rng);
+
 class DirectLight {
 public:
     /// Keeps references to both: they must outlive this.
     DirectLight(const EmbreeScene& rt, const LightSampler& lights) : m_rt(rt), m_lights(lights) {}
 
-    /// Light arriving at `origin` along the sample's direction, starting in `medium`: the product of
-    /// the transmittances of the medium segments on the way, or 0 when a surface other than an
-    /// Interface blocks it. Stops just short of an emissive triangle. Draws only in grid media.
-    Rgb shadowTransmittance(const Vec3& origin, const DirectLightSample& light, MediumId medium, Rng& rng) const;
+    /// tyndall::shadowTransmittance in this scene.
+    Rgb shadowTransmittance(const Vec3& origin, const DirectLightSample& light, MediumId medium, Rng& rng) const {
+        return tyndall::shadowTransmittance(m_rt, origin, light, medium, rng);
+    }
 
     /// One-sample estimate of the cosine-weighted light arriving at the diffuse point `hit` seen
     /// from `side` (the path's side; `medium` the medium there):

@@ -9,6 +9,7 @@
 #include "core/phase.h"
 #include "core/sampling.h"
 #include "cpu/beam_cone.h"
+#include "cpu/equiangular.h"
 #include "cpu/free_flight.h"
 #include "cpu/radius_defaults.h"
 #include "cpu/surface_scattering.h"
@@ -153,6 +154,10 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
     // A photon from a medium is neither: no shadow ray carries a medium's light.
     bool deltaPath = !fromMedium && e.light >= 0;
     bool direct = !fromMedium;
+    // --equiangular on: the camera paths estimate the single scattering of point and spot lights
+    // (cpu/equiangular.h), so such a path's beams are not stored while it is still direct.
+    const bool equiangularLight =
+        m_settings.equiangular && !fromMedium && e.light >= 0 && EquiangularScattering::handles(m_scene.lights[e.light]);
     // Path distance from the light at o (the photon cone, cpu/beam_cone.h).
     // Parallel light (directional, the environment) has no cone: it starts infinitely far away.
     double travelled = fromMedium || e.environment                                ? kInfinity
@@ -175,35 +180,37 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
 
         float t0, t1;
         if (medium != kVacuum && m_rt.globalMediumInterval(Ray{o, d, 0.0f, tHit}, &t0, &t1) && t1 > t0) {
-            // The beam is written in place: a stack copy pushed back stalls on store forwarding.
             const Medium& med = m_scene.media[medium];
             const Ray seg{o + d * t0, d, 0.0f, t1 - t0};
-            PhotonBeam& beam = out.beams.emplace_back();
-            beam.origin = seg.o;
-            beam.tMax = seg.tMax;
-            beam.dir = seg.d;
-            beam.radius = beamRadius;
-            beam.power = power;
-            beam.medium = medium;
-            if (const int n = out.freeFlightsPerBeam; n > 0) {
-                // Homogeneous beams in a scene with grid media keep analytic transmittance.
-                size_t at = out.freeFlights.size();
-                out.freeFlights.resize(at + size_t(n), kInfinity);
-                if (!med.homogeneous()) sampleCollisionDistances(med, seg, seg.tMax, rng, n, &out.freeFlights[at]);
-            }
-            if (const double s0 = travelled + double(t0); s0 < m_radii.coneReach) {
-                // Within the photon cone: stored again as its pieces.
-                const PhotonBeam whole = beam;
-                out.beams.pop_back();
-                const int n = out.freeFlightsPerBeam;
-                float stored[64];
-                if (n > 0) {
-                    std::copy(out.freeFlights.end() - n, out.freeFlights.end(), stored);
-                    out.freeFlights.resize(out.freeFlights.size() - size_t(n));
+            if (!(direct && equiangularLight)) {
+                // The beam is written in place: a stack copy pushed back stalls on store forwarding.
+                PhotonBeam& beam = out.beams.emplace_back();
+                beam.origin = seg.o;
+                beam.tMax = seg.tMax;
+                beam.dir = seg.d;
+                beam.radius = beamRadius;
+                beam.power = power;
+                beam.medium = medium;
+                if (const int n = out.freeFlightsPerBeam; n > 0) {
+                    // Homogeneous beams in a scene with grid media keep analytic transmittance.
+                    size_t at = out.freeFlights.size();
+                    out.freeFlights.resize(at + size_t(n), kInfinity);
+                    if (!med.homogeneous()) sampleCollisionDistances(med, seg, seg.tMax, rng, n, &out.freeFlights[at]);
                 }
-                appendConeBeam(whole, s0, m_radii.coneReach, med, stored, n, out.beams, out.freeFlights);
+                if (const double s0 = travelled + double(t0); s0 < m_radii.coneReach) {
+                    // Within the photon cone: stored again as its pieces.
+                    const PhotonBeam whole = beam;
+                    out.beams.pop_back();
+                    const int n = out.freeFlightsPerBeam;
+                    float stored[64];
+                    if (n > 0) {
+                        std::copy(out.freeFlights.end() - n, out.freeFlights.end(), stored);
+                        out.freeFlights.resize(out.freeFlights.size() - size_t(n));
+                    }
+                    appendConeBeam(whole, s0, m_radii.coneReach, med, stored, n, out.beams, out.freeFlights);
+                }
+                if (m_maxSegments >= 0) out.beamSegments.resize(out.beams.size(), uint16_t(std::min(segment, 65535)));
             }
-            if (m_maxSegments >= 0) out.beamSegments.resize(out.beams.size(), uint16_t(std::min(segment, 65535)));
             FreeFlight ff = sampleFreeFlight(med, seg, seg.tMax, rng);
             power *= ff.weight;
             if (ff.scattered) {

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "core/equiangular.h"
 #include "core/error.h"
 #include "core/phase.h"
 #include "core/sampling.h"
@@ -255,14 +256,9 @@ Rgb ReferenceTracer::pointLightInScattering(const Ray& seg, MediumId medium, Rng
     if (!isPointLike(int(source))) return Rgb(0.0f);
     const Light& light = m_scene.lights[source];
     const Medium& med = m_scene.media[medium];
-    float tc = dot(light.position - seg.o, seg.d);  // closest approach of the line to the light
-    float h = length(seg.o + seg.d * tc - light.position);
-    if (!(h > 1e-7f)) return Rgb(0.0f);  // the line runs through the light: a set of measure zero
-    float thetaA = std::atan2(-tc, h), thetaB = std::atan2(seg.tMax - tc, h);
-    if (!(thetaB > thetaA)) return Rgb(0.0f);
-    float t = tc + h * std::tan(thetaA + uDistance * (thetaB - thetaA));
-    t = clampValue(t, 0.0f, seg.tMax);
-    float pdfT = h / ((thetaB - thetaA) * (h * h + (t - tc) * (t - tc)));
+    const EquiangularSample es = sampleEquiangular(seg.o, seg.d, 0.0f, seg.tMax, light.position, uDistance);
+    if (!(es.pdf > 0)) return Rgb(0.0f);
+    const float t = es.t, pdfT = es.pdf;
     Vec3 x = seg.at(t);
 
     DirectLightSample ls;

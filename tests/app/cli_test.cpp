@@ -113,7 +113,7 @@ TEST(Cli, HelpListsEveryOptionWithDefaults) {
     const std::vector<std::string> ppb = {"--passes", "--time",           "--photons",       "--alpha",
                                           "--radius", "--surface-radius", "--radius-offset", "--planned-paths",
                                           "--photon-angle", "--free-flights", "--memory", "--simd", "--direct-light",
-                                          "--surface-boundary"};
+                                          "--surface-boundary", "--equiangular"};
     auto join = [](std::initializer_list<std::vector<std::string>> parts) {
         std::set<std::string> all = {"--help", "--help-all"};
         for (const auto& p : parts) all.insert(p.begin(), p.end());
@@ -125,7 +125,7 @@ TEST(Cli, HelpListsEveryOptionWithDefaults) {
                           "--reference", "--convergence", "--max-path-length", "--region"}})},
         {"reference", join({scene, output, {"--spp", "--max-depth", "--max-path-length", "--no-nee"}})},
         {"bench", join({scene, {"--passes", "--photons", "--no-hybrid", "--radius", "--radius-offset", "--simd",
-                            "--direct-light", "--surface-boundary"}})},
+                            "--direct-light", "--surface-boundary", "--equiangular"}})},
         {"compare", join({scene, output, ppb, {"--gpu", "--density", "--twin"}})}};
     for (const auto& [command, names] : expected) {
         CliRun r = runTyndall(command + " --help");
@@ -437,6 +437,27 @@ TEST(Cli, AutomaticRadiiAreRecordedAsPlainSettingsThatReproduceTheImage) {
     ASSERT_EQ(b.exitCode, 0) << b.output;
     EXPECT_TRUE(tyndall::test::identicalImages(tyndall::readImage(dir + "/cli_auto.exr"),
                                                tyndall::readImage(dir + "/cli_auto_replay.exr")));
+}
+
+TEST(Cli, EquiangularIsRecordedAndReplays) {
+    // --equiangular goes into the header; the recorded settings reproduce the image bit for bit,
+    // and the two modes differ (the default scene's fog is lit by a spot light).
+    const std::string dir = tyndall::test::outputDir();
+    for (const std::string mode : {"on", "off"}) {
+        const std::string out = dir + "/cli_equiangular_" + mode + ".exr";
+        CliRun r = runTyndall("render --photons 300 --size 40x24 --seed 5 --gpu off --passes 3 --equiangular " + mode +
+                              " -o " + out);
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        nlohmann::json j = recordedSettings(out);
+        EXPECT_EQ(j.at("equiangular"), mode);
+        tyndall::RenderSettings s = tyndall::RenderSettings::fromJson(j, out);
+        tyndall::Scene scene = tyndall::makeDefaultScene();
+        scene.validate();
+        tyndall::PassRenderer renderer(scene, s);
+        EXPECT_TRUE(tyndall::test::identicalImages(tyndall::readImage(out), renderPasses(renderer, 0, s.passes))) << mode;
+    }
+    EXPECT_FALSE(tyndall::test::identicalImages(tyndall::readImage(dir + "/cli_equiangular_on.exr"),
+                                                tyndall::readImage(dir + "/cli_equiangular_off.exr")));
 }
 
 TEST(Cli, DirectLightIsRecordedAndReplays) {

@@ -16,31 +16,38 @@ TEST(Settings, TypedSwitchesRoundTripThroughTheirText) {
     s.simd = false;
     s.directLight = true;
     s.surfaceBoundary = false;
+    s.equiangular = true;
     nlohmann::json j = s.toJson();
     EXPECT_EQ(j.at("gpu"), "off");
     EXPECT_EQ(j.at("simd"), "off");
     EXPECT_EQ(j.at("direct_light"), "on");
     EXPECT_EQ(j.at("surface_boundary"), "off");
+    EXPECT_EQ(j.at("equiangular"), "on");
     RenderSettings back = RenderSettings::fromJson(j, "test");
     EXPECT_EQ(back.gpu, GpuMode::Off);
     EXPECT_FALSE(back.simd);
     EXPECT_TRUE(back.directLight);
     EXPECT_FALSE(back.surfaceBoundary);
+    EXPECT_TRUE(back.equiangular);
     for (GpuMode m : {GpuMode::Auto, GpuMode::On, GpuMode::Off}) EXPECT_EQ(gpuModeFromText(gpuModeText(m)), m);
 }
 
 TEST(Settings, SwitchesReadOnOffTextAndJsonBooleans) {
     RenderSettings s = RenderSettings::fromJson(
-        nlohmann::json{{"simd", false}, {"direct_light", "off"}, {"surface_boundary", true}, {"gpu", "on"}}, "test");
+        nlohmann::json{{"simd", false}, {"direct_light", "off"}, {"surface_boundary", true}, {"gpu", "on"},
+                       {"equiangular", "on"}},
+        "test");
     EXPECT_FALSE(s.simd);
     EXPECT_FALSE(s.directLight);
     EXPECT_TRUE(s.surfaceBoundary);
     EXPECT_EQ(s.gpu, GpuMode::On);
+    EXPECT_TRUE(s.equiangular);
 }
 
 TEST(Settings, BadTextIsRefusedNamingTheKey) {
     for (const auto& [key, value] : std::vector<std::pair<std::string, nlohmann::json>>{
-             {"gpu", "yes"}, {"gpu", true}, {"simd", "maybe"}, {"direct_light", 1}, {"surface_boundary", "ON"}}) {
+             {"gpu", "yes"}, {"gpu", true}, {"simd", "maybe"}, {"direct_light", 1}, {"surface_boundary", "ON"},
+             {"equiangular", "yes"}}) {
         try {
             RenderSettings::fromJson(nlohmann::json{{key, value}}, "scene.json: /render");
             ADD_FAILURE() << key << " = " << value.dump() << " was accepted";
