@@ -20,6 +20,7 @@ struct ViewCommandOptions {
     float density = -1.0f;
     TwinRegion twin = TwinRegion::Support;
     int previewScale = 4, previewPhotons = 16;
+    uint64_t finalPasses = 0;
 };
 }  // namespace
 
@@ -38,6 +39,10 @@ void addViewCommand(CLI::App& app, int& exitCode) {
         ->check(CLI::ExistingFile);
     cmd->add_option("--stats", o->stats, "Write UI frame times, preview rate and input latencies as JSON on exit");
     cmd->add_option("--save-stem", o->saveStem, "The S key writes STEM-N.exr, .png and .json")->capture_default_str();
+    cmd->add_option("--final-passes", o->finalPasses,
+                    "Passes of the final render (F12: saves the view, renders it to STEM-N-final.exr in the "
+                    "background); also set in the panel (default: the scene's render passes)")
+        ->check(positiveInteger());
     cmd->add_flag("--compare", o->compare,
                   "Show the scene's density-grid media next to their homogeneous twins (as `tyndall compare`)");
     CLI::Option* density =
@@ -81,6 +86,7 @@ void addViewCommand(CLI::App& app, int& exitCode) {
         v.script = o->script;
         v.statsPath = o->stats;
         v.saveStem = o->saveStem;
+        v.finalPasses = o->finalPasses > 0 ? o->finalPasses : c.settings.passes;
         v.compare = o->compare;
         v.preview.scale = o->previewScale;
         v.preview.photonDivisor = o->previewPhotons;

@@ -55,7 +55,7 @@ struct LineReader {
 };
 
 bool validKey(const std::string& k) {
-    static const char* kKeys[] = {"F", "R", "S", "H", "B", "F5", "plus", "minus", "space", "escape"};
+    static const char* kKeys[] = {"F", "R", "S", "H", "B", "F5", "F12", "plus", "minus", "space", "escape"};
     for (const char* key : kKeys)
         if (k == key) return true;
     return k.size() == 1 && k[0] >= '1' && k[0] <= '9';
@@ -89,6 +89,9 @@ std::vector<ScriptEvent> parseViewScript(const std::string& text, const std::str
             if (r.more()) e.timeout = r.number("seconds", 0.001, 1e6);
         } else if (cmd == "wait-reload") {
             e.op = ScriptOp::WaitReload, e.value = std::floor(r.number("reloads", 1, 1e9));
+            if (r.more()) e.timeout = r.number("seconds", 0.001, 1e6);
+        } else if (cmd == "wait-final") {
+            e.op = ScriptOp::WaitFinal, e.value = std::floor(r.number("final renders", 1, 1e9));
             if (r.more()) e.timeout = r.number("seconds", 0.001, 1e6);
         } else if (cmd == "press" || cmd == "release") {
             e.op = cmd == "press" ? ScriptOp::Press : ScriptOp::Release;
@@ -125,7 +128,7 @@ std::vector<ScriptEvent> parseViewScript(const std::string& text, const std::str
         } else if (cmd == "key") {
             e.op = ScriptOp::Key, e.text = r.word("key name");
             if (!validKey(e.text))
-                r.fail("key: expected F, R, S, H, B, F5, 1-9, plus, minus, space or escape, got '" + e.text + "'");
+                r.fail("key: expected F, R, S, H, B, F5, F12, 1-9, plus, minus, space or escape, got '" + e.text + "'");
         } else if (cmd == "exposure") {
             e.op = ScriptOp::Exposure, e.value = r.number("exposure", 1e-6, 1e6);
         } else if (cmd == "save" || cmd == "screenshot") {

@@ -10,13 +10,14 @@
 //                                 system since the start (real input, e.g. xdotool in tests)
 //   wait-reload N [SECONDS]       wait until the scene file has been reloaded (or tried: a bad
 //                                 file counts) N times since the start
+//   wait-final N [SECONDS]        wait until N final renders (F12) have ended (done or failed)
 //   press BUTTON X Y [MODS]       BUTTON: left | right | middle; MODS: shift, ctrl, alt joined by +
 //   move X Y                      the cursor moves (drags when a button is down)
 //   release BUTTON X Y
 //   drag BUTTON X0 Y0 X1 Y1 [STEPS] [MODS]   press, STEPS moves (default 10, one per frame), release
 //   double-click X Y              sets the pivot to the surface under (X, Y)
 //   scroll X Y STEPS              the wheel: STEPS > 0 dollies in
-//   key NAME                      F, 1-9, plus, minus, space, R, S, H, B, F5, escape (as typed)
+//   key NAME                      F, 1-9, plus, minus, space, R, S, H, B, F5, F12, escape (as typed)
 //   exposure VALUE                sets the display exposure
 //   save STEM                     writes STEM.exr, STEM.png and STEM.json (as the S key)
 //   screenshot FILE               the window's pixels as PNG
@@ -27,7 +28,7 @@
 
 namespace tyndall {
 
-enum class ScriptOp { Sleep, WaitFrames, WaitPasses, WaitInput, WaitReload, Press, Move, Release, DoubleClick, Scroll, Key, Exposure, Save,
+enum class ScriptOp { Sleep, WaitFrames, WaitPasses, WaitInput, WaitReload, WaitFinal, Press, Move, Release, DoubleClick, Scroll, Key, Exposure, Save,
                       Screenshot, Quit };
 
 enum ScriptModifier : int { kModShift = 1, kModCtrl = 2, kModAlt = 4 };

@@ -81,6 +81,7 @@ void Viewer::startScene() {
     m_edited = m_o.scene;
     m_settings = m_o.settings;
     m_exposure = m_o.exposure;
+    m_finalPasses = int(std::min<uint64_t>(m_o.finalPasses, 1u << 30));
     initEditUi();
     m_picker = std::make_unique<EmbreeScene>(m_o.scene);
     for (size_t i = 0; i < m_o.cameras.size(); ++i)
@@ -174,6 +175,7 @@ void Viewer::drawFrame(Clock::time_point frameStart) {
 }
 
 void Viewer::closeWindow() {
+    m_final.stop();  // a final render still running writes the passes it has (SIGTERM)
     for (auto& loop : m_loops) loop->stop();
     if (ImGui::GetCurrentContext()) {
         ImGui_ImplOpenGL3_Shutdown();
@@ -206,6 +208,7 @@ int Viewer::run() {
             waitForEvents();
             auto frameStart = Clock::now();
             pollSceneFile();
+            pollFinalRender();
             bool draw = m_redraw > 0;
             bool acted = false;
             if (!m_script.empty() && !stepScript(&acted)) m_quit = true;

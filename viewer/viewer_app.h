@@ -28,6 +28,7 @@ struct ViewerOptions {
     float exposure = 1.0f;
     std::string script;                ///< --script FILE ("" = interactive)
     std::string saveStem = "tyndall-view";  ///< the S key writes STEM-N.{exr,png,json}
+    uint64_t finalPasses = 64;         ///< F12's render of the saved view: STEM-N-final.exr
     bool compare = false;              ///< show `twin` (homogeneous) next to `scene`
     Scene twin;
     PreviewOptions preview;

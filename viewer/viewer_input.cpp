@@ -127,6 +127,8 @@ void Viewer::key(const std::string& name) {
         for (auto& loop : m_loops) loop->restart();
     } else if (name == "F5") {
         reloadScene();
+    } else if (name == "F12") {
+        startFinalRender();
     } else if (name == "S") {
         save(m_o.saveStem + "-" + std::to_string(++m_saves));
     } else if (name == "H") {
@@ -189,12 +191,17 @@ bool Viewer::stepScript(bool* acted) {
                 continue;
             case ScriptOp::WaitInput:
             case ScriptOp::WaitReload:
+            case ScriptOp::WaitFinal:
                 if (m_waitPassesSince == 0) m_waitPassesSince = t;
-                if ((e.op == ScriptOp::WaitInput ? m_windowReleases : m_reloads) < uint64_t(e.value)) {
+                if ((e.op == ScriptOp::WaitInput    ? m_windowReleases
+                     : e.op == ScriptOp::WaitReload ? m_reloads
+                                                    : m_finalsEnded) < uint64_t(e.value)) {
                     if (t - m_waitPassesSince > e.timeout)
                         throw Error(m_o.script + ": line " + std::to_string(e.line) +
-                                    (e.op == ScriptOp::WaitInput ? ": wait-input" : ": wait-reload") + " timed out after " +
-                                    std::to_string(e.timeout) + " s");
+                                    (e.op == ScriptOp::WaitInput    ? ": wait-input"
+                                     : e.op == ScriptOp::WaitReload ? ": wait-reload"
+                                                                    : ": wait-final") +
+                                    " timed out after " + std::to_string(e.timeout) + " s");
                     return true;
                 }
                 m_waitPassesSince = 0;
@@ -266,6 +273,7 @@ void Viewer::installCallbacks() {
             case GLFW_KEY_H: v->key("H"); break;
             case GLFW_KEY_B: v->key("B"); break;
             case GLFW_KEY_F5: v->key("F5"); break;
+            case GLFW_KEY_F12: v->key("F12"); break;
             case GLFW_KEY_SPACE: v->key("space"); break;
             case GLFW_KEY_KP_ADD: v->key("plus"); break;
             case GLFW_KEY_KP_SUBTRACT: v->key("minus"); break;

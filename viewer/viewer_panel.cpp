@@ -22,6 +22,7 @@ const char* kBindings[][2] = {
     {"R", "restart the refinement"},
     {"F5", "reload the scene file (also done when it changes on disk)"},
     {"S", "save EXR + PNG + scene .json"},
+    {"F12", "final render: save the view, `tyndall render` it in the background"},
     {"H", "help overlay"},
     {"Escape", "quit"},
 };
@@ -88,6 +89,13 @@ void Viewer::drawPanel() {
     if (ImGui::Button("Restart")) key("R");
     ImGui::SameLine();
     if (ImGui::Button("Save")) key("S");
+    if (ImGui::Button("Final render (F12)")) key("F12");
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(90.0f);
+    ImGui::InputInt("passes", &m_finalPasses, 16, 256);
+    m_finalPasses = std::clamp(m_finalPasses, 1, 1 << 30);
+    if (m_final.state() == FinalRender::State::Running)
+        ImGui::TextWrapped("final render (nice +10): %s", m_finalLine.empty() ? "starting" : m_finalLine.c_str());
     const PixelRegion& region = m_settings.region;
     if (region.whole()) {
         if (ImGui::Button(m_regionArmed ? "Drag on the image..." : "Draw region (B)")) key("B");

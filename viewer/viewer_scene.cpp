@@ -166,10 +166,10 @@ void Viewer::resetControllerTo(const Camera& camera) {
     m_camera.setViewport(m_o.settings.width, m_o.settings.height);
 }
 
-void Viewer::save(const std::string& stem) {
+std::string Viewer::save(const std::string& stem) {
     if (m_frames[0].serial == 0) {
         m_status = "save: nothing rendered yet";
-        return;
+        return "";
     }
     SavedView v = saveView(m_frames[0], stem, m_o.base, m_o.baseCamera, m_o.scene.name, m_exposure);
     if (m_o.compare && m_frames.size() > 1 && m_frames[1].serial > 0) {
@@ -182,6 +182,7 @@ void Viewer::save(const std::string& stem) {
                 (unsigned long long)m_frames[0].passes, m_frames[0].mode == RenderMode::Refine ? "refined" : "preview",
                 v.png.c_str(), v.json.c_str());
     std::fflush(stdout);
+    return v.json;
 }
 
 }  // namespace tyndall

@@ -18,6 +18,7 @@
 
 #include "cpu/embree_scene.h"
 #include "viewer/camera_controller.h"
+#include "viewer/final_render.h"
 #include "viewer/image_view_gl.h"
 #include "viewer/view_script.h"
 #include "viewer/viewer_app.h"
@@ -89,7 +90,12 @@ private:
     void pushEdits();
     void pushSettings();
     void resetControllerTo(const Camera& camera);
-    void save(const std::string& stem);
+    /// Writes STEM.{exr,png,json}; returns the view file's path ("" when nothing was saved).
+    std::string save(const std::string& stem);
+    /// F12: saves the view and starts `tyndall render` of it (viewer_final.cpp).
+    void startFinalRender();
+    /// Reaps a finished final render and keeps the panel's line current.
+    void pollFinalRender();
     void screenshot(const std::string& path);
     void drawPanel();
     void drawHelp();
@@ -130,6 +136,11 @@ private:
     std::string m_status;
     int m_redraw = kSettleFrames;  // frames to draw whether or not a new image arrives
     uint64_t m_reloads = 0;        // reloads tried (a bad file counts: wait-reload)
+    FinalRender m_final;
+    int m_finalPasses = 64;        // the panel's pass count for the final render
+    std::string m_finalOutput;     // its image
+    std::string m_finalLine;       // its last progress line, as last drawn
+    uint64_t m_finalsEnded = 0;    // final renders ended (done or failed: wait-final)
     std::filesystem::file_time_type m_sceneTime{};
     double m_nextPoll = 0;
 

@@ -260,6 +260,37 @@ TEST(ViewerXvfb, AnAltDragDrawsARenderRegionThatGoesIntoTheViewFileAndIsReadBack
     EXPECT_GT(meanLuminance(readImage(stem("cleared") + ".exr"), 0, 0, 128, 30), 0.005);
 }
 
+TEST(ViewerXvfb, F12SavesTheViewAndRendersItInTheBackgroundWhileTheWindowStaysUsable) {
+    SKIP_WITHOUT_XVFB();
+    SKIP_WITHOUT_XDOTOOL();
+    fs::path d = outDir("final");
+    auto stem = [&](const char* name) { return (d / name).string(); };
+    // F12 from the X server, then at once a real orbit drag while the final render runs.
+    test::CliRun r = runViewWithInput(
+        d, std::string(kSmall) + " --final-passes 3 --save-stem " + stem("key"),
+        "wait-passes 1\nsave " + stem("before") + "\nwait-final 1 300\nwait-input 1 300\nwait-passes 1\nsave " +
+            stem("after") + "\nscreenshot " + stem("window.png") + "\nquit\n",
+        waitForFile(stem("before") + ".json") + "sleep 0.3; xdotool key --window $win F12; sleep 0.3\n" +
+            "xdotool mousemove --window $win 394 64; sleep 0.2; xdotool mousedown 1; sleep 0.2\n"
+            "xdotool mousemove --window $win 424 70; sleep 0.2; xdotool mouseup 1\n");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("final render of " + stem("key-1") + ".json"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("nice +10"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("final render done: " + stem("key-1") + "-final.exr"), std::string::npos) << r.output;
+    // The final image is `tyndall render` of the saved view at the panel's pass count.
+    const std::string final = stem("key-1") + "-final.exr";
+    const std::string passes = readImageAttribute(final, "tyndall:passes");
+    EXPECT_EQ(passes, "3") << r.output;
+    test::CliRun again = test::runTyndall("render " + stem("key-1") + ".json --passes " + passes + " -o " +
+                                          stem("again") + ".exr");
+    ASSERT_EQ(again.exitCode, 0) << again.output;
+    EXPECT_TRUE(test::identicalImages(readImage(final), readImage(stem("again") + ".exr")));
+    // The window went on: the drag moved the camera.
+    nlohmann::json b = nlohmann::json::parse(std::ifstream(stem("before") + ".json"));
+    nlohmann::json a = nlohmann::json::parse(std::ifstream(stem("after") + ".json"));
+    EXPECT_NE(a["edits"]["camera"]["position"], b["edits"]["camera"]["position"]);
+}
+
 /// A one-room scene whose lamp has `intensity`.
 std::string roomScene(const std::string& intensity) {
     return R"({"name": "room", "materials": [{"name": "wall", "albedo": 0.5}],
