@@ -206,7 +206,7 @@ PrimaryPass CameraTracer::tracePrimary(uint64_t pass) const {
 
 Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& photons, const BeamBvh& beams,
                                    const SurfacePhotonGrid& surfacePhotons, CameraPassStats* stats,
-                                   SecondaryLayers* layers, bool emission) const {
+                                   SecondaryLayers* layers, bool emission, Image* alpha) const {
     const int w = m_settings.width, h = m_settings.height;
     const int nff = m_anyHeterogeneous ? m_settings.freeFlightSamples : 0;
     const uint64_t pass = primary.pass;
@@ -216,6 +216,10 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
     tbb::enumerable_thread_specific<ThreadScratch> scratch;
     // The environment, where paths that leave the scene arrive (with the emission: one batch).
     const EnvironmentLight* environment = emission && m_scene.environment ? &*m_scene.environment : nullptr;
+    // Camera paths that reach it straight (through Interface crossings alone) see it as the
+    // background, unless it is hidden or the film is transparent (`alpha`).
+    const bool background = environment && environment->visible() && !alpha;
+    if (alpha) *alpha = Image(w, h);
 
     // Tiles of kTile x kTile pixels, row by row inside: neighbouring paths reuse each other's beam
     // candidates (BeamQueryCache) and surface-photon cells. With a render region, its tiles: every
@@ -236,9 +240,11 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
             const uint64_t pixel = uint64_t(y) * w + x;
             const PrimaryHit& ph = (*primary.hits)[pixel];
             Rgb throughput = ph.throughput, L, Lmedia, Lsurface;
+            float clear = 0;  // the share of this path that reached the background (transparent film)
             auto store = [&]() {
                 if (!keep) return;
                 radiance.at(x, y) = L;
+                if (alpha) alpha->at(x, y) = Rgb(1.0f - clear);
                 if (layers) {
                     layers->media.at(x, y) = Lmedia;
                     layers->surface.at(x, y) = Lsurface;
@@ -260,8 +266,10 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                 }
             }
             if (!ph.surface) {
-                // Straight from the camera to the environment: its visible background.
-                if (environment && environment->visible() && !throughput.isBlack()) {
+                // Straight from the camera to the environment: its visible background (on a
+                // transparent film, the coverage it leaves).
+                clear = throughput.average();
+                if (environment && background && !throughput.isBlack()) {
                     Lsurface = throughput * environment->eval(primary.segments.rays[pixel].dir);
                     L += Lsurface;
                 }
@@ -441,8 +449,10 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                         med.homogeneous() ? med.transmittance(seg.tMax) : Rgb(storedTransmittance(ff, nff, seg.tMax));
                 }
                 if (!surface) {
-                    // Left the scene: the environment (hidden from straight paths when not visible).
-                    if (environment && (!straight || environment->visible()) && !throughput.isBlack()) {
+                    // Left the scene: the environment (hidden from straight paths when not visible
+                    // or on a transparent film, where they leave their coverage instead).
+                    if (straight) clear = throughput.average();
+                    if (environment && (!straight || background) && !throughput.isBlack()) {
                         const Rgb Le = throughput * environment->eval(dir);
                         L += Le;
                         Lsurface += Le;

@@ -77,7 +77,7 @@ PrimaryPass PassRenderer::tracePrimary(uint64_t pass) const {
 }
 
 Image PassRenderer::traceSecondary(const PrimaryPass& primary, const PhotonMap& photons, CameraPassStats* stats,
-                                   bool emission, SecondaryLayers* layers) const {
+                                   bool emission, SecondaryLayers* layers, Image* alpha) const {
     return allocating("the beam BVH and surface-photon grid of " + std::to_string(photons.beams.size()) +
                           " beams and " + std::to_string(photons.surfacePhotons.size()) + " surface photons",
                       photons.pathCount * m_memory.bytesPerPath, [&] {
@@ -86,7 +86,8 @@ Image PassRenderer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                           static const std::vector<PhotonBeam> kNoBeams;
                           BeamBvh bvh(*m_rt->device(), m_anyNonDiffuse ? photons.beams : kNoBeams, m_bvhKind);
                           SurfacePhotonGrid grid(photons.surfacePhotons);
-                          Image radiance = m_camera->traceSecondary(primary, photons, bvh, grid, stats, layers, emission);
+                          Image radiance = m_camera->traceSecondary(primary, photons, bvh, grid, stats, layers, emission,
+                                                                   emission ? alpha : nullptr);
                           if (emission && m_hooks) m_hooks->cameraRadiance(primary.pass, radiance);
                           return radiance;
                       });

@@ -76,9 +76,10 @@ public:
     /// Builds the beam BVH and surface-photon grid of `photons` (a pass or one batch of it) and
     /// traces the secondary stage. `emission`: add what the paths see of emitters (the first
     /// batch of a pass only; see CameraTracer::traceSecondary); `layers` also receives the
-    /// radiance split into media and surface parts.
+    /// radiance split into media and surface parts; `alpha` (with `emission`) makes the film
+    /// transparent and receives the pass's coverage (CameraTracer::traceSecondary).
     Image traceSecondary(const PrimaryPass& primary, const PhotonMap& photons, CameraPassStats* stats = nullptr,
-                         bool emission = true, SecondaryLayers* layers = nullptr) const;
+                         bool emission = true, SecondaryLayers* layers = nullptr, Image* alpha = nullptr) const;
     CameraPassResult traceCamera(uint64_t pass, const PhotonMap& photons) const;
     Image splatPrimary(const PrimarySegments& primary, const PhotonMap& photons, RasterStats* stats = nullptr) const;
     Image renderPass(uint64_t pass, PassStats* stats = nullptr) const;
