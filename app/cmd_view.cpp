@@ -21,6 +21,7 @@ struct ViewCommandOptions {
     TwinRegion twin = TwinRegion::Support;
     int previewScale = 4, previewPhotons = 16;
     uint64_t finalPasses = 0;
+    float uiScale = 0;
 };
 }  // namespace
 
@@ -39,6 +40,9 @@ void addViewCommand(CLI::App& app, int& exitCode) {
         ->check(CLI::ExistingFile);
     cmd->add_option("--stats", o->stats, "Write UI frame times, preview rate and input latencies as JSON on exit");
     cmd->add_option("--save-stem", o->saveStem, "The S key writes STEM-N.exr, .png and .json")->capture_default_str();
+    cmd->add_option("--ui-scale", o->uiScale,
+                    "Panel scale, 0.5-4 (default: the monitor's content scale, e.g. from Xft.dpi)")
+        ->check(CLI::Range(0.5, 4.0));
     cmd->add_option("--final-passes", o->finalPasses,
                     "Passes of the final render (F12: saves the view, renders it to STEM-N-final.exr in the "
                     "background); also set in the panel (default: the scene's render passes)")
@@ -86,14 +90,17 @@ void addViewCommand(CLI::App& app, int& exitCode) {
         v.script = o->script;
         v.statsPath = o->stats;
         v.saveStem = o->saveStem;
+        v.uiScale = o->uiScale;
         v.finalPasses = o->finalPasses > 0 ? o->finalPasses : c.settings.passes;
         v.compare = o->compare;
         v.preview.scale = o->previewScale;
         v.preview.photonDivisor = o->previewPhotons;
-        if (!o->compare && !c.scene.empty()) {
+        if (!o->compare) {
             v.scenePath = c.scene;
-            v.reload = [c](std::vector<std::string>* names, std::vector<Camera>* cameras) {
+            v.load = [c](const std::string& path, std::vector<std::string>* names, std::vector<Camera>* cameras) {
                 CommonOptions again = c;
+                if (path != c.scene) again.camera.clear();
+                again.scene = path;
                 return loadScene(again, names, cameras);
             };
         }

@@ -93,6 +93,11 @@ std::vector<ScriptEvent> parseViewScript(const std::string& text, const std::str
         } else if (cmd == "wait-final") {
             e.op = ScriptOp::WaitFinal, e.value = std::floor(r.number("final renders", 1, 1e9));
             if (r.more()) e.timeout = r.number("seconds", 0.001, 1e6);
+        } else if (cmd == "wait-resize") {
+            e.op = ScriptOp::WaitResize, e.value = std::floor(r.number("resizes", 1, 1e9));
+            if (r.more()) e.timeout = r.number("seconds", 0.001, 1e6);
+        } else if (cmd == "drop") {
+            e.op = ScriptOp::Drop, e.text = r.word("path");
         } else if (cmd == "press" || cmd == "release") {
             e.op = cmd == "press" ? ScriptOp::Press : ScriptOp::Release;
             e.button = r.button();

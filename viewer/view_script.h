@@ -11,6 +11,8 @@
 //   wait-reload N [SECONDS]       wait until the scene file has been reloaded (or tried: a bad
 //                                 file counts) N times since the start
 //   wait-final N [SECONDS]        wait until N final renders (F12) have ended (done or failed)
+//   wait-resize N [SECONDS]       wait until the image has followed the window's size N times
+//   drop PATH                     as a file dropped on the window: opens it as the scene
 //   press BUTTON X Y [MODS]       BUTTON: left | right | middle; MODS: shift, ctrl, alt joined by +
 //   move X Y                      the cursor moves (drags when a button is down)
 //   release BUTTON X Y
@@ -28,7 +30,7 @@
 
 namespace tyndall {
 
-enum class ScriptOp { Sleep, WaitFrames, WaitPasses, WaitInput, WaitReload, WaitFinal, Press, Move, Release, DoubleClick, Scroll, Key, Exposure, Save,
+enum class ScriptOp { Sleep, WaitFrames, WaitPasses, WaitInput, WaitReload, WaitFinal, WaitResize, Drop, Press, Move, Release, DoubleClick, Scroll, Key, Exposure, Save,
                       Screenshot, Quit };
 
 enum ScriptModifier : int { kModShift = 1, kModCtrl = 2, kModAlt = 4 };

@@ -62,7 +62,11 @@ void Viewer::openWindow() {
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-    glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
+    glfwWindowHint(GLFW_RESIZABLE, GLFW_TRUE);
+    // The panel's scale before the window exists: the primary monitor's content scale.
+    float sx = 1, sy = 1;
+    if (GLFWmonitor* monitor = glfwGetPrimaryMonitor()) glfwGetMonitorContentScale(monitor, &sx, &sy);
+    m_uiScale = m_o.uiScale > 0 ? m_o.uiScale : std::clamp(sx, 0.5f, 4.0f);
     std::string title = "tyndall view - " + m_o.scene.name + (m_o.compare ? " (compare)" : "");
     m_window = glfwCreateWindow(windowWidth(), windowHeight(), title.c_str(), nullptr, nullptr);
     if (!m_window) {
@@ -107,6 +111,7 @@ void Viewer::waitForEvents() {
     double wait = kIdleWakeSeconds;
     if (m_scriptNext < m_script.size() && m_waitUntil > 0)
         wait = std::clamp(m_waitUntil - seconds(Clock::now()), 1e-3, wait);
+    if (m_resizeAt > 0) wait = std::clamp(m_resizeAt - seconds(Clock::now()), 1e-3, wait);
     glfwWaitEventsTimeout(wait);
 }
 
@@ -157,13 +162,15 @@ void Viewer::drawFrame(Clock::time_point frameStart) {
     ImGui::Render();
 
     const int w = m_o.settings.width, h = m_o.settings.height, gap = m_o.compare ? 4 : 0;
-    int fbW, fbH;
+    int fbW, fbH, winW, winH;
     glfwGetFramebufferSize(m_window, &fbW, &fbH);
-    float sx = float(fbW) / float(windowWidth()), sy = float(fbH) / float(windowHeight());
+    glfwGetWindowSize(m_window, &winW, &winH);
+    float sx = float(fbW) / float(std::max(winW, 1)), sy = float(fbH) / float(std::max(winH, 1));
     m_view->clear(fbW, fbH);
     for (size_t i = 0; i < m_loops.size(); ++i) {
-        int x0 = kPanelWidth + int(i) * (w + gap);
-        m_view->draw(int(i), int(x0 * sx), int((windowHeight() - h) * sy), int(w * sx), int(h * sy), m_exposure);
+        // Image pixel (x, y) at window (panel + x, y): the top-left, until a resize re-renders.
+        int x0 = panelWidth() + int(i) * (w + gap);
+        m_view->draw(int(i), int(x0 * sx), int((winH - h) * sy), int(w * sx), int(h * sy), m_exposure);
     }
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     glfwSwapBuffers(m_window);
@@ -209,6 +216,7 @@ int Viewer::run() {
             auto frameStart = Clock::now();
             pollSceneFile();
             pollFinalRender();
+            applyResize();
             bool draw = m_redraw > 0;
             bool acted = false;
             if (!m_script.empty() && !stepScript(&acted)) m_quit = true;

@@ -32,11 +32,14 @@ struct ViewerOptions {
     bool compare = false;              ///< show `twin` (homogeneous) next to `scene`
     Scene twin;
     PreviewOptions preview;
+    float uiScale = 0;                 ///< --ui-scale: the panel's scale (0 = the monitor's content scale)
     std::string statsPath;             ///< --stats FILE: frame times, preview rate, latencies (JSON)
     /// The scene file, polled for changes ("" for a built-in scene and --compare: nothing reloads).
     std::string scenePath;
-    /// Loads scenePath again as at the start (same --camera); throws Error naming the file and place.
-    std::function<Scene(std::vector<std::string>* cameraNames, std::vector<Camera>* cameras)> reload;
+    /// Loads a scene file as at the start (the --camera given for scenePath, the first camera for
+    /// another file: a dropped one); throws Error naming the file and place. Unset with --compare.
+    std::function<Scene(const std::string& path, std::vector<std::string>* cameraNames, std::vector<Camera>* cameras)>
+        load;
 };
 
 /// Opens the window and runs until Escape, the window's close button or a script's quit; returns

@@ -14,10 +14,10 @@ namespace tyndall {
 
 bool Viewer::imageArea(double wx, double wy, float* x, float* y) const {
     int gap = m_o.compare ? 4 : 0;
-    float px = float(wx) - kPanelWidth, py = float(wy);
+    float px = float(wx) - float(panelWidth()), py = float(wy);
     if (m_o.compare && px >= m_o.settings.width + gap) px -= float(m_o.settings.width + gap);
     *x = px, *y = py;
-    return px >= 0 && py >= 0 && px < m_o.settings.width && py < m_o.settings.height && wx >= kPanelWidth;
+    return px >= 0 && py >= 0 && px < m_o.settings.width && py < m_o.settings.height && wx >= panelWidth();
 }
 
 void Viewer::press(int button, float x, float y, int mods) {
@@ -192,15 +192,18 @@ bool Viewer::stepScript(bool* acted) {
             case ScriptOp::WaitInput:
             case ScriptOp::WaitReload:
             case ScriptOp::WaitFinal:
+            case ScriptOp::WaitResize:
                 if (m_waitPassesSince == 0) m_waitPassesSince = t;
                 if ((e.op == ScriptOp::WaitInput    ? m_windowReleases
                      : e.op == ScriptOp::WaitReload ? m_reloads
-                                                    : m_finalsEnded) < uint64_t(e.value)) {
+                     : e.op == ScriptOp::WaitFinal  ? m_finalsEnded
+                                                    : m_resizes) < uint64_t(e.value)) {
                     if (t - m_waitPassesSince > e.timeout)
                         throw Error(m_o.script + ": line " + std::to_string(e.line) +
                                     (e.op == ScriptOp::WaitInput    ? ": wait-input"
                                      : e.op == ScriptOp::WaitReload ? ": wait-reload"
-                                                                    : ": wait-final") +
+                                     : e.op == ScriptOp::WaitFinal  ? ": wait-final"
+                                                                    : ": wait-resize") +
                                     " timed out after " + std::to_string(e.timeout) + " s");
                     return true;
                 }
@@ -213,6 +216,7 @@ bool Viewer::stepScript(bool* acted) {
             case ScriptOp::DoubleClick: doubleClick(e.x, e.y); break;
             case ScriptOp::Scroll: scroll(e.x, e.y, float(e.value)); break;
             case ScriptOp::Key: key(e.text); break;
+            case ScriptOp::Drop: openDropped(e.text); break;
             case ScriptOp::Exposure: m_exposure = float(e.value); break;
             case ScriptOp::Save: save(e.text); break;
             case ScriptOp::Screenshot: screenshot(e.text); break;
@@ -230,6 +234,7 @@ void Viewer::installCallbacks() {
     ImGui::CreateContext();
     ImGui::GetIO().IniFilename = nullptr;
     ImGui::StyleColorsDark();
+    updateUiScale();
     glfwSetWindowUserPointer(m_window, this);
     glfwSetMouseButtonCallback(m_window, [](GLFWwindow* win, int button, int action, int mods) {
         Viewer* v = self(win);
@@ -287,6 +292,22 @@ void Viewer::installCallbacks() {
         if (ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureKeyboard) return;
         if (c == '+') v->key("plus");
         if (c == '-') v->key("minus");
+    });
+    // The image follows the window's size once it settles; the panel its content scale.
+    glfwSetWindowSizeCallback(m_window, [](GLFWwindow* win, int, int) {
+        Viewer* v = self(win);
+        v->inputArrived();
+        v->m_resizeAt = seconds(Clock::now()) + kResizeSettleSeconds;
+    });
+    glfwSetWindowContentScaleCallback(m_window, [](GLFWwindow* win, float, float) {
+        Viewer* v = self(win);
+        v->updateUiScale();
+        v->m_resizeAt = seconds(Clock::now()) + kResizeSettleSeconds;  // the panel's width changed
+    });
+    glfwSetDropCallback(m_window, [](GLFWwindow* win, int count, const char** paths) {
+        Viewer* v = self(win);
+        v->inputArrived();
+        if (count > 0) v->openDropped(paths[0]);
     });
     // Exposed, focused, entered: the window needs a frame too.
     glfwSetWindowRefreshCallback(m_window, [](GLFWwindow* win) { self(win)->inputArrived(); });

@@ -30,7 +30,7 @@ const char* kBindings[][2] = {
 
 void Viewer::drawHelp() {
     ImGuiIO& io = ImGui::GetIO();
-    ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f + kPanelWidth * 0.5f, io.DisplaySize.y * 0.5f),
+    ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f + float(panelWidth()) * 0.5f, io.DisplaySize.y * 0.5f),
                             ImGuiCond_Always, ImVec2(0.5f, 0.5f));
     ImGui::SetNextWindowBgAlpha(0.85f);
     ImGui::Begin("Keys and mouse (H closes)", &m_help, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove);
@@ -44,7 +44,7 @@ void Viewer::drawRegionOutline() {
     ImDrawList* draw = ImGui::GetForegroundDrawList();
     const int gap = m_o.compare ? 4 : 0;
     for (size_t i = 0; i < m_loops.size(); ++i) {
-        const float x0 = float(kPanelWidth + int(i) * (m_o.settings.width + gap));
+        const float x0 = float(panelWidth() + int(i) * (m_o.settings.width + gap));
         auto outline = [&](const PixelRegion& r, ImU32 colour) {
             draw->AddRect(ImVec2(x0 + float(r.x) - 1, float(r.y) - 1),
                           ImVec2(x0 + float(r.x + r.width) + 1, float(r.y + r.height) + 1), colour);
@@ -57,9 +57,9 @@ void Viewer::drawRegionOutline() {
 void Viewer::drawPanel() {
     ImGuiIO& io = ImGui::GetIO();
     ImGui::SetNextWindowPos(ImVec2(0, 0), ImGuiCond_Always);
-    ImGui::SetNextWindowSize(ImVec2(float(kPanelWidth), io.DisplaySize.y), ImGuiCond_Always);
+    ImGui::SetNextWindowSize(ImVec2(float(panelWidth()), io.DisplaySize.y), ImGuiCond_Always);
     ImGui::Begin("Tyndall", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
-    ImGui::PushItemWidth(-110.0f);  // room for the labels
+    ImGui::PushItemWidth(-110.0f * m_uiScale);  // room for the labels
     const ViewFrame& f = m_frames[0];
     bool paused = m_loops[0]->paused();
     ImGui::Text("%s", m_o.scene.name.c_str());
@@ -91,7 +91,7 @@ void Viewer::drawPanel() {
     if (ImGui::Button("Save")) key("S");
     if (ImGui::Button("Final render (F12)")) key("F12");
     ImGui::SameLine();
-    ImGui::SetNextItemWidth(90.0f);
+    ImGui::SetNextItemWidth(90.0f * m_uiScale);
     ImGui::InputInt("passes", &m_finalPasses, 16, 256);
     m_finalPasses = std::clamp(m_finalPasses, 1, 1 << 30);
     if (m_final.state() == FinalRender::State::Running)

@@ -55,7 +55,7 @@ void Viewer::startLoops() {
 void Viewer::reloadScene() {
     ++m_reloads;
     inputArrived();
-    if (!m_o.reload) {
+    if (!m_o.load || m_o.scenePath.empty()) {
         m_status = "reload: only a scene file reloads (not a built-in scene, nor with --compare)";
         return;
     }
@@ -63,7 +63,7 @@ void Viewer::reloadScene() {
     std::vector<Camera> cameras;
     Scene scene;
     try {
-        scene = m_o.reload(&names, &cameras);
+        scene = m_o.load(m_o.scenePath, &names, &cameras);
     } catch (const std::exception& e) {
         m_status = std::string("reload failed, the last good scene stays: ") + e.what();
         std::fprintf(stderr, "tyndall view: %s\n", m_status.c_str());

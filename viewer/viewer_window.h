@@ -28,7 +28,8 @@ namespace tyndall {
 using Clock = std::chrono::steady_clock;
 inline double seconds(Clock::time_point t) { return std::chrono::duration<double>(t.time_since_epoch()).count(); }
 
-constexpr int kPanelWidth = 330;
+constexpr int kPanelWidth = 330;  // at a content scale of 1 (panelWidth())
+constexpr double kResizeSettleSeconds = 0.25;  // a window resize re-renders once it stops this long
 constexpr double kFrameSeconds = 1.0 / 60.0;  // the most frames a second the window draws
 // Frames drawn after an input event whatever else happens, so the panel's hover, press and release
 // states settle (Dear ImGui updates them one frame late).
@@ -70,9 +71,22 @@ private:
     void notePreviewTime();
     void drawFrame(std::chrono::steady_clock::time_point frameStart);
     void closeWindow();         ///< stops the loops, frees ImGui and the window (safe at any step)
-    /// The window's size in screen coordinates: the panel, the image (twice with compare).
-    int windowWidth() const { return kPanelWidth + m_o.settings.width * (m_o.compare ? 2 : 1) + (m_o.compare ? 4 : 0); }
+    /// The window's size in screen coordinates for the image size: the panel, the image (twice
+    /// with compare); at least 200 high.
+    int windowWidth() const { return panelWidth() + m_o.settings.width * (m_o.compare ? 2 : 1) + (m_o.compare ? 4 : 0); }
     int windowHeight() const { return std::max(m_o.settings.height, 200); }
+    /// The panel's width at the UI scale.
+    int panelWidth() const { return int(std::lround(kPanelWidth * m_uiScale)); }
+    /// The UI scale from the window's content scale (--ui-scale overrides it): the panel's sizes
+    /// and font (viewer_resize.cpp).
+    void updateUiScale();
+    /// After the window's size settled: the image follows it (the render loops restart at the
+    /// size the window leaves right of the panel).
+    void applyResize();
+    /// Restarts the render loops at `width` x `height` (a region that no longer fits is cleared).
+    void resizeImage(int width, int height);
+    /// A file dropped on the window (or a script's `drop`): opens it as the scene.
+    void openDropped(const std::string& path);
 
     // Input, from GLFW callbacks and from the script; coordinates in image pixels.
     void press(int button, float x, float y, int mods);
@@ -136,6 +150,9 @@ private:
     std::string m_status;
     int m_redraw = kSettleFrames;  // frames to draw whether or not a new image arrives
     uint64_t m_reloads = 0;        // reloads tried (a bad file counts: wait-reload)
+    float m_uiScale = 1;          // panel scale (content scale, or --ui-scale)
+    double m_resizeAt = -1;       // when a pending window resize applies (-1: none)
+    uint64_t m_resizes = 0;       // image sizes changed (wait-resize)
     FinalRender m_final;
     int m_finalPasses = 64;        // the panel's pass count for the final render
     std::string m_finalOutput;     // its image

@@ -27,12 +27,13 @@ fs::path outDir(const std::string& name) {
     return d;
 }
 
-/// Runs the shell script `body` (DIR/run.sh) under xvfb-run: its output and exit status.
-test::CliRun runUnderXvfb(const fs::path& dir, const std::string& body) {
+/// Runs the shell script `body` (DIR/run.sh) under xvfb-run, the X server given `serverArgs` too:
+/// its output and exit status.
+test::CliRun runUnderXvfb(const fs::path& dir, const std::string& body, const std::string& serverArgs = "") {
     fs::path file = dir / "run.sh";
     std::ofstream(file) << "#!/bin/sh\n" << body;
     fs::permissions(file, fs::perms::owner_all);
-    return test::runShell("xvfb-run -a -s '-screen 0 1280x1024x24' " + file.string() + " 2>&1");
+    return test::runShell("xvfb-run -a -s '-screen 0 1280x1024x24 " + serverArgs + "' " + file.string() + " 2>&1");
 }
 
 /// The command line of `tyndall view ARGS --script DIR/script.txt`, `script` written there.
@@ -339,6 +340,74 @@ TEST(ViewerXvfb, TheSceneFileReloadsOnChangeAndOnF5KeepingTheCameraAndABadFileKe
     EXPECT_EQ(bad["edits"], changed["edits"]);
     EXPECT_NE(r.output.find("reload failed, the last good scene stays"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find(scene.string() + ": "), std::string::npos) << r.output;
+}
+
+TEST(ViewerXvfb, TheImageFollowsTheWindowSizeXdotoolSets) {
+    SKIP_WITHOUT_XVFB();
+    SKIP_WITHOUT_XDOTOOL();
+    fs::path d = outDir("resize");
+    auto stem = [&](const char* name) { return (d / name).string(); };
+    test::CliRun r = runViewWithInput(
+        d, kSmall,
+        "wait-passes 1\nsave " + stem("before") + "\nwait-resize 1 60\nwait-passes 2\nsave " + stem("after") +
+            "\nscreenshot " + stem("window.png") + "\nquit\n",
+        waitForFile(stem("before") + ".json") + "xdotool windowsize $win 700 300\n");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("image 370x300"), std::string::npos) << r.output;
+    nlohmann::json after = nlohmann::json::parse(std::ifstream(stem("after") + ".json"));
+    nlohmann::json before = nlohmann::json::parse(std::ifstream(stem("before") + ".json"));
+    // The window less the 330-pixel panel; the camera stays where it was.
+    EXPECT_EQ(after["render"]["width"], 370);
+    EXPECT_EQ(after["render"]["height"], 300);
+    EXPECT_EQ(after["edits"]["camera"], before["edits"]["camera"]);
+    Image saved = readImage(stem("after") + ".exr");
+    EXPECT_EQ(saved.width, 370);
+    EXPECT_EQ(saved.height, 300);
+    expectRenderReproduces(d, "after");
+    Image window = readImage(stem("window.png"));
+    ASSERT_EQ(window.width, 700);
+    ASSERT_EQ(window.height, 300);
+    EXPECT_GT(meanLuminance(window, 600, 200, 700, 300), 0.005) << "the window's new corner shows no image";
+}
+
+TEST(ViewerXvfb, ThePanelScalesWithTheContentScale) {
+    SKIP_WITHOUT_XVFB();
+    if (std::system("command -v xprop >/dev/null 2>&1") != 0)
+        GTEST_SKIP() << "xprop is not installed (x11-utils): content-scale test skipped";
+    fs::path d = outDir("content-scale");
+    // Xft.dpi 192 is a content scale of 2 (GLFW on X11 reads it at start): the panel is 660 wide.
+    // -noreset: the property outlives xprop's connection.
+    test::CliRun r = runUnderXvfb(
+        d, "xprop -root -f RESOURCE_MANAGER 8s -set RESOURCE_MANAGER 'Xft.dpi: 192'\n" +
+               viewCommand(d, kSmall, "wait-passes 1\nscreenshot " + (d / "window.png").string() + "\nquit\n") +
+               "\n",
+        "-noreset");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    Image window = readImage((d / "window.png").string());
+    EXPECT_EQ(window.width, 660 + 128);
+    EXPECT_GT(meanLuminance(window, 660, 0, 788, 128), 0.005) << "no image right of the scaled panel";
+    // Where a 1x panel would end, the 2x panel still is: its background, not the image's light.
+    EXPECT_LT(meanLuminance(window, 400, 150, 460, 200), meanLuminance(window, 660, 64, 788, 128));
+}
+
+TEST(ViewerXvfb, ADroppedSceneFileOpensAndABadOneLeavesTheSceneShown) {
+    SKIP_WITHOUT_XVFB();
+    fs::path d = outDir("drop");
+    std::ofstream(d / "room.json") << roomScene("2");
+    std::ofstream(d / "bad.json") << roomScene("[4, 4]");
+    test::CliRun r = runView(d, kSmall,
+                             "wait-passes 1\nsave " + (d / "before").string() + "\ndrop " + (d / "bad.json").string() +
+                                 "\ndrop " + (d / "room.json").string() + "\nwait-passes 1\nsave " +
+                                 (d / "dropped").string() + "\nquit\n");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("drop: not opened, the scene stays: " + (d / "bad.json").string()), std::string::npos)
+        << r.output;
+    nlohmann::json before = nlohmann::json::parse(std::ifstream(d / "before.json"));
+    nlohmann::json dropped = nlohmann::json::parse(std::ifstream(d / "dropped.json"));
+    EXPECT_EQ(before["base"], "builtin:default");
+    EXPECT_EQ(dropped["base"], fs::absolute(d / "room.json").lexically_normal().string());
+    EXPECT_EQ(dropped["edits"]["lights"][0]["intensity"], nlohmann::json({2, 2, 2}));
+    expectRenderReproduces(d, "dropped");
 }
 
 TEST(ViewerXvfb, WithGlSplattingTheSavedViewReproducesUnderGpuOn) {
