@@ -6,10 +6,10 @@
 #include <filesystem>
 #include <fstream>
 #include <istream>
-#include <streambuf>
 
 #include "core/error.h"
 #include "core/load_budget.h"
+#include "loading/vdb_stream.h"
 
 namespace tyndall {
 
@@ -98,6 +98,26 @@ std::string displayName(const std::string& unique) {
     return sep == std::string::npos ? unique : unique.substr(0, sep);
 }
 
+/// OpenVDB reads a value of a fixed-size metadata type as sizeof(T) bytes whatever size the file
+/// records for it; a record that says otherwise would send OpenVDB's reading out of step with
+/// this parser (into bytes it takes for lengths). Throws for such a record.
+void checkMetadataSize(const std::string& type, uint32_t bytes, const std::string& what) {
+    using namespace openvdb;
+    static const std::pair<std::string, uint32_t> kFixed[] = {
+        {typeNameAsString<bool>(), sizeof(bool)},   {typeNameAsString<double>(), sizeof(double)},
+        {typeNameAsString<float>(), sizeof(float)}, {typeNameAsString<int32_t>(), sizeof(int32_t)},
+        {typeNameAsString<int64_t>(), sizeof(int64_t)}, {typeNameAsString<Vec2i>(), sizeof(Vec2i)},
+        {typeNameAsString<Vec2s>(), sizeof(Vec2s)}, {typeNameAsString<Vec2d>(), sizeof(Vec2d)},
+        {typeNameAsString<Vec3i>(), sizeof(Vec3i)}, {typeNameAsString<Vec3s>(), sizeof(Vec3s)},
+        {typeNameAsString<Vec3d>(), sizeof(Vec3d)}, {typeNameAsString<Vec4i>(), sizeof(Vec4i)},
+        {typeNameAsString<Vec4s>(), sizeof(Vec4s)}, {typeNameAsString<Vec4d>(), sizeof(Vec4d)},
+        {typeNameAsString<Mat4s>(), sizeof(Mat4s)}, {typeNameAsString<Mat4d>(), sizeof(Mat4d)}};
+    for (const auto& [name, size] : kFixed)
+        if (type == name && bytes != size)
+            throw Error(what + ": damaged: records " + std::to_string(bytes) + " bytes for a value of type '" + type +
+                        "', which has " + std::to_string(size));
+}
+
 /// A grid's metadata (OpenVDB's MetaMap: count, then name, type name, byte size, value), keeping
 /// the few entries that say what the grid is and how large.
 void readGridMetadata(FileCursor& in, VdbFileGrid& g, const std::string& at) {
@@ -113,6 +133,7 @@ void readGridMetadata(FileCursor& in, VdbFileGrid& g, const std::string& at) {
         if (type == kDelayedLoadType) g.opaqueTypeAt.push_back(in.pos() - type.size());
         const uint32_t bytes = in.value<uint32_t>(entry + " size", end);
         const std::string what = at + ": metadata '" + name + "'";
+        checkMetadataSize(type, bytes, what);
         if (name == "class" && type == "string" && bytes <= 256) {
             g.gridClass.assign(bytes, '\0');
             if (bytes) in.read(g.gridClass.data(), bytes, what, end);
@@ -127,26 +148,6 @@ void readGridMetadata(FileCursor& in, VdbFileGrid& g, const std::string& at) {
         }
     }
 }
-
-/// A streambuf over bytes in memory, seekable (OpenVDB seeks over leaf masks while reading).
-class MemoryBuffer : public std::streambuf {
-public:
-    MemoryBuffer(char* data, size_t size) { setg(data, data, data + size); }
-
-protected:
-    pos_type seekoff(off_type off, std::ios_base::seekdir dir, std::ios_base::openmode) override {
-        char* base = dir == std::ios_base::beg ? eback() : dir == std::ios_base::cur ? gptr() : egptr();
-        return seekTo(base - eback() + off);
-    }
-    pos_type seekpos(pos_type pos, std::ios_base::openmode) override { return seekTo(off_type(pos)); }
-
-private:
-    pos_type seekTo(off_type p) {
-        if (p < 0 || p > egptr() - eback()) return pos_type(off_type(-1));
-        setg(eback(), eback() + p, egptr());
-        return pos_type(p);
-    }
-};
 
 uint64_t fileSize(const std::string& path, const std::string& where) {
     std::error_code ec;
@@ -203,8 +204,10 @@ VdbFileIndex readVdbFileIndex(const std::string& path) {
     for (int32_t k = 0; k < metaCount; ++k) {
         const std::string what = "file metadata entry " + std::to_string(k);
         in.string(what + " (its name)");
-        in.string(what + " (its type)");
-        in.skip(in.value<uint32_t>(what + " (its size)"), what);
+        const std::string type = in.string(what + " (its type)");
+        const uint32_t bytes = in.value<uint32_t>(what + " (its size)");
+        checkMetadataSize(type, bytes, where + ": " + what);
+        in.skip(bytes, what);
     }
 
     index.gridCountPos = in.pos();
@@ -284,7 +287,7 @@ openvdb::GridBase::Ptr readVdbGrid(const VdbFileIndex& index, size_t i, LoadBudg
 
     openvdb::GridBase::Ptr grid;
     try {
-        MemoryBuffer buffer(bytes.data(), bytes.size());
+        VdbMemoryBuffer buffer(bytes.data(), bytes.size());
         std::istream stream(&buffer);
         stream.exceptions(std::ios::failbit | std::ios::badbit);
         openvdb::io::Stream reader(stream, /*delayLoad=*/false);

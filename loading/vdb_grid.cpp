@@ -121,7 +121,11 @@ std::shared_ptr<const VdbDensityGrid> makeVdbDensityGrid(openvdb::FloatGrid::Con
     impl->name = grid->getName();
     impl->scale = scale;
     impl->background = background;
-    impl->indexToWorld = sceneTransform * affineFromOpenVdb(grid->transform().baseMap()->getAffineMap()->getMat4());
+    try {
+        impl->indexToWorld = sceneTransform * affineFromOpenVdb(grid->transform().baseMap()->getAffineMap()->getMat4());
+    } catch (const openvdb::Exception& e) {  // a map OpenVDB cannot make affine: a (nearly) singular one
+        fail("index-to-world transform cannot be used (" + std::string(e.what()) + ")");
+    }
     float det = impl->indexToWorld.determinant();
     if (!(std::abs(det) > 0) || !std::isfinite(det))
         fail("index-to-world transform (with the scene transform) is singular");
@@ -182,7 +186,9 @@ std::shared_ptr<const VdbDensityGrid> makeVdbDensityGrid(openvdb::FloatGrid::Con
             origin[a] = int64_t(lo[a]) - 1;
             res[a] = std::max<int64_t>(1, (int64_t(hi[a]) - int64_t(lo[a]) + 2 + B - 1) / B);
         }
-        if (res[0] * res[1] * res[2] <= VdbDensityGrid::kMaxMajorantCells) break;
+        // Each side alone can exceed 2^32 cells (int32 coordinates): no product before it fits.
+        const int64_t most = VdbDensityGrid::kMaxMajorantCells;
+        if (res[0] <= most && res[1] <= most / res[0] && res[2] <= most / (res[0] * res[1])) break;
         B *= 2;
     }
     impl->majorantBlock = int(B);
@@ -307,18 +313,22 @@ std::shared_ptr<const VdbDensityGrid> VdbDensityGrid::load(const VdbGridSource& 
     if (!base->isType<openvdb::FloatGrid>()) throw Error(at + ": damaged: its tree is not a float tree");
     if (base->getGridClass() == openvdb::GRID_LEVEL_SET)
         throw Error(at + " is a level set (signed distance), not a density; convert it to a fog volume");
-    openvdb::FloatGrid::ConstPtr grid = openvdb::gridConstPtrCast<openvdb::FloatGrid>(base);
-    const float background = grid->background();
-    if (source.ambientBackground && background > 0.0f && std::isfinite(background)) {
-        // The background's stored copies (inactive tiles and voxels) become 0 first, then every
-        // value is its excess over the background.
-        openvdb::FloatGrid::Ptr shifted = grid->deepCopy();
-        openvdb::tools::changeBackground(shifted->tree(), 0.0f);
-        for (auto it = shifted->tree().beginValueAll(); it; ++it) it.setValue(std::max(*it - background, 0.0f));
-        shifted->tree().prune();
-        return makeVdbDensityGrid(shifted, source.transform, source.scale, at, kMajorantBlock, budget, background);
+    try {
+        openvdb::FloatGrid::ConstPtr grid = openvdb::gridConstPtrCast<openvdb::FloatGrid>(base);
+        const float background = grid->background();
+        if (source.ambientBackground && background > 0.0f && std::isfinite(background)) {
+            // The background's stored copies (inactive tiles and voxels) become 0 first, then every
+            // value is its excess over the background.
+            openvdb::FloatGrid::Ptr shifted = grid->deepCopy();
+            openvdb::tools::changeBackground(shifted->tree(), 0.0f);
+            for (auto it = shifted->tree().beginValueAll(); it; ++it) it.setValue(std::max(*it - background, 0.0f));
+            shifted->tree().prune();
+            return makeVdbDensityGrid(shifted, source.transform, source.scale, at, kMajorantBlock, budget, background);
+        }
+        return makeVdbDensityGrid(grid, source.transform, source.scale, at, kMajorantBlock, budget);
+    } catch (const openvdb::Exception& e) {
+        throw Error(at + ": damaged: " + e.what());
     }
-    return makeVdbDensityGrid(grid, source.transform, source.scale, at, kMajorantBlock, budget);
 }
 
 std::shared_ptr<const VdbDensityGrid> VdbDensityGrid::fromDense(const int dims[3], const std::vector<float>& values,
