@@ -19,15 +19,6 @@ struct BenchOptions {
     bool noHybrid = false;
 };
 
-void printRate(const char* what, double value, const char* unit, const std::string& note = "") {
-    std::printf("  %-34s %12.3f %-12s %s\n", what, value, unit, note.c_str());
-}
-std::string share(double part, double whole) {
-    char buf[48];
-    std::snprintf(buf, sizeof(buf), "= %.2fx of a pass", part / whole);
-    return buf;
-}
-
 void addOptions(CLI::App* cmd, BenchOptions& o) {
     addSceneAndOutputOptions(cmd, o.common, "");
     // Every count divides a rate: 0 would print NaN, so all must be positive.
@@ -64,21 +55,7 @@ void printPhotonStage(const PassRenderer& renderer, int passes) {
 void printPasses(const PassRenderer& renderer, int passes) {
     const RenderSettings& s = renderer.settings();
     std::printf("full passes (CPU only, --simd %s)\n", onOffText(s.simd));
-    PassRate pr = measurePasses(renderer, passes);
-    const double perPass = 1.0 / pr.passesPerSecond;
-    const double pixels = double(s.width) * s.height * pr.passes;
-    printRate("passes", pr.passesPerSecond, "passes/s");
-    printRate("camera paths", pixels / pr.totals.cameraSeconds / 1e6, "M paths/s");
-    printRate("secondary gather queries", pr.totals.beamQueries / pr.totals.cameraSeconds / 1e3, "k queries/s",
-              "(inside the camera stage)");
-    printRate("primary splat estimator evals", pr.totals.rasterTests / pr.totals.splatSeconds / 1e6, "M evals/s");
-    printRate("  photon stage", pr.totals.photonSeconds / pr.passes * 1e3, "ms/pass",
-              share(pr.totals.photonSeconds / pr.passes, perPass));
-    printRate("  camera stage", pr.totals.cameraSeconds / pr.passes * 1e3, "ms/pass",
-              share(pr.totals.cameraSeconds / pr.passes, perPass));
-    printRate("  primary splat stage", pr.totals.splatSeconds / pr.passes * 1e3, "ms/pass",
-              share(pr.totals.splatSeconds / pr.passes, perPass));
-    printRate("beams per pass", double(pr.totals.beams) / pr.passes, "beams");
+    printPassRate(measurePasses(renderer, passes), s);
 }
 }  // namespace
 

@@ -1,10 +1,10 @@
 #include "app/hybrid_split.h"
 
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 
 #include "app/stage_rates.h"
+#include "core/timing.h"
 #include "gpu/beam_splatter.h"
 #include "hybrid/gl_thread.h"
 #include "hybrid/pass_scheduler.h"
@@ -12,7 +12,6 @@
 namespace tyndall::app {
 
 namespace {
-using Clock = std::chrono::steady_clock;
 
 struct LoopRun {
     double wall = 0, cpu = 0;
@@ -102,38 +101,30 @@ HybridSplit measureHybridSplit(const PassRenderer& renderer, int passes) {
 }
 
 void printHybridSplit(const HybridSplit& b) {
-    auto row = [](const char* what, double value, const char* unit, const std::string& note = "") {
-        std::printf("  %-34s %12.3f %-12s %s\n", what, value, unit, note.c_str());
-    };
-    auto ratio = [](double value, double base, const char* baseName) {
-        char buf[128];
-        std::snprintf(buf, sizeof(buf), "= %.2fx %s", value / base, baseName);
-        return std::string(buf);
-    };
     const char* lp = std::getenv("LP_NUM_THREADS");
     std::printf("hybrid: GL splat on %s (LP_NUM_THREADS=%s), %d passes per figure\n", b.gl.c_str(), lp ? lp : "unset",
                 b.passes);
-    row("CPU-only loop", b.cpuOnlyPassesPerSecond, "passes/s");
-    row("hybrid loop", b.hybridPassesPerSecond, "passes/s",
+    printRate("CPU-only loop", b.cpuOnlyPassesPerSecond, "passes/s");
+    printRate("hybrid loop", b.hybridPassesPerSecond, "passes/s",
         ratio(b.hybridPassesPerSecond, b.cpuOnlyPassesPerSecond, "CPU-only"));
-    row("  process CPU time, CPU-only", b.cpuOnlyCpuSecondsPerPass, "s/pass");
-    row("  process CPU time, hybrid", b.hybridCpuSecondsPerPass, "s/pass",
+    printRate("  process CPU time, CPU-only", b.cpuOnlyCpuSecondsPerPass, "s/pass");
+    printRate("  process CPU time, hybrid", b.hybridCpuSecondsPerPass, "s/pass",
         ratio(b.hybridCpuSecondsPerPass, b.cpuOnlyCpuSecondsPerPass, "CPU-only"));
-    row("CPU side alone (photons+camera)", b.cpuStageSeconds * 1e3, "ms/pass");
-    row("GL splat alone", b.glSplatSeconds * 1e3, "ms/pass", ratio(b.glSplatSeconds, b.cpuSplatSeconds, "CPU twin"));
-    row("CPU twin splat alone", b.cpuSplatSeconds * 1e3, "ms/pass");
-    row("  GL splat process CPU time", b.glSplatCpuSeconds * 1e3, "ms/pass",
+    printRate("CPU side alone (photons+camera)", b.cpuStageSeconds * 1e3, "ms/pass");
+    printRate("GL splat alone", b.glSplatSeconds * 1e3, "ms/pass", ratio(b.glSplatSeconds, b.cpuSplatSeconds, "CPU twin"));
+    printRate("CPU twin splat alone", b.cpuSplatSeconds * 1e3, "ms/pass");
+    printRate("  GL splat process CPU time", b.glSplatCpuSeconds * 1e3, "ms/pass",
         ratio(b.glSplatCpuSeconds, b.cpuSplatCpuSeconds, "CPU twin's"));
-    row("  CPU twin process CPU time", b.cpuSplatCpuSeconds * 1e3, "ms/pass");
-    row("CPU side inside the hybrid loop", b.overlappedCpuStageSeconds * 1e3, "ms/pass",
+    printRate("  CPU twin process CPU time", b.cpuSplatCpuSeconds * 1e3, "ms/pass");
+    printRate("CPU side inside the hybrid loop", b.overlappedCpuStageSeconds * 1e3, "ms/pass",
         ratio(b.overlappedCpuStageSeconds, b.cpuStageSeconds, "alone"));
-    row("GL splat inside the hybrid loop", b.overlappedGlSplatSeconds * 1e3, "ms/pass",
+    printRate("GL splat inside the hybrid loop", b.overlappedGlSplatSeconds * 1e3, "ms/pass",
         ratio(b.overlappedGlSplatSeconds, b.glSplatSeconds, "alone"));
-    row("overlap efficiency", b.overlapEfficiency(), "", "hybrid s/pass / max(sides alone)");
-    row("GL fragments", b.fragmentsPerPass / 1e6, "M/pass",
+    printRate("overlap efficiency", b.overlapEfficiency(), "", "hybrid s/pass / max(sides alone)");
+    printRate("GL fragments", b.fragmentsPerPass / 1e6, "M/pass",
         ratio(b.fragmentsPerPass, b.pixelTestsPerPass, "the CPU twin's estimator evaluations"));
-    row("GL fragment rate", b.fragmentsPerPass / b.glSplatSeconds / 1e6, "M frags/s");
-    row("GL time per beam", b.glSplatSeconds / b.beamsPerPass * 1e6, "us/beam",
+    printRate("GL fragment rate", b.fragmentsPerPass / b.glSplatSeconds / 1e6, "M frags/s");
+    printRate("GL time per beam", b.glSplatSeconds / b.beamsPerPass * 1e6, "us/beam",
         ratio(b.glSplatSeconds, b.cpuSplatSeconds, "CPU twin"));
 }
 

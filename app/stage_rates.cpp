@@ -1,12 +1,9 @@
 #include "app/stage_rates.h"
 
+#include <cstdio>
 #include <ctime>
 
 namespace tyndall::app {
-
-double secondsSince(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 double processCpuSeconds() {
     timespec t{};
@@ -17,7 +14,7 @@ double processCpuSeconds() {
 PassRate measurePasses(const PassRenderer& renderer, int passes) {
     PassRate r;
     renderer.renderPass(0);  // warm-up: page in, build caches
-    auto t0 = std::chrono::steady_clock::now();
+    auto t0 = Clock::now();
     for (int i = 1; i <= passes; ++i) renderer.renderPass(uint64_t(i), &r.totals);
     double s = secondsSince(t0);
     r.passes = passes;
@@ -25,11 +22,39 @@ PassRate measurePasses(const PassRenderer& renderer, int passes) {
     return r;
 }
 
+void printRate(const char* what, double value, const char* unit, const std::string& note) {
+    std::printf("  %-34s %12.3f %-12s %s\n", what, value, unit, note.c_str());
+}
+
+std::string ratio(double value, double base, const char* baseName) {
+    char buf[128];
+    std::snprintf(buf, sizeof(buf), "= %.2fx %s", value / base, baseName);
+    return buf;
+}
+
+void printPassRate(const PassRate& pr, const RenderSettings& settings, const std::string& passesNote) {
+    const PassStats& t = pr.totals;
+    const double perPass = 1.0 / pr.passesPerSecond;
+    const double pixels = double(settings.width) * settings.height * pr.passes;
+    printRate("passes", pr.passesPerSecond, "passes/s", passesNote);
+    printRate("camera paths", pixels / t.cameraSeconds / 1e6, "M paths/s");
+    printRate("secondary gather queries", t.beamQueries / t.cameraSeconds / 1e3, "k queries/s",
+              "(inside the camera stage)");
+    printRate("primary splat estimator evals", t.rasterTests / t.splatSeconds / 1e6, "M evals/s");
+    printRate("  photon stage", t.photonSeconds / pr.passes * 1e3, "ms/pass",
+              ratio(t.photonSeconds / pr.passes, perPass, "of a pass"));
+    printRate("  camera stage", t.cameraSeconds / pr.passes * 1e3, "ms/pass",
+              ratio(t.cameraSeconds / pr.passes, perPass, "of a pass"));
+    printRate("  primary splat stage", t.splatSeconds / pr.passes * 1e3, "ms/pass",
+              ratio(t.splatSeconds / pr.passes, perPass, "of a pass"));
+    printRate("beams per pass", double(t.beams) / pr.passes, "beams");
+}
+
 PhotonRate measurePhotonTracing(const PassRenderer& renderer, int passes, int rounds) {
     PhotonRate best;
     for (int round = 0; round < rounds; ++round) {
         uint64_t paths = 0, beams = 0, traced = 0;
-        auto t0 = std::chrono::steady_clock::now();
+        auto t0 = Clock::now();
         for (int i = 0; i < passes; ++i) {
             PhotonMap m = renderer.tracePhotons(uint64_t(i));
             paths += m.pathCount;

@@ -2,15 +2,14 @@
 // The CPU figures of `tyndall bench`: whole passes with the time of each stage, and the photon
 // stage alone. Rates are measured in the caller's run on the caller's renderer, so they describe
 // this machine with these settings.
-#include <chrono>
 #include <cstdint>
+#include <string>
 
+#include "core/timing.h"
 #include "cpu/pass_renderer.h"
 
 namespace tyndall::app {
 
-/// Wall seconds since `t0` on the steady clock.
-double secondsSince(std::chrono::steady_clock::time_point t0);
 /// CPU time of the whole process (every thread: TBB's, the GL thread, a software rasterizer's).
 double processCpuSeconds();
 
@@ -21,6 +20,15 @@ struct PassRate {
 };
 /// Passes 1..passes of `renderer` after one warm-up pass (page-ins, caches).
 PassRate measurePasses(const PassRenderer& renderer, int passes);
+
+/// One row of a bench table: "  <what> <value> <unit> <note>", columns aligned.
+void printRate(const char* what, double value, const char* unit, const std::string& note = "");
+/// A row's note comparing `value` with `base`: "= <value / base>x <baseName>".
+std::string ratio(double value, double base, const char* baseName);
+/// The rows of whole passes measured on `settings`: passes/s (noted `passesNote`), camera paths,
+/// gather queries and splat evaluations per second, each stage's time per pass and its share of
+/// a pass, beams per pass.
+void printPassRate(const PassRate& pr, const RenderSettings& settings, const std::string& passesNote = "");
 
 struct PhotonRate {
     double pathsPerSecond = 0, beamsPerSecond = 0, raysPerSecond = 0;

@@ -4,17 +4,16 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <chrono>
 #include <memory>
 
 #include "app/stage_rates.h"
 #include "core/rng.h"
+#include "core/timing.h"
 #include "cpu/free_flight.h"
 
 namespace tyndall::bench {
 
 namespace {
-using Clock = std::chrono::steady_clock;
 
 /// A density grid seen through a looser majorant, counting density lookups per thread.
 class MajorantView : public DensityGrid {
@@ -90,7 +89,7 @@ FreeFlightRate measureFreeFlights(const PassRenderer& renderer, uint64_t samples
         volatile float sink = sampleRange(media, b * block, std::min(samples, (b + 1) * block));
         (void)sink;
     });
-    double seconds = app::secondsSince(t0);
+    double seconds = secondsSince(t0);
     rate.samplesPerSecond = double(samples) / seconds;
 
     for (const auto& v : views)

@@ -4,18 +4,13 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <vector>
 
 #include "core/rng.h"
 #include "core/sampling.h"
+#include "core/timing.h"
 
 namespace tyndall::bench {
-
-namespace {
-using Clock = std::chrono::steady_clock;
-using app::secondsSince;
-}  // namespace
 
 double measureRawRayRate(const EmbreeScene& rt, uint64_t count) {
     const Bounds3 b = rt.scene().bounds;
@@ -152,15 +147,11 @@ SplatRate measureSplatKernels(const PassRenderer& renderer, int passes, int roun
     const BeamRasterizer scalar(renderer.scene(), SplatKernel::Scalar), simd(renderer.scene(), SplatKernel::Simd);
     SplatRate r;
     auto round = [&](const BeamRasterizer& raster) {
-        uint64_t evals = 0;
+        RasterStats stats;
         auto t0 = Clock::now();
-        for (const Input& in : inputs) {
-            RasterStats stats;
-            raster.rasterize(in.primary, in.photons, &stats);
-            evals += stats.pixelTests;
-        }
-        r.evalsPerRound = evals;
-        return double(evals) / secondsSince(t0);
+        for (const Input& in : inputs) raster.rasterize(in.primary, in.photons, &stats);
+        r.evalsPerRound = stats.pixelTests;
+        return double(stats.pixelTests) / secondsSince(t0);
     };
     for (int k = 0; k < rounds; ++k) {
         r.scalarEvalsPerSecond = std::max(r.scalarEvalsPerSecond, round(scalar));

@@ -22,6 +22,10 @@
 namespace tyndall::bench {
 namespace {
 
+using app::printPassRate;
+using app::printRate;
+using app::ratio;
+
 struct StageOptions {
     app::CommonOptions common;
     int passes = 10;
@@ -30,15 +34,6 @@ struct StageOptions {
     uint64_t freeFlights = 2000000;
     bool noHybrid = false;
 };
-
-void printRate(const char* what, double value, const char* unit, const std::string& note = "") {
-    std::printf("  %-34s %12.3f %-12s %s\n", what, value, unit, note.c_str());
-}
-std::string ratio(double value, double base, const char* baseName) {
-    char buf[96];
-    std::snprintf(buf, sizeof(buf), "= %.2fx %s", value / base, baseName);
-    return buf;
-}
 
 void addOptions(CLI::App& cli, StageOptions& o) {
     app::addSceneAndOutputOptions(&cli, o.common, "");
@@ -106,22 +101,8 @@ void printGatherStudy(const PassRenderer& renderer, uint64_t queries) {
 double printPassStudy(const PassRenderer& renderer, int passes, unsigned threads) {
     const RenderSettings& s = renderer.settings();
     std::printf("full passes (CPU only)\n");
-    PassRate pr = measurePasses(renderer, passes);
-    const double perPass = 1.0 / pr.passesPerSecond;
-    const double pixels = double(s.width) * s.height * pr.passes;
-    printRate("passes", pr.passesPerSecond, "passes/s",
-              passRateVerdict(pr.passesPerSecond, s.width, s.height, s.photonsPerPass, threads));
-    printRate("camera paths", pixels / pr.totals.cameraSeconds / 1e6, "M paths/s");
-    printRate("secondary gather queries", pr.totals.beamQueries / pr.totals.cameraSeconds / 1e3, "k queries/s",
-              "(inside the camera pass)");
-    printRate("primary splat estimator evals", pr.totals.rasterTests / pr.totals.splatSeconds / 1e6, "M evals/s");
-    printRate("  photon stage", pr.totals.photonSeconds / pr.passes * 1e3, "ms/pass",
-              ratio(pr.totals.photonSeconds / pr.passes, perPass, "of a pass"));
-    printRate("  camera stage", pr.totals.cameraSeconds / pr.passes * 1e3, "ms/pass",
-              ratio(pr.totals.cameraSeconds / pr.passes, perPass, "of a pass"));
-    printRate("  primary splat stage", pr.totals.splatSeconds / pr.passes * 1e3, "ms/pass",
-              ratio(pr.totals.splatSeconds / pr.passes, perPass, "of a pass"));
-    printRate("beams per pass", double(pr.totals.beams) / pr.passes, "beams");
+    const PassRate pr = measurePasses(renderer, passes);
+    printPassRate(pr, s, passRateVerdict(pr.passesPerSecond, s.width, s.height, s.photonsPerPass, threads));
     printRate("Embree alone on the primary rays", measurePrimaryRayReplay(renderer, 1, 3) / 1e6, "M rays/s",
               "(baseline for camera paths/s: pass 1's jittered rays, rtcIntersect1)");
     return pr.passesPerSecond;

@@ -20,6 +20,12 @@ struct CameraSpace {
 };
 }  // namespace
 
+RasterStats& RasterStats::operator+=(const RasterStats& o) {
+    pixelTests += o.pixelTests;
+    binned += o.binned;
+    return *this;
+}
+
 // Which pixels can accept a beam: the estimator pairs a ray point Q = o + s d (s >= 0, so depth
 // z_Q >= 0) with an axis point C at distance u < r. For a thin lens, o is within `lens` of the
 // camera centre and d aims at the focus plane (depth fd), so Q lies in the pinhole frustum widened
@@ -359,10 +365,7 @@ Image BeamRasterizer::rasterize(const PrimarySegments& primary, const PhotonMap&
         }
         tests += localTests;
     });
-    if (stats) {
-        stats->pixelTests = tests;
-        stats->binned = binned;
-    }
+    if (stats) *stats += RasterStats{tests.load(), binned};
     return out;
 }
 

@@ -28,6 +28,8 @@ namespace tyndall {
 struct RasterStats {
     uint64_t pixelTests = 0;  ///< beam x pixel estimator evaluations
     uint64_t binned = 0;      ///< beam x band entries
+
+    RasterStats& operator+=(const RasterStats& o);
 };
 
 /// Screen-space bound of one beam, in film pixels: the convex hull of the discs (a, ra) and
@@ -53,6 +55,7 @@ public:
     explicit BeamRasterizer(const Scene& scene, SplatKernel kernel = SplatKernel::Simd)
         : m_scene(scene), m_kernel(kernel) {}
 
+    /// The primary segments' media radiance of `photons`' beams; adds its counts to `stats`.
     Image rasterize(const PrimarySegments& primary, const PhotonMap& photons, RasterStats* stats = nullptr) const;
 
     /// Reference for tests: every beam against every pixel, no culling.

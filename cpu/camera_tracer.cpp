@@ -135,6 +135,13 @@ void keep(std::vector<std::vector<T>>& kept, std::vector<T>& v) {
 }
 }  // namespace
 
+CameraPassStats& CameraPassStats::operator+=(const CameraPassStats& o) {
+    rays += o.rays;
+    beamQueries += o.beamQueries;
+    beamHits += o.beamHits;
+    return *this;
+}
+
 void PrimarySegmentPool::take(size_t pixels, size_t freeFlights, PrimarySegments& into) {
     {
         std::lock_guard<std::mutex> lock(m_mutex);
@@ -465,11 +472,7 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
         }
     });
     if (stats) {
-        for (const ThreadScratch& s : scratch) {
-            stats->rays += s.stats.rays;
-            stats->beamQueries += s.stats.beamQueries;
-            stats->beamHits += s.stats.beamHits;
-        }
+        for (const ThreadScratch& s : scratch) *stats += s.stats;
     }
     return radiance;
 }

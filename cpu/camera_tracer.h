@@ -51,6 +51,8 @@ struct CameraPassStats {
     uint64_t rays = 0;         ///< surface rays traced
     uint64_t beamQueries = 0;  ///< secondary segments gathered through the BVH
     uint64_t beamHits = 0;     ///< beam x ray pairs found by those queries
+
+    CameraPassStats& operator+=(const CameraPassStats& o);
 };
 
 /// Where a pixel's primary segment ended, for the secondary stage (CPU only, not uploaded).

@@ -70,6 +70,33 @@ float deltaTrack(const Medium& medium, const Ray& ray, float tEnd, Rng& rng) {
     }
     return kInfinity;
 }
+
+/// Ratio tracking (Novak et al. 2014) over [0, tEnd] of a grid medium with sigma_t > 0: tentative
+/// collisions at rate majorant * sigma_t, the running transmittance taking the factor
+/// 1 - density / majorant at each. `atCollision(x, density, majorant, tr)` sees each collision
+/// before its factor is taken. Returns the transmittance (may round below 0; callers clamp).
+template <class AtCollision>
+float ratioTrack(const Medium& medium, const Ray& ray, float tEnd, Rng& rng, AtCollision&& atCollision) {
+    const DensityGrid& grid = *medium.density;
+    const float sigmaT = medium.sigmaT().r;
+    MajorantPieces pieces(grid, ray, tEnd);
+    float tr = 1.0f;
+    float t0, t1, maj;
+    while (tr > 0 && pieces.next(&t0, &t1, &maj)) {
+        const float mu = maj * sigmaT;
+        if (!(mu > 0)) continue;
+        float t = t0;
+        while (tr > 0) {
+            t += expSample(mu, rng.uniform());
+            if (!(t < t1)) break;
+            const Vec3 x = ray.at(t);
+            const float dx = grid.density(x);
+            atCollision(x, dx, maj, tr);
+            tr *= 1.0f - dx / maj;
+        }
+    }
+    return tr;
+}
 }  // namespace
 
 FreeFlight sampleFreeFlightSpectralOrGrid(const Medium& medium, const Ray& ray, float tEnd, Rng& rng) {
@@ -193,49 +220,20 @@ void sampleCollisionDistances(const Medium& medium, const Ray& ray, float tEnd, 
 Rgb estimateEmission(const Medium& medium, const Ray& ray, float tEnd, Rng& rng) {
     if (!medium.emissive()) return Rgb(0.0f);
     if (medium.homogeneous()) return homogeneousEmission(medium, tEnd);
-    const DensityGrid& grid = *medium.density;
     const float sigmaT = medium.sigmaT().r;
     if (!(sigmaT > 0)) return Rgb(0.0f);
     const Rgb sourceScale = medium.sigmaA / sigmaT;
-    MajorantPieces pieces(grid, ray, tEnd);
     Rgb sum(0.0f);
-    float tr = 1.0f;
-    float t0, t1, maj;
-    while (tr > 0 && pieces.next(&t0, &t1, &maj)) {
-        const float mu = maj * sigmaT;
-        if (!(mu > 0)) continue;
-        float t = t0;
-        while (tr > 0) {
-            t += expSample(mu, rng.uniform());
-            if (!(t < t1)) break;
-            const Vec3 x = ray.at(t);
-            const float dx = grid.density(x);
-            if (dx > 0) sum += sourceScale * medium.emissionAt(x) * (tr * dx / maj);
-            tr *= 1.0f - dx / maj;
-        }
-    }
+    ratioTrack(medium, ray, tEnd, rng, [&](const Vec3& x, float dx, float maj, float tr) {
+        if (dx > 0) sum += sourceScale * medium.emissionAt(x) * (tr * dx / maj);
+    });
     return sum;
 }
 
 Rgb estimateTransmittance(const Medium& medium, const Ray& ray, float tEnd, Rng& rng) {
     if (medium.homogeneous()) return medium.transmittance(tEnd);
-    // Ratio tracking (Novak et al. 2014): product of (1 - density/majorant) at tentative collisions.
-    const DensityGrid& grid = *medium.density;
-    const float sigmaT = medium.sigmaT().r;
-    if (!(sigmaT > 0)) return Rgb(1.0f);
-    MajorantPieces pieces(grid, ray, tEnd);
-    float tr = 1.0f;
-    float t0, t1, maj;
-    while (tr > 0 && pieces.next(&t0, &t1, &maj)) {
-        const float mu = maj * sigmaT;
-        if (!(mu > 0)) continue;
-        float t = t0;
-        while (tr > 0) {
-            t += expSample(mu, rng.uniform());
-            if (!(t < t1)) break;
-            tr *= 1.0f - grid.density(ray.at(t)) / maj;
-        }
-    }
+    if (!(medium.sigmaT().r > 0)) return Rgb(1.0f);
+    const float tr = ratioTrack(medium, ray, tEnd, rng, [](const Vec3&, float, float, float) {});
     return Rgb(std::max(tr, 0.0f));
 }
 

@@ -30,6 +30,10 @@ void PassStats::add(const CameraPassStats& camera) {
     beamHits += camera.beamHits;
 }
 
+void PassStats::add(const RasterStats& raster) {
+    rasterTests += raster.pixelTests;
+}
+
 PassStats& PassStats::operator+=(const PassStats& o) {
     photonPaths += o.photonPaths;
     beams += o.beams;
@@ -157,7 +161,7 @@ Image PassRenderer::renderBatches(uint64_t pass, PassStats* stats, PassLayers* l
         addBatch(image, std::move(part));
         local.add(photons);
         local.add(camera);
-        local.rasterTests += raster.pixelTests;
+        local.add(raster);
         local.photonSeconds += std::chrono::duration<double>(t2 - t1).count();
         local.cameraSeconds += std::chrono::duration<double>(t3 - t2).count();
         local.splatSeconds += secondsSince(t3);

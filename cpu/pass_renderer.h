@@ -49,6 +49,7 @@ struct PassStats {
     PassStats& operator+=(const PassStats& o);
     void add(const PhotonMap& photons);       ///< the counts of a pass's photon stage
     void add(const CameraPassStats& camera);  ///< the counts of its camera stages
+    void add(const RasterStats& raster);      ///< the counts of its primary splat
 };
 
 /// One pass split by where its light comes from (the AOV layers): beauty = mediaPrimary +

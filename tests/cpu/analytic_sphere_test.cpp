@@ -49,6 +49,7 @@
 
 #include "core/density_grid.h"
 #include "cpu/reference_tracer.h"
+#include "tests/cpu/closed_form_bins.h"
 #include "tests/cpu/reference_fixtures.h"
 #include "tests/test_util.h"
 
@@ -144,15 +145,10 @@ bool mediumInterval(const EmbreeScene& rt, const Ray& ray, bool cameraInside, fl
     return true;
 }
 
-struct Expected {
-    Image radiance;        ///< pixel-averaged closed form
-    std::vector<float> h;  ///< distance of the pixel-centre ray to the light (-1: no medium)
-};
-
 /// The closed form for every pixel: `perRay(ray)` averaged over a 6x6 grid inside the pixel.
 template <typename PerRay>
-Expected expectedImage(const Scene& scene, const EmbreeScene& rt, int size, PerRay perRay) {
-    Expected e{Image(size, size), std::vector<float>(size_t(size) * size, -1.0f)};
+test::ClosedFormImage expectedImage(const Scene& scene, const EmbreeScene& rt, int size, PerRay perRay) {
+    test::ClosedFormImage e{Image(size, size), std::vector<double>(size_t(size) * size, -1.0)};
     const int k = 6;
     tbb::parallel_for(0, size, [&](int y) {
         for (int x = 0; x < size; ++x) {
@@ -171,63 +167,6 @@ Expected expectedImage(const Scene& scene, const EmbreeScene& rt, int size, PerR
         }
     });
     return e;
-}
-
-struct Bin {
-    float hLo, hHi;
-};
-
-/// Ratio (sum of estimate)/(sum of exact) over the bin's pixels and channels, for each of
-/// `estimates` (independent batches); returns mean ratio and its standard error.
-test::MeanVar binRatio(const std::vector<Image>& batches, const Expected& e, const Bin& bin) {
-    std::vector<double> ratios;
-    for (const Image& img : batches) {
-        double num = 0, den = 0;
-        for (size_t p = 0; p < img.pixels.size(); ++p) {
-            if (e.h[p] < bin.hLo || e.h[p] >= bin.hHi) continue;
-            for (int c = 0; c < 3; ++c) num += img.pixels[p][c], den += e.radiance.pixels[p][c];
-        }
-        ratios.push_back(num / den);
-    }
-    return test::meanVar(ratios);
-}
-
-/// Reference: one image with per-pixel variance; the bin ratio's standard error from it (pixels
-/// are independent).
-void checkReference(const char* what, const ReferenceImage& ref, const Expected& e, const std::vector<Bin>& bins,
-                    double maxStdErr, double biasAllowance) {
-    for (const Bin& bin : bins) {
-        double num = 0, den = 0, var = 0;
-        for (size_t p = 0; p < ref.mean.pixels.size(); ++p) {
-            if (e.h[p] < bin.hLo || e.h[p] >= bin.hHi) continue;
-            // The channels of one pixel come from the same paths: bound the variance of their sum
-            // by (sum of standard deviations)^2 (Cauchy-Schwarz) instead of assuming independence.
-            double sd = 0;
-            for (int c = 0; c < 3; ++c) {
-                num += ref.mean.pixels[p][c];
-                den += e.radiance.pixels[p][c];
-                sd += std::sqrt(double(ref.varianceOfMean.pixels[p][c]));
-            }
-            var += sd * sd;
-        }
-        double ratio = num / den, stdErr = std::sqrt(var) / den;
-        std::printf("%s reference, h in [%.2f, %.2f): ratio %.4f +- %.4f\n", what, bin.hLo, bin.hHi, ratio, stdErr);
-        EXPECT_LT(stdErr, maxStdErr) << what << ": too noisy to test";
-        EXPECT_NEAR(ratio, 1.0, 4.0 * stdErr + biasAllowance)
-            << what << " reference, h in [" << bin.hLo << ", " << bin.hHi << ")";
-    }
-}
-
-void checkPpb(const char* what, const std::vector<Image>& batches, const Expected& e, const std::vector<Bin>& bins,
-              double maxStdErr, double biasAllowance) {
-    for (const Bin& bin : bins) {
-        test::MeanVar r = binRatio(batches, e, bin);
-        double stdErr = std::sqrt(r.var / double(r.n));
-        std::printf("%s PPB, h in [%.2f, %.2f): ratio %.4f +- %.4f\n", what, bin.hLo, bin.hHi, r.mean, stdErr);
-        EXPECT_LT(stdErr, maxStdErr) << what << ": too noisy to test";
-        EXPECT_NEAR(r.mean, 1.0, 4.0 * stdErr + biasAllowance)
-            << what << " PPB, h in [" << bin.hLo << ", " << bin.hHi << ")";
-    }
 }
 
 /// `batches` independent PPB estimates, each the mean of `passesPerBatch` passes.
@@ -291,7 +230,7 @@ struct SingleScatterCase {
     Light light;
     Camera camera;
     bool cameraInside;
-    std::vector<Bin> bins;
+    std::vector<test::HBin> bins;
     uint32_t referenceSpp = 256;
 };
 
@@ -301,18 +240,18 @@ void runSingleScatter(const SingleScatterCase& c) {
     EmbreeScene rt(scene);
     ASSERT_EQ(rt.mediumAt(c.camera.position) != kVacuum, c.cameraInside);
     SingleScatterIntegral integral(c.medium, c.light);
-    Expected e = expectedImage(scene, rt, size, [&](const Ray& ray) {
+    test::ClosedFormImage e = expectedImage(scene, rt, size, [&](const Ray& ray) {
         float s0, s1;
         if (!mediumInterval(rt, ray, c.cameraInside, &s0, &s1)) return Rgb(0.0f);
         return integral(ray.o, ray.d, s0, s1);
     });
 
     ReferenceImage ref = ReferenceTracer(rt, singleScatterReferenceSettings(size, c.referenceSpp)).render();
-    checkReference(c.name, ref, e, c.bins, 0.015, 0.002);
+    test::expectReferenceMatches(c.name, ref, e, c.bins, {0.015, 0.002});
 
     int photonBounces = c.light.type == LightType::Directional ? 2 : 1;
     std::vector<Image> batches = ppbBatches(scene, singleScatterPpbSettings(size, photonBounces), 8, 2);
-    checkPpb(c.name, batches, e, c.bins, 0.015, 0.01);
+    test::expectPpbMatches(c.name, batches, e, c.bins, {0.015, 0.01});
 
     if (::testing::Test::HasFailure()) {
         Accumulator acc(size, size);
@@ -333,8 +272,8 @@ Camera insideCamera() {
 Camera outsideCamera() {
     return Camera::lookAt({0.2f, 0.1f, 2.5f}, {0.0f, 0.0f, 0.0f}, {0, 1, 0}, 2.0f * std::atan(1.0f / 2.5f));
 }
-const std::vector<Bin> kInsideBins = {{0.1f, 0.3f}, {0.3f, 2.0f}};
-const std::vector<Bin> kOutsideBins = {{0.1f, 0.45f}, {0.45f, 0.92f}};
+const std::vector<test::HBin> kInsideBins = {{0.1f, 0.3f}, {0.3f, 2.0f}};
+const std::vector<test::HBin> kOutsideBins = {{0.1f, 0.45f}, {0.45f, 0.92f}};
 
 TEST(AnalyticSphere, SingleScatteringPrimarySegments) {
     runSingleScatter(
@@ -379,7 +318,7 @@ TEST(AnalyticSphere, DirectIrradianceThroughAbsorbingMedium) {
     const Light light = centreLight(LightType::Point);
     Scene scene = test::makeMediumSphereScene(medium, kR, light, camera, true, albedo);
     EmbreeScene rt(scene);
-    Expected e = expectedImage(scene, rt, size, [&](const Ray& ray) {
+    test::ClosedFormImage e = expectedImage(scene, rt, size, [&](const Ray& ray) {
         SurfaceHit hit;
         if (!rt.intersect(ray, &hit)) return Rgb(0.0f);
         // E = I cos / d^2 exp(-sigma_t d) on the facet actually hit (cos ~ 1, d ~ R).
@@ -388,13 +327,13 @@ TEST(AnalyticSphere, DirectIrradianceThroughAbsorbingMedium) {
         Rgb e = light.intensity * medium.transmittance(d) * (cosine / (d * d));
         return albedo * kInvPi * e * medium.transmittance(hit.t);
     });
-    std::vector<Bin> all = {{0.0f, 10.0f}};
+    std::vector<test::HBin> all = {{0.0f, 10.0f}};
 
     ReferenceImage ref = ReferenceTracer(rt, singleScatterReferenceSettings(size, 128)).render();
-    checkReference("wall", ref, e, all, 0.004, 0.002);
+    test::expectReferenceMatches("wall", ref, e, all, {0.004, 0.002});
 
     std::vector<Image> batches = ppbBatches(scene, singleScatterPpbSettings(size), 8, 2);
-    checkPpb("wall", batches, e, all, 0.01, 0.01);
+    test::expectPpbMatches("wall", batches, e, all, {0.01, 0.01});
     if (HasFailure()) {
         test::writeEvidence("analytic_wall_exact", e.radiance);
         test::writeEvidence("analytic_wall_reference", ref.mean);

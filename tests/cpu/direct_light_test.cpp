@@ -227,39 +227,17 @@ struct RegionMeans {
     double on = 0, off = 0, reference = 0, seOn = 0, seOff = 0, seReference = 0;
 };
 
-double meanOver(const Image& img, const std::vector<int>& meshes, int mesh) {
-    double sum = 0;
-    int n = 0;
-    for (size_t i = 0; i < img.pixels.size(); ++i)
-        if (meshes[i] == mesh) sum += img.pixels[i].r + img.pixels[i].g + img.pixels[i].b, ++n;
-    return n ? sum / (3.0 * n) : 0.0;
-}
-
 RegionMeans compareRegion(const Scene& scene, int size, int mesh, uint32_t photons, int batches, int passesPerBatch,
                           uint32_t referenceSpp) {
     std::vector<int> meshes = test::pixelMeshes(scene, size);
     RegionMeans r;
     auto ppb = [&](bool directLight, double* mean, double* se) {
-        RenderSettings ps;
-        ps.width = ps.height = size;
-        ps.photonsPerPass = photons;
-        ps.seed = 77;
-        ps.directLight = directLight;
-        // Constant radii (a 1.5% surface kernel): the batches are then independent and alike, so
-        // their spread is the standard error; the kernel's bias (photons missing beyond the floor's
-        // edges) is within the tolerances below.
-        ps.radius = 0.02f;
-        ps.surfaceRadius = 0.03f;
-        ps.radiusOffset = 1000000000000ull;
-        PassRenderer renderer(scene, ps);
-        std::vector<double> m;
-        for (int b = 0; b < batches; ++b)
-            m.push_back(meanOver(test::renderPpbPasses(renderer, uint64_t(b) * passesPerBatch, passesPerBatch), meshes,
-                                 mesh));
-        for (double v : m) *mean += v / batches;
-        double var = 0;
-        for (double v : m) var += (v - *mean) * (v - *mean) / (batches - 1);
-        *se = std::sqrt(var / batches);
+        // Constant radii (a 1.5% surface kernel); the kernel's bias (photons missing beyond the
+        // floor's edges) is within the tolerances below.
+        const RenderSettings ps = test::constantRadiusSettings(size, photons, 77, directLight, 0.03f);
+        const test::RegionEstimate e = test::ppbRegionMeans(scene, ps, batches, passesPerBatch, meshes, {mesh})[0];
+        *mean = e.mean;
+        *se = e.se;
     };
     ppb(true, &r.on, &r.seOn);
     ppb(false, &r.off, &r.seOff);
@@ -270,7 +248,7 @@ RegionMeans compareRegion(const Scene& scene, int size, int mesh, uint32_t photo
         rs.seed = 99;
         EmbreeScene rt(scene);
         ReferenceImage ref = ReferenceTracer(rt, rs).render();
-        r.reference = meanOver(ref.mean, meshes, mesh);
+        r.reference = test::meanOverPixels(ref.mean, meshes, mesh);
         double var = 0;
         int n = 0;
         for (size_t i = 0; i < meshes.size(); ++i)

@@ -41,6 +41,7 @@
 #include "cpu/photon_tracer.h"
 #include "cpu/reference_tracer.h"
 #include "loading/mesh_builders.h"
+#include "tests/cpu/closed_form_bins.h"
 #include "tests/cpu/reference_fixtures.h"
 #include "tests/test_util.h"
 
@@ -220,18 +221,10 @@ private:
     V m_eye, m_forward, m_right, m_up;
 };
 
-struct Bin {
-    double hLo, hHi;
-};
-const std::vector<Bin> kBins = {{0.15, 0.4}, {0.4, 0.9}};
+const std::vector<test::HBin> kBins = {{0.15, 0.4}, {0.4, 0.9}};
 
-struct Expected {
-    Image radiance{kSize, kSize};
-    std::vector<double> h = std::vector<double>(size_t(kSize) * kSize, -1.0);
-};
-
-Expected expected(const ClosedForm& form) {
-    Expected e;
+test::ClosedFormImage expected(const ClosedForm& form) {
+    test::ClosedFormImage e{Image(kSize, kSize), std::vector<double>(size_t(kSize) * kSize, -1.0)};
     tbb::parallel_for(0, kSize, [&](int y) {
         for (int x = 0; x < kSize; ++x) {
             const size_t i = size_t(y) * kSize + x;
@@ -245,50 +238,13 @@ Expected expected(const ClosedForm& form) {
     return e;
 }
 
-void checkReference(const char* what, const ReferenceImage& ref, const Expected& e) {
-    for (const Bin& bin : kBins) {
-        double num = 0, den = 0, var = 0;
-        for (size_t p = 0; p < ref.mean.pixels.size(); ++p) {
-            if (e.h[p] < bin.hLo || e.h[p] >= bin.hHi) continue;
-            double sd = 0;  // channels of one pixel share paths: (sum of sd)^2 bounds their variance
-            for (int c = 0; c < 3; ++c) {
-                num += ref.mean.pixels[p][c];
-                den += e.radiance.pixels[p][c];
-                sd += std::sqrt(double(ref.varianceOfMean.pixels[p][c]));
-            }
-            var += sd * sd;
-        }
-        const double ratio = num / den, stdErr = std::sqrt(var) / den;
-        std::printf("%s path tracer, h in [%.2f, %.2f): ratio %.4f +- %.4f\n", what, bin.hLo, bin.hHi, ratio, stdErr);
-        EXPECT_LT(stdErr, 0.015) << what << ": too noisy to test";
-        EXPECT_NEAR(ratio, 1.0, 4.0 * stdErr + 0.005) << what << " path tracer, h in [" << bin.hLo << ", " << bin.hHi << ")";
-    }
-}
-
-void checkPpb(const char* what, const std::vector<Image>& batches, const Expected& e) {
-    for (const Bin& bin : kBins) {
-        std::vector<double> ratios;
-        for (const Image& img : batches) {
-            double num = 0, den = 0;
-            for (size_t p = 0; p < img.pixels.size(); ++p) {
-                if (e.h[p] < bin.hLo || e.h[p] >= bin.hHi) continue;
-                for (int c = 0; c < 3; ++c) num += img.pixels[p][c], den += e.radiance.pixels[p][c];
-            }
-            ratios.push_back(num / den);
-        }
-        const test::MeanVar r = test::meanVar(ratios);
-        const double stdErr = std::sqrt(r.var / double(r.n));
-        std::printf("%s PPB, h in [%.2f, %.2f): ratio %.4f +- %.4f\n", what, bin.hLo, bin.hHi, r.mean, stdErr);
-        EXPECT_LT(stdErr, 0.015) << what << ": too noisy to test";
-        EXPECT_NEAR(r.mean, 1.0, 4.0 * stdErr + 0.02) << what << " PPB, h in [" << bin.hLo << ", " << bin.hHi << ")";
-    }
-}
-
 void run(bool emitter, const Rgb& power, uint32_t referenceSpp) {
     Scene scene = makeScene(emitter, power);
     const char* what = emitter ? "emitting sphere" : "point light";
-    if (emitter) ASSERT_EQ(scene.meshes[1].exteriorMedium, 0) << "the emitter is not in the cube's medium";
-    Expected e = expected(ClosedForm(scene, emitter, power));
+    if (emitter) {
+        ASSERT_EQ(scene.meshes[1].exteriorMedium, 0) << "the emitter is not in the cube's medium";
+    }
+    test::ClosedFormImage e = expected(ClosedForm(scene, emitter, power));
 
     EmbreeScene rt(scene);
     ReferenceSettings rs;
@@ -297,7 +253,7 @@ void run(bool emitter, const Rgb& power, uint32_t referenceSpp) {
     rs.maxDepth = 1;
     rs.seed = 5;
     ReferenceImage ref = ReferenceTracer(rt, rs).render();
-    checkReference(what, ref, e);
+    test::expectReferenceMatches(what, ref, e, kBins, {0.015, 0.005});
 
     RenderSettings ps;
     ps.width = ps.height = kSize;
@@ -309,7 +265,7 @@ void run(bool emitter, const Rgb& power, uint32_t referenceSpp) {
     PassRenderer renderer(scene, ps);
     std::vector<Image> batches;
     for (int b = 0; b < 8; ++b) batches.push_back(test::renderPpbPasses(renderer, uint64_t(b) * 2, 2));
-    checkPpb(what, batches, e);
+    test::expectPpbMatches(what, batches, e, kBins, {0.015, 0.02});
 
     if (::testing::Test::HasFailure()) {
         std::string base = emitter ? "emitter_in_medium" : "point_light_in_medium";

@@ -58,53 +58,11 @@ std::vector<int> pixelClasses(const Scene& scene, int size) {
     return out;
 }
 
-double meanOver(const Image& img, const std::vector<int>& classes, int cls) {
-    double sum = 0;
-    int n = 0;
-    for (size_t i = 0; i < img.pixels.size(); ++i)
-        if (classes[i] == cls) sum += img.pixels[i].r + img.pixels[i].g + img.pixels[i].b, ++n;
-    return n ? sum / (3.0 * n) : 0.0;
-}
+using Estimate = test::RegionEstimate;
 
-/// PPB settings with constant radii (passes independent and alike: the spread of batch means is
-/// their standard error).
+/// PPB with constant radii (a 4% surface kernel; test::constantRadiusSettings).
 RenderSettings ppbSettings(int size, uint32_t photons, bool directLight) {
-    RenderSettings ps;
-    ps.width = ps.height = size;
-    ps.photonsPerPass = photons;
-    ps.seed = 41;
-    ps.directLight = directLight;
-    ps.radius = 0.02f;
-    ps.surfaceRadius = 0.04f;
-    ps.radiusOffset = 1000000000000ull;
-    return ps;
-}
-
-struct Estimate {
-    double mean = 0, se = 0;
-};
-
-/// Per class: the PPB mean over `batches` batches of `passes` passes and its standard error.
-std::vector<Estimate> ppbRegions(const Scene& scene, const RenderSettings& ps, int batches, int passes,
-                                 const std::vector<int>& classes, const std::vector<int>& wanted, Image* mean) {
-    PassRenderer renderer(scene, ps);
-    std::vector<std::vector<double>> m(wanted.size());
-    Image sum(ps.width, ps.height);
-    for (int b = 0; b < batches; ++b) {
-        Image img = test::renderPpbPasses(renderer, uint64_t(b) * passes, passes);
-        sum += img;
-        for (size_t k = 0; k < wanted.size(); ++k) m[k].push_back(meanOver(img, classes, wanted[k]));
-    }
-    if (mean) {
-        for (Rgb& p : sum.pixels) p *= 1.0f / float(batches);
-        *mean = sum;
-    }
-    std::vector<Estimate> out;
-    for (const auto& v : m) {
-        test::MeanVar mv = test::meanVar(v);
-        out.push_back({mv.mean, std::sqrt(mv.var / double(v.size()))});
-    }
-    return out;
+    return test::constantRadiusSettings(size, photons, 41, directLight, 0.04f);
 }
 
 std::vector<Estimate> referenceRegions(const Scene& scene, int size, uint32_t spp, const std::vector<int>& classes,
@@ -126,7 +84,7 @@ std::vector<Estimate> referenceRegions(const Scene& scene, int size, uint32_t sp
                 var += (v.r + v.g + v.b) / 9.0 * 3.0;  // the channel mean's variance, channels taken as correlated
                 ++n;
             }
-        out.push_back({meanOver(ref.mean, classes, cls), n ? std::sqrt(var) / n : 0.0});
+        out.push_back({test::meanOverPixels(ref.mean, classes, cls), n ? std::sqrt(var) / n : 0.0});
     }
     return out;
 }
@@ -160,7 +118,8 @@ TEST(EnvironmentRender, WhiteFurnaceSphereReadsAlbedoTimesRadianceInPpbAndThePat
     std::vector<int> classes = pixelClasses(s, size);
     Image ppbMean, refMean;
     // Photons play no part (a convex sphere's first hits are shadow rays' and its photons leave it).
-    std::vector<Estimate> ppb = ppbRegions(s, ppbSettings(size, 200, true), 8, 32, classes, {0, kMiss}, &ppbMean);
+    std::vector<Estimate> ppb =
+        test::ppbRegionMeans(s, ppbSettings(size, 200, true), 8, 32, classes, {0, kMiss}, &ppbMean);
     std::vector<Estimate> ref = referenceRegions(s, size, 128, classes, {0, kMiss}, &refMean);
     std::printf("sphere: PPB %.5f +- %.5f, reference %.5f +- %.5f (closed form %.5f); background %.5f, %.5f\n",
                 ppb[0].mean, ppb[0].se, ref[0].mean, ref[0].se, double(a * L), ppb[1].mean, ref[1].mean);
@@ -183,7 +142,8 @@ TEST(EnvironmentRender, HiddenEnvironmentStillLightsTheSphere) {
     s.environment->setVisible(false);
     const int size = 16;
     std::vector<int> classes = pixelClasses(s, size);
-    std::vector<Estimate> ppb = ppbRegions(s, ppbSettings(size, 1000, true), 4, 4, classes, {0, kMiss}, nullptr);
+    std::vector<Estimate> ppb =
+        test::ppbRegionMeans(s, ppbSettings(size, 1000, true), 4, 4, classes, {0, kMiss}, nullptr);
     std::vector<Estimate> ref = referenceRegions(s, size, 64, classes, {0, kMiss}, nullptr);
     EXPECT_EQ(ppb[1].mean, 0.0);
     EXPECT_EQ(ref[1].mean, 0.0);
@@ -211,7 +171,7 @@ TEST(EnvironmentRender, PhotonsAloneGiveAnOpenPlaneTheIrradiancePiL) {
     const int size = 16;
     std::vector<int> classes = pixelClasses(s, size);
     for (int& c : classes) c = c == 0 ? 0 : -1;
-    std::vector<Estimate> ppb = ppbRegions(s, ppbSettings(size, 20000, false), 8, 4, classes, {0}, nullptr);
+    std::vector<Estimate> ppb = test::ppbRegionMeans(s, ppbSettings(size, 20000, false), 8, 4, classes, {0}, nullptr);
     std::printf("sheet: PPB photons only %.5f +- %.5f (closed form %.5f)\n", ppb[0].mean, ppb[0].se, double(a * L));
     EXPECT_LT(ppb[0].se, 0.01 * a * L) << "too noisy to test";
     EXPECT_NEAR(ppb[0].mean, a * L, 4 * ppb[0].se + 0.01 * a * L);
@@ -287,7 +247,8 @@ void comparePpbWithReference(const Scene& s, const char* name, const std::vector
     std::vector<int> classes = pixelClasses(s, size);
     if (refine) refine(s, size, classes);
     Image ppbMean, refMean;
-    std::vector<Estimate> ppb = ppbRegions(s, ppbSettings(size, photons, true), 8, passes, classes, regions, &ppbMean);
+    std::vector<Estimate> ppb =
+        test::ppbRegionMeans(s, ppbSettings(size, photons, true), 8, passes, classes, regions, &ppbMean);
     std::vector<Estimate> ref = referenceRegions(s, size, spp, classes, regions, &refMean);
     for (size_t k = 0; k < regions.size(); ++k) {
         const double se = std::sqrt(ppb[k].se * ppb[k].se + ref[k].se * ref[k].se);
@@ -507,7 +468,7 @@ TEST(EnvironmentRender, ThinWalledSphereReflectsAndTransmitsEverythingUnderACons
     s.validate();
     const int size = 16;
     std::vector<int> classes = pixelClasses(s, size);
-    std::vector<Estimate> ppb = ppbRegions(s, ppbSettings(size, 200, true), 2, 4, classes, {0}, nullptr);
+    std::vector<Estimate> ppb = test::ppbRegionMeans(s, ppbSettings(size, 200, true), 2, 4, classes, {0});
     std::vector<Estimate> ref = referenceRegions(s, size, 16, classes, {0}, nullptr);
     EXPECT_NEAR(ppb[0].mean, L, 1e-4);
     EXPECT_NEAR(ref[0].mean, L, 1e-4);

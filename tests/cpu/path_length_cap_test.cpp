@@ -27,20 +27,11 @@ Scene cappedRoom() {
     Scene s;
     s.name = "capped-room";
     s.source = "<test scene>";
-    auto material = [&](const char* name, MaterialType type, Rgb albedo, Rgb emission = Rgb(0.0f)) {
-        Material m;
-        m.name = name;
-        m.type = type;
-        m.albedo = albedo;
-        m.emission = emission;
-        s.materials.push_back(m);
-        return int(s.materials.size() - 1);
-    };
-    int white = material("white", MaterialType::Diffuse, Rgb(0.7f));
-    int red = material("red", MaterialType::Diffuse, Rgb(0.7f, 0.25f, 0.2f));
-    int mirror = material("mirror", MaterialType::Mirror, Rgb(0.9f));
-    int hull = material("hull", MaterialType::Interface, Rgb(1.0f));
-    int lamp = material("lamp", MaterialType::Diffuse, Rgb(0.0f), kLe);
+    int white = test::addMaterial(s, "white", MaterialType::Diffuse, Rgb(0.7f));
+    int red = test::addMaterial(s, "red", MaterialType::Diffuse, Rgb(0.7f, 0.25f, 0.2f));
+    int mirror = test::addMaterial(s, "mirror", MaterialType::Mirror, Rgb(0.9f));
+    int hull = test::addMaterial(s, "hull", MaterialType::Interface, Rgb(1.0f));
+    int lamp = test::addMaterial(s, "lamp", MaterialType::Diffuse, Rgb(0.0f), kLe);
     Medium fog;
     fog.name = "fog";
     fog.sigmaS = kFogSigmaT - Rgb(0.05f);
@@ -51,12 +42,7 @@ Scene cappedRoom() {
     thick.sigmaS = Rgb(1.2f, 1.0f, 0.9f);
     s.media = {fog, thick};
     s.globalMedium = 0;
-    s.meshes.push_back(makeQuad("floor", {-1, 0, 1}, {2, 0, 0}, {0, 0, -2}, white));
-    s.meshes.push_back(makeQuad("ceiling", {-1, 2, -1}, {2, 0, 0}, {0, 0, 2}, white));
-    s.meshes.push_back(makeQuad("back wall", {-1, 0, -1}, {2, 0, 0}, {0, 2, 0}, white));
-    s.meshes.push_back(makeQuad("front wall", {1, 0, 1}, {-2, 0, 0}, {0, 2, 0}, white));
-    s.meshes.push_back(makeQuad("left wall", {-1, 0, 1}, {0, 0, -2}, {0, 2, 0}, red));
-    s.meshes.push_back(makeQuad("right wall", {1, 0, -1}, {0, 0, 2}, {0, 2, 0}, white));
+    test::addRoomWalls(s, white, red, white);
     // On the back wall, facing the camera: it shows the lamp (2 segments) and the lit room (3+).
     s.meshes.push_back(makeQuad("mirror", {-0.8f, 0.2f, -0.98f}, {1.0f, 0, 0}, {0, 1.2f, 0}, mirror));
     TriangleMesh ball = makeSphere("fog ball", {0.45f, 0.45f, -0.3f}, 0.35f, 3, hull);

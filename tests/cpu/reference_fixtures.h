@@ -12,11 +12,12 @@
 #include "core/accumulator.h"
 #include "core/density_grid.h"
 #include "core/image_io.h"
-#include "loading/mesh_builders.h"
 #include "core/scene.h"
 #include "cpu/pass_renderer.h"
 #include "cpu/radius_defaults.h"
 #include "cpu/reference_tracer.h"
+#include "loading/mesh_builders.h"
+#include "tests/test_util.h"
 
 namespace tyndall::test {
 
@@ -63,6 +64,28 @@ inline Scene makeMediumSphereScene(const Medium& medium, float radius, const Lig
     return s;
 }
 
+/// Appends a material to `s`; returns its index.
+inline int addMaterial(Scene& s, const char* name, MaterialType type, Rgb albedo, Rgb emission = Rgb(0.0f)) {
+    Material m;
+    m.name = name;
+    m.type = type;
+    m.albedo = albedo;
+    m.emission = emission;
+    s.materials.push_back(m);
+    return int(s.materials.size() - 1);
+}
+
+/// The six walls of the room x in [-1, 1], y in [0, 2], z in [-1, 1], facing inward, as quads in
+/// the order floor, ceiling, back, front, left (material `left`), right (`right`); the others `white`.
+inline void addRoomWalls(Scene& s, int white, int left, int right) {
+    s.meshes.push_back(makeQuad("floor", {-1, 0, 1}, {2, 0, 0}, {0, 0, -2}, white));
+    s.meshes.push_back(makeQuad("ceiling", {-1, 2, -1}, {2, 0, 0}, {0, 0, 2}, white));
+    s.meshes.push_back(makeQuad("back wall", {-1, 0, -1}, {2, 0, 0}, {0, 2, 0}, white));
+    s.meshes.push_back(makeQuad("front wall", {1, 0, 1}, {-2, 0, 0}, {0, 2, 0}, white));
+    s.meshes.push_back(makeQuad("left wall", {-1, 0, 1}, {0, 0, -2}, {0, 2, 0}, left));
+    s.meshes.push_back(makeQuad("right wall", {1, 0, -1}, {0, 0, 2}, {0, 2, 0}, right));
+}
+
 /// The consistency scene: a 2 x 2 x 2 room full of fog, coloured walls, a spot light shining down
 /// onto the floor (its cone misses both specular objects, so the reference can reach everything
 /// it lights), a small area light on the ceiling, a mirror on the back wall and a glass sphere.
@@ -72,21 +95,12 @@ inline Scene makeConsistencyScene() {
     Scene s;
     s.name = "consistency-room";
     s.source = "<test scene>";
-    auto material = [&](const char* name, MaterialType type, Rgb albedo, Rgb emission = Rgb(0.0f)) {
-        Material m;
-        m.name = name;
-        m.type = type;
-        m.albedo = albedo;
-        m.emission = emission;
-        s.materials.push_back(m);
-        return int(s.materials.size() - 1);
-    };
-    int white = material("white", MaterialType::Diffuse, Rgb(0.7f));
-    int red = material("red", MaterialType::Diffuse, Rgb(0.7f, 0.2f, 0.15f));
-    int green = material("green", MaterialType::Diffuse, Rgb(0.2f, 0.6f, 0.3f));
-    int mirror = material("mirror", MaterialType::Mirror, Rgb(0.9f));
-    int glass = material("glass", MaterialType::Dielectric, Rgb(1.0f));
-    int lamp = material("lamp", MaterialType::Diffuse, Rgb(0.5f), Rgb(3.0f, 2.8f, 2.4f));
+    int white = addMaterial(s, "white", MaterialType::Diffuse, Rgb(0.7f));
+    int red = addMaterial(s, "red", MaterialType::Diffuse, Rgb(0.7f, 0.2f, 0.15f));
+    int green = addMaterial(s, "green", MaterialType::Diffuse, Rgb(0.2f, 0.6f, 0.3f));
+    int mirror = addMaterial(s, "mirror", MaterialType::Mirror, Rgb(0.9f));
+    int glass = addMaterial(s, "glass", MaterialType::Dielectric, Rgb(1.0f));
+    int lamp = addMaterial(s, "lamp", MaterialType::Diffuse, Rgb(0.5f), Rgb(3.0f, 2.8f, 2.4f));
 
     Medium fog;
     fog.name = "fog";
@@ -96,13 +110,7 @@ inline Scene makeConsistencyScene() {
     s.media.push_back(fog);
     s.globalMedium = 0;
 
-    // Room x in [-1, 1], y in [0, 2], z in [-1, 1]; walls face inward.
-    s.meshes.push_back(makeQuad("floor", {-1, 0, 1}, {2, 0, 0}, {0, 0, -2}, white));
-    s.meshes.push_back(makeQuad("ceiling", {-1, 2, -1}, {2, 0, 0}, {0, 0, 2}, white));
-    s.meshes.push_back(makeQuad("back wall", {-1, 0, -1}, {2, 0, 0}, {0, 2, 0}, white));
-    s.meshes.push_back(makeQuad("front wall", {1, 0, 1}, {-2, 0, 0}, {0, 2, 0}, white));
-    s.meshes.push_back(makeQuad("left wall", {-1, 0, 1}, {0, 0, -2}, {0, 2, 0}, red));
-    s.meshes.push_back(makeQuad("right wall", {1, 0, -1}, {0, 0, 2}, {0, 2, 0}, green));
+    addRoomWalls(s, white, red, green);
     s.meshes.push_back(makeQuad("mirror", {-0.9f, 0.3f, -0.99f}, {0.8f, 0, 0}, {0, 1.3f, 0}, mirror));
     s.meshes.push_back(makeSphere("glass sphere", {0.45f, 0.36f, -0.45f}, 0.3f, 3, glass));
     // Emits downward (the quad's normal is -y), slightly below the ceiling.
@@ -209,6 +217,60 @@ inline std::vector<int> pixelMeshes(const Scene& scene, int size) {
             }
             out[size_t(y) * size + x] = mesh;
         }
+    return out;
+}
+
+/// Mean over the pixels i with classOfPixel[i] == cls (all three channels); 0 when there are none.
+inline double meanOverPixels(const Image& img, const std::vector<int>& classOfPixel, int cls) {
+    double sum = 0;
+    int n = 0;
+    for (size_t i = 0; i < img.pixels.size(); ++i)
+        if (classOfPixel[i] == cls) sum += img.pixels[i].r + img.pixels[i].g + img.pixels[i].b, ++n;
+    return n ? sum / (3.0 * n) : 0.0;
+}
+
+/// PPB settings with constant radii (beam 0.02, surface `surfaceRadius`: a huge schedule offset),
+/// so that passes are independent and alike and the spread of batch means is their standard error.
+inline RenderSettings constantRadiusSettings(int size, uint32_t photons, uint64_t seed, bool directLight,
+                                             float surfaceRadius) {
+    RenderSettings ps;
+    ps.width = ps.height = size;
+    ps.photonsPerPass = photons;
+    ps.seed = seed;
+    ps.directLight = directLight;
+    ps.radius = 0.02f;
+    ps.surfaceRadius = surfaceRadius;
+    ps.radiusOffset = 1000000000000ull;
+    return ps;
+}
+
+struct RegionEstimate {
+    double mean = 0, se = 0;
+};
+
+/// For each class in `wanted` (`classes`: one per pixel, as pixelMeshes gives): PPB's mean over
+/// its pixels across `batches` batches of `passes` passes, with the standard error from their
+/// spread. `mean`, when given, receives the mean image.
+inline std::vector<RegionEstimate> ppbRegionMeans(const Scene& scene, const RenderSettings& ps, int batches, int passes,
+                                                  const std::vector<int>& classes, const std::vector<int>& wanted,
+                                                  Image* mean = nullptr) {
+    PassRenderer renderer(scene, ps);
+    std::vector<std::vector<double>> m(wanted.size());
+    Image sum(ps.width, ps.height);
+    for (int b = 0; b < batches; ++b) {
+        Image img = renderPpbPasses(renderer, uint64_t(b) * passes, passes);
+        sum += img;
+        for (size_t k = 0; k < wanted.size(); ++k) m[k].push_back(meanOverPixels(img, classes, wanted[k]));
+    }
+    if (mean) {
+        for (Rgb& p : sum.pixels) p *= 1.0f / float(batches);
+        *mean = sum;
+    }
+    std::vector<RegionEstimate> out;
+    for (const auto& v : m) {
+        MeanVar mv = meanVar(v);
+        out.push_back({mv.mean, std::sqrt(mv.var / double(v.size()))});
+    }
     return out;
 }
 

@@ -129,20 +129,11 @@ Scene makeLampRoom(bool deltaLights) {
     Scene s;
     s.name = "lamp-room";
     s.source = "<test scene>";
-    auto material = [&](const char* name, MaterialType type, Rgb albedo, Rgb emission = Rgb(0.0f)) {
-        Material m;
-        m.name = name;
-        m.type = type;
-        m.albedo = albedo;
-        m.emission = emission;
-        s.materials.push_back(m);
-        return int(s.materials.size() - 1);
-    };
-    int grey = material("grey", MaterialType::Diffuse, Rgb(0.6f, 0.55f, 0.5f));
-    int panel = material("panel", MaterialType::Diffuse, Rgb(0.3f), Rgb(1.5f, 1.4f, 1.2f));
-    int mirror = material("mirror", MaterialType::Mirror, Rgb(0.9f));
-    int glass = material("glass", MaterialType::Dielectric, Rgb(1.0f));
-    int hull = material("hull", MaterialType::Interface, Rgb(1.0f));
+    int grey = test::addMaterial(s, "grey", MaterialType::Diffuse, Rgb(0.6f, 0.55f, 0.5f));
+    int panel = test::addMaterial(s, "panel", MaterialType::Diffuse, Rgb(0.3f), Rgb(1.5f, 1.4f, 1.2f));
+    int mirror = test::addMaterial(s, "mirror", MaterialType::Mirror, Rgb(0.9f));
+    int glass = test::addMaterial(s, "glass", MaterialType::Dielectric, Rgb(1.0f));
+    int hull = test::addMaterial(s, "hull", MaterialType::Interface, Rgb(1.0f));
     Medium thin;
     thin.name = "thin fog";
     thin.sigmaS = Rgb(0.1f);
