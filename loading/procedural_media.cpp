@@ -186,9 +186,9 @@ FireGrids makeProceduralFire(const ProceduralFire& f) {
                 const Vec3 p = lo + Vec3(float(i) * f.voxelSize, y, float(k) * f.voxelSize);
                 const float r = std::hypot(p.x - axis.x, p.z - axis.z);
                 // Noise advected upward (stretched vertically) so the flames break into tongues.
-                const Vec3 q(p.x + 0.2f * std::sin(4.0f * y), p.y * 0.45f - 0.3f, p.z + 0.2f * std::cos(3.3f * y));
+                const Vec3 q(p.x + 0.2f * std::sin(4.0f * y), p.y * 0.4f - 0.3f, p.z + 0.2f * std::cos(3.3f * y));
                 const float n = fbm(q * f.noiseFrequency, f.seed);
-                const float edge = flameRadius * (0.55f + 0.9f * n);
+                const float edge = flameRadius * (0.3f + 1.4f * n);
                 const float flame = edge > 0 ? (1.0f - smoothstep(0.35f * edge, edge, r)) *
                                                    smoothstep(0.25f, 0.55f, n + 0.3f * (1.0f - hf))
                                              : 0.0f;

@@ -179,7 +179,13 @@ TEST(SceneLibrary, EveryScenesMeanAgreesWithThePathTracer) {
         Scene scene = withoutSpecularSurfaces(sf.scene);
         std::string name = "library-vs-path-tracer-" + f.stem().string();
         std::vector<double> ppb = renderLuminance(scene, size, passes, kLibraryPhotons, name + "-ppb");
-        std::vector<double> pt = pathTracedLuminance(scene, size, kLibrarySpp, name + "-reference");
+        // The path tracer reaches an emissive medium's light only when a path happens to cross it
+        // (no light samples in media): surfaces lit by a fire are heavy-tailed at kLibrarySpp, so
+        // such scenes get 8x the samples.
+        const bool mediaEmit = std::any_of(scene.media.begin(), scene.media.end(),
+                                           [](const Medium& m) { return m.emissive(); });
+        std::vector<double> pt =
+            pathTracedLuminance(scene, size, mediaEmit ? 8 * kLibrarySpp : kLibrarySpp, name + "-reference");
         std::vector<double> sorted = pt;
         std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
         const double ceiling = kClip * sorted[sorted.size() / 2];

@@ -9,7 +9,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "core/blackbody.h"
 #include "loading/default_smoke_scene.h"
+#include "loading/procedural_media.h"
 #include "core/error.h"
 #include "loading/scene_file.h"
 #include "loading/vdb_grid.h"
@@ -105,6 +107,36 @@ TEST(SceneDensity, ProceduralRollingFogWithScale) {
     EXPECT_GT(g.density(Vec3(0, -2.9f, 0)) + g.density(Vec3(1, -2.9f, 1)) + g.density(Vec3(-1, -2.9f, 2)), 0.0f);
 }
 
+// "procedural": "fire": its density and, for the emission, its "temperature" grid (kelvin) through
+// a blackbody; the medium emits in the flames and not away from them.
+TEST(SceneDensity, ProceduralFireEmitsFromItsTemperatureGrid) {
+    json d = {{"procedural", "fire"}, {"base", {0, -3, 0}}, {"voxel_size", 0.05}, {"temperature", 2000}};
+    json m = {{"sigma_s", 1.0}, {"sigma_a", 0.5}, {"emission", {{"grid", "temperature"}, {"blackbody", true}, {"scale", 3}}}};
+    SceneFile f = loadSceneFile(write("fire.json", sceneWith(d, m).dump()));
+    const Medium& fire = f.scene.media[0];
+    ASSERT_TRUE(fire.emissive());
+    ASSERT_TRUE(fire.emissionField);
+    // The same grids as built directly.
+    ProceduralFire p;
+    p.base = Vec3(0, -3, 0);
+    p.voxelSize = 0.05f;
+    p.temperature = 2000;
+    const FireGrids g = makeProceduralFire(p);
+    int glowing = 0;
+    for (float y = -2.95f; y < -1.0f; y += 0.05f)
+        for (float x = -0.4f; x <= 0.4f; x += 0.05f) {
+            const Vec3 at(x, y, 0.02f);
+            ASSERT_EQ(fire.density->density(at), g.density->density(at));
+            const Rgb expected = blackbodyRgb(g.temperature->density(at)) * 3.0f * 0.5f * g.density->density(at);
+            const Rgb got = fire.sourceAt(at);
+            for (int c = 0; c < 3; ++c) ASSERT_NEAR(got[c], expected[c], 1e-4f * expected.maxComponent() + 1e-12f);
+            glowing += got.r > 0;
+        }
+    EXPECT_GT(glowing, 20);
+    EXPECT_TRUE(fire.sourceAt(Vec3(0, 2.5f, 0)).isBlack()) << "far above the fire";
+    EXPECT_TRUE(fire.sourceAt(Vec3(2, -2.9f, 2)).isBlack()) << "beside the fire";
+}
+
 TEST(SceneDensity, ErrorsNameThePlace) {
     writeOneVoxelGrid();
     struct Case {
@@ -138,6 +170,17 @@ TEST(SceneDensity, ErrorsNameThePlace) {
          "/media/0/density", "raise voxel_size"},
         {"colour-extinction", sceneWith({{"procedural", "smoke"}}, {{"sigma_s", {1, 0.5, 0.2}}}), "/media/0",
          "grey extinction"},
+        {"fire-flames-above-height", sceneWith({{"procedural", "fire"}, {"flame_height", 3}, {"height", 2}}),
+         "/media/0/density/flame_height", "must not exceed 'height'"},
+        {"fire-no-such-grid",
+         sceneWith({{"procedural", "fire"}, {"voxel_size", 0.1}},
+                   {{"sigma_s", 1.0}, {"sigma_a", 0.2}, {"emission", {{"grid", "heat"}, {"blackbody", true}}}}),
+         "/media/0/emission/grid", "procedural fire has no grid named 'heat' (its grids: 'density', 'temperature')"},
+        {"emission-grid-on-smoke",
+         sceneWith({{"procedural", "smoke"}, {"voxel_size", 0.1}},
+                   {{"sigma_s", 1.0}, {"sigma_a", 0.2}, {"emission", {{"grid", "temperature"}, {"blackbody", true}}}}),
+         "/media/0/emission", "\"procedural\": \"fire\""},
+        {"huge-fire", sceneWith({{"procedural", "fire"}, {"voxel_size", 1e-3}}), "/media/0/density", "raise voxel_size"},
     };
     for (const Case& c : cases) {
         std::string err = errorOf(std::string(c.name) + ".json", c.scene);
