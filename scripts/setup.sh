@@ -13,7 +13,7 @@ packages=(
   libgtest-dev libbenchmark-dev gnuplot-nox
   clang libclang-rt-14-dev
   libopenmpi-dev openmpi-bin xvfb xauth
-  libimgui-dev libstb-dev libhwy-dev xdotool x11-apps imagemagick
+  libimgui-dev libstb-dev libhwy-dev xdotool x11-apps x11-utils libx11-dev imagemagick
 )
 
 missing=()

@@ -8,8 +8,8 @@
 //                                 (error after SECONDS, default 600)
 //   wait-input N [SECONDS]        wait until N mouse-button releases have come from the window
 //                                 system since the start (real input, e.g. xdotool in tests)
-//   wait-reload N [SECONDS]       wait until the scene file has been reloaded (or tried: a bad
-//                                 file counts) N times since the start
+//   wait-reload N [SECONDS]       wait until the scene file has been reloaded or a dropped file
+//                                 opened (or tried: a bad file counts) N times since the start
 //   wait-final N [SECONDS]        wait until N final renders (F12) have ended (done or failed)
 //   wait-resize N [SECONDS]       wait until the image has followed the window's size N times
 //   drop PATH                     as a file dropped on the window: opens it as the scene

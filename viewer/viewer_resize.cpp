@@ -61,6 +61,7 @@ void Viewer::resizeImage(int width, int height) {
 
 void Viewer::openDropped(const std::string& path) {
     inputArrived();
+    ++m_reloads;  // wait-reload counts opens too (a file that does not load as well)
     if (!m_o.load || m_o.compare) {
         m_status = "drop: --compare shows the scene it was opened with";
         return;
