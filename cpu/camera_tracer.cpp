@@ -50,12 +50,8 @@ CameraTracer::CameraTracer(const EmbreeScene& rt, const RenderSettings& settings
     : m_rt(rt), m_scene(rt.scene()), m_settings(settings) {
     for (const Medium& m : m_scene.media) m_anyHeterogeneous |= !m.homogeneous();
     if (settings.surfaceBoundary) m_boundary = std::make_unique<SurfaceBoundary>(m_scene, m_rt);
-    if (settings.equiangular && !m_scene.media.empty()) {
-        m_equiangular = std::make_unique<EquiangularScattering>(m_rt);
-        if (!m_equiangular->any()) m_equiangular.reset();
-    }
+    lightsChanged();
     if (settings.directLight) {
-        lightsChanged();
         // Photons from glossy and plastic surfaces (kPhotonDirect ones among them, for their
         // specular gathers) reach a diffuse gather where such a surface is in the kernel; without
         // those materials no stored photon is direct.
@@ -65,6 +61,12 @@ CameraTracer::CameraTracer(const EmbreeScene& rt, const RenderSettings& settings
 }
 
 void CameraTracer::lightsChanged() {
+    // The equiangular estimator's lights and their choice by power.
+    m_equiangular.reset();
+    if (m_settings.equiangular && !m_scene.media.empty()) {
+        m_equiangular = std::make_unique<EquiangularScattering>(m_rt);
+        if (!m_equiangular->any()) m_equiangular.reset();
+    }
     if (!m_settings.directLight) return;
     m_direct.reset();
     m_lights = std::make_unique<LightSampler>(m_scene);

@@ -119,8 +119,8 @@ class CameraTracer {
 public:
     CameraTracer(const EmbreeScene& rt, const RenderSettings& settings);
     /// The scene's lights changed (powers, positions; not their number): rebuilds the shadow
-    /// rays' light sampler, whose source choice follows the powers it was built with. Call
-    /// between passes (PassRenderer::sceneChanged).
+    /// rays' light sampler and the equiangular estimator, whose source choices follow the powers
+    /// they were built with. Call between passes (PassRenderer::sceneChanged).
     void lightsChanged();
 
     PrimaryPass tracePrimary(uint64_t pass) const;

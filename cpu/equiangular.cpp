@@ -30,7 +30,7 @@ Rgb EquiangularScattering::estimate(MediumId medium, const Vec3& o, const Vec3& 
     if (m_lights.empty() || medium == kVacuum || !(sMax > 0)) return Rgb(0.0f);
     const Scene& scene = m_rt.scene();
     const Medium& med = scene.media[medium];
-    if (med.sigmaS.isBlack()) return Rgb(0.0f);
+    if (!estimatesIn(med) || med.sigmaS.isBlack()) return Rgb(0.0f);
     Rgb sum;
     if (m_lights.size() <= kEveryLightUpTo) {
         for (int i : m_lights) sum += fromLight(scene.lights[size_t(i)], med, medium, o, d, sMax, freeFlights, n, rng);

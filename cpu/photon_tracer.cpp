@@ -155,7 +155,8 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
     bool deltaPath = !fromMedium && e.light >= 0;
     bool direct = !fromMedium;
     // --equiangular on: the camera paths estimate the single scattering of point and spot lights
-    // (cpu/equiangular.h), so such a path's beams are not stored while it is still direct.
+    // in homogeneous media (cpu/equiangular.h), so such a path's beams there are not stored while
+    // it is still direct.
     const bool equiangularLight =
         m_settings.equiangular && !fromMedium && e.light >= 0 && EquiangularScattering::handles(m_scene.lights[e.light]);
     // Path distance from the light at o (the photon cone, cpu/beam_cone.h).
@@ -182,7 +183,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
         if (medium != kVacuum && m_rt.globalMediumInterval(Ray{o, d, 0.0f, tHit}, &t0, &t1) && t1 > t0) {
             const Medium& med = m_scene.media[medium];
             const Ray seg{o + d * t0, d, 0.0f, t1 - t0};
-            if (!(direct && equiangularLight)) {
+            if (!(direct && equiangularLight && EquiangularScattering::estimatesIn(med))) {
                 // The beam is written in place: a stack copy pushed back stalls on store forwarding.
                 PhotonBeam& beam = out.beams.emplace_back();
                 beam.origin = seg.o;

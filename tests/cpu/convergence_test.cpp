@@ -66,6 +66,7 @@ Ensemble runEnsemble(const Scene& scene, double alpha, int runs, int passes, uin
         s.alpha = alpha;
         s.radiusOffset = 0;  // the paper's schedule from its first step
         s.radius = radius;
+        s.equiangular = false;  // the beams' variance law, the spot's first beams included
         s.seed = seedBase + uint64_t(r);
         PassRenderer renderer(scene, s);
         double sum = 0;
@@ -218,6 +219,7 @@ TEST(Convergence, SplitInvarianceOfPhotonPathsIntoPasses) {
         s.alpha = 0.5;
         s.radius = radius;
         s.radiusOffset = offset;
+        s.equiangular = false;  // the beams' bias and split invariance, the spot's first beams included
         s.seed = seed;
         return s;
     };

@@ -8,7 +8,8 @@
 //    cone the ray enters and leaves, integrated by Simpson quadrature in the test; means of many
 //    estimates within 4 standard errors.
 // 3. PPB with it on, against the in-tree path tracer on a fog box with walls, the light in view
-//    (the direct beams left out, the rest of the media from beams).
+//    (the direct beams left out, the rest of the media from beams); lights edited between passes
+//    give a fresh renderer's image.
 // 4. The variance law: with the path length capped at 2 (single scattering only: every photon beam
 //    of such a path is a direct one and left out), a pixel's variance over seeds falls as 1/passes.
 #include <gtest/gtest.h>
@@ -21,6 +22,7 @@
 #include "cpu/equiangular.h"
 #include "loading/mesh_builders.h"
 #include "tests/cpu/reference_fixtures.h"
+#include "tests/test_util.h"
 
 namespace tyndall {
 namespace {
@@ -278,6 +280,32 @@ TEST(EquiangularPpb, FogBoxWithTheLampInViewAgreesWithThePathTracer) {
         // 4 standard errors plus 2% for the kernel bias of the scattered light's beams and photons.
         EXPECT_NEAR(mean / reference, 1.0, 4 * seBoth / reference + 0.02) << r[0] << "," << r[1];
     }
+}
+
+TEST(EquiangularPpb, LightsEditedInPlaceGiveTheImageOfAFreshRenderer) {
+    // The estimator's lights and their choice by power follow PassRenderer::sceneChanged (a light
+    // of zero intensity at first is left out until it is edited).
+    Scene scene = fogBoxWithLamp(true);
+    scene.lights.push_back(pointLight({-0.4f, -0.2f, -0.5f}, 0.0f));
+    scene.finalize();
+    RenderSettings s;
+    s.width = s.height = 12;
+    s.photonsPerPass = 200;
+    s.seed = 9;
+    s.equiangular = true;
+    s.radius = 0.05f;
+    s.surfaceRadius = 0.1f;
+    s.radiusOffset = 1000;
+    s.photonAngle = 0.0f;
+    PassRenderer edited(scene, s);
+    (void)edited.renderPass(0);
+    scene.lights[0].intensity = scene.lights[0].intensity * 0.25f;
+    scene.lights[1].intensity = Rgb(2.0f);
+    scene.lights[1].position = scene.lights[1].position + Vec3(0.1f, 0.1f, 0.1f);
+    edited.sceneChanged();
+    const Image afterEdit = edited.renderPass(2);
+    PassRenderer fresh(scene, s);
+    EXPECT_TRUE(test::identicalImages(afterEdit, fresh.renderPass(2)));
 }
 
 // ---- 4. The variance law ----

@@ -133,6 +133,7 @@ Measured measurePass(const Scene& s, int maxBounces, uint64_t memoryMiB) {
     rs.height = 32;
     rs.photonsPerPass = kPhotons;
     rs.maxPhotonBounces = maxBounces;
+    rs.equiangular = false;  // every beam a path can store, the point light's first ones included
     rs.memoryMiB = memoryMiB;  // several batches
     rs.seed = 9;
     // Thin beams (each the beam BVH's most pieces, kMaxPieces) with a photon cone: explicit radii.

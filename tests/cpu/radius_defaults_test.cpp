@@ -197,6 +197,7 @@ TEST(RadiusDefaults, ThePhotonConeIsOnForALightInViewAndShapesTheBeams) {
     in.height = 32;
     in.photonsPerPass = 300;
     in.passes = 20;
+    in.equiangular = false;  // the beams that start at the light are what the cone shapes
     PassRenderer r(s, in);
     const RenderSettings& out = r.settings();
     const double endFactor = RadiusSchedule(out.alpha, out.radiusOffset).beamFactor(out.plannedPaths);
