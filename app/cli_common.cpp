@@ -277,7 +277,8 @@ Scene loadScene(CommonOptions& o, std::vector<std::string>* cameraNames, std::ve
         file.cameraViews = {file.scene.camera};
         if (!o.environment.empty()) {
             WarnOnce warn(nullptr);
-            file.scene.environment = loadEnvironmentImage(o.environment, "--environment", warn);
+            LoadBudget budget(loadMemoryBytes(o));
+            file.scene.environment = loadEnvironmentImage(o.environment, "--environment", warn, &budget);
         }
     } else {
         SceneLoadOptions options;

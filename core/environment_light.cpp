@@ -1,9 +1,11 @@
 #include "core/environment_light.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
 #include "core/image_io.h"
+#include "core/load_budget.h"
 
 namespace tyndall {
 
@@ -26,7 +28,17 @@ EnvironmentLight EnvironmentLight::constant(const Rgb& radiance) {
     return fromImage(image, "constant");
 }
 
-EnvironmentLight EnvironmentLight::fromFile(const std::string& path) { return fromImage(readImage(path), path); }
+EnvironmentLight EnvironmentLight::fromFile(const std::string& path, LoadBudget* budget) {
+    if (budget) {
+        const ImageHeader h = readImageHeader(path);
+        const uint64_t texels = uint64_t(std::max(h.width, 0)) * uint64_t(std::max(h.height, 0));
+        const std::string what = "environment image '" + path + "': a " + std::to_string(h.width) + " x " +
+                                 std::to_string(h.height) + " image of " + std::to_string(h.channels) + " channels";
+        budget->check(texels * (uint64_t(std::max(h.channels, 1)) * sizeof(float) + 40), what + " (while it loads)");
+        budget->reserve(texels * 20, what);
+    }
+    return fromImage(readImage(path), path);
+}
 
 EnvironmentLight EnvironmentLight::fromImage(const Image& image, const std::string& name) {
     if (image.width <= 0 || image.height <= 0) throw Error("environment '" + name + "': the image is empty");

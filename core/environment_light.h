@@ -32,6 +32,8 @@
 
 namespace tyndall {
 
+class LoadBudget;
+
 /// A direction toward the environment chosen for next-event estimation or photon emission.
 struct EnvironmentSample {
     Vec3 wi;          ///< unit world direction toward the environment (from the scene)
@@ -48,8 +50,11 @@ public:
     /// naming it and the texel when a texel is NaN or infinite; negative values are clamped to 0.
     static EnvironmentLight fromImage(const Image& image, const std::string& name);
     /// Reads a lat-long image through OpenImageIO (EXR, Radiance .hdr, or any format it reads;
-    /// 8-bit formats are sRGB-decoded). Throws Error naming the file when it cannot be read.
-    static EnvironmentLight fromFile(const std::string& path);
+    /// 8-bit formats are sRGB-decoded). Throws Error naming the file when it cannot be read. With
+    /// a budget, the size the image's header declares is weighed first, no pixel read: while
+    /// loading, C x 4 + 40 bytes a texel (the decoded file, the image, the texels, the sampling
+    /// weights and distribution) are checked; 20 a texel (texels, distribution) stay reserved.
+    static EnvironmentLight fromFile(const std::string& path, LoadBudget* budget = nullptr);
 
     /// Radiance arriving from world direction `d` (unit, pointing away from the scene), scale included.
     Rgb eval(const Vec3& d) const;

@@ -145,6 +145,15 @@ Image readImage(const std::string& path) {
     return img;
 }
 
+ImageHeader readImageHeader(const std::string& path) {
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) throw Error("cannot read image '" + path + "': " + OIIO::geterror());
+    const OIIO::ImageSpec& spec = in->spec();
+    ImageHeader h{spec.width, spec.height * std::max(spec.depth, 1), spec.nchannels};
+    in->close();
+    return h;
+}
+
 std::string readImageAttribute(const std::string& path, const std::string& name) {
     auto in = OIIO::ImageInput::open(path);
     if (!in) throw Error("cannot read image '" + path + "': " + OIIO::geterror());

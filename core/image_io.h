@@ -27,6 +27,11 @@ Image readImageLayer(const std::string& path, const std::string& layer);
 std::vector<std::string> readImageChannels(const std::string& path);
 /// Reads an image as linear float RGB (PNG/JPG are sRGB-decoded). Throws Error naming the file.
 Image readImage(const std::string& path);
+/// An image file's size as its header declares it, no pixel read. Throws Error naming the file.
+struct ImageHeader {
+    int width = 0, height = 0, channels = 0;
+};
+ImageHeader readImageHeader(const std::string& path);
 /// The header attribute `name` of an image file (e.g. "tyndall:settings" of an EXR written with
 /// metadata) as text; "" when the file has no such attribute. Throws Error naming the file.
 std::string readImageAttribute(const std::string& path, const std::string& name);

@@ -72,7 +72,8 @@ SceneFile finishScene(SceneDraft draft, const std::string& file, const SceneLoad
     for (const NamedCamera& c : draft.cameras) out.cameras.push_back(c.name), out.cameraViews.push_back(c.camera);
     scene.camera = draft.cameras[size_t(selectCamera(draft.cameras, options.camera, file))].camera;
 
-    if (!options.environment.empty()) scene.environment = loadEnvironmentImage(options.environment, "--environment", warn);
+    if (!options.environment.empty())
+        scene.environment = loadEnvironmentImage(options.environment, "--environment", warn, options.budget.get());
     scene.finalize();
     if (draft.headlightWhenDark && scene.lights.empty() && scene.emitters.empty() && !scene.environment &&
         !scene.bounds.empty()) {

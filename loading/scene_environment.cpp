@@ -6,13 +6,14 @@
 
 namespace tyndall {
 
-EnvironmentLight loadEnvironmentImage(const std::string& path, const std::string& where, WarnOnce& warn) {
+EnvironmentLight loadEnvironmentImage(const std::string& path, const std::string& where, WarnOnce& warn,
+                                      LoadBudget* budget) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec))
         throw Error(where + ": environment image '" + path + "' does not exist or is not a file");
     EnvironmentLight env = [&] {
         try {
-            return EnvironmentLight::fromFile(path);
+            return EnvironmentLight::fromFile(path, budget);
         } catch (const Error& e) {
             throw Error(where + ": " + e.what());
         }
@@ -37,7 +38,7 @@ EnvironmentLight readEnvironment(JsonObject& obj, const std::string& baseDir, co
     if (file) {
         if (!options.allowExternalFiles) file->fail("references to other files are disabled");
         const std::filesystem::path path = std::filesystem::path(baseDir.empty() ? "." : baseDir) / file->string();
-        env = loadEnvironmentImage(path.string(), file->where(), warn);
+        env = loadEnvironmentImage(path.string(), file->where(), warn, options.budget.get());
     } else {
         env = EnvironmentLight::constant(radiance->rgb());
     }

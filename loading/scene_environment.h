@@ -24,7 +24,9 @@ namespace tyndall {
 EnvironmentLight readEnvironment(JsonObject& obj, const std::string& baseDir, const SceneLoadOptions& options,
                                  WarnOnce& warn);
 /// A lat-long image file as an environment light; `where` prefixes errors ("--environment",
-/// "<scene>: /environment/file"), and a non-2:1 image is warned about.
-EnvironmentLight loadEnvironmentImage(const std::string& path, const std::string& where, WarnOnce& warn);
+/// "<scene>: /environment/file"), and a non-2:1 image is warned about. `budget` (the load's,
+/// SceneLoadOptions::budget) weighs the image's declared size before it is read.
+EnvironmentLight loadEnvironmentImage(const std::string& path, const std::string& where, WarnOnce& warn,
+                                      LoadBudget* budget);
 
 }  // namespace tyndall

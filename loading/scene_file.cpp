@@ -61,7 +61,8 @@ SceneFile loadViewFile(const nlohmann::json& doc, const std::string& file, const
         out.scene = base == kBuiltinDefaultScene ? makeDefaultScene() : makeDefaultSmokeScene();
         if (!options.environment.empty()) {
             WarnOnce warn(options.warn);
-            out.scene.environment = loadEnvironmentImage(options.environment, "--environment", warn);
+            out.scene.environment =
+                loadEnvironmentImage(options.environment, "--environment", warn, options.budget.get());
         }
         out.cameras = {"default"};
         out.cameraViews = {out.scene.camera};

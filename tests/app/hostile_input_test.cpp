@@ -293,6 +293,33 @@ TEST(HostileInput, TextureDeclaringAHugeSizeIsRefusedFromItsHeader) {
     EXPECT_LT(t.seconds, kSeconds);
 }
 
+TEST(HostileInput, EnvironmentImageDeclaringAHugeSizeIsRefusedFromItsHeader) {
+    // A PNG sky whose header declares 100,000 x 50,000 RGB texels (260 GB to load), its data cut
+    // off; given with --environment (the built-in scene) and as a scene's environment file.
+    std::string ihdr = "IHDR" + bigEndian(100000) + bigEndian(50000) + std::string("\x08\x02\x00\x00\x00", 5);
+    std::string idat = "IDAT" + std::string(16, '\x55');
+    std::string png = std::string("\x89PNG\r\n\x1a\n", 8) + bigEndian(13) + ihdr + bigEndian(crc32(ihdr)) +
+                      bigEndian(16) + idat + bigEndian(crc32(idat));
+    const std::string sky = folder() + "/huge-sky.png";
+    std::ofstream(sky, std::ios::binary) << png;
+    const std::string scene = folder() + "/huge-sky.json";
+    std::ofstream(scene) << R"({"name": "huge-sky",
+ "materials": [{"name": "grey", "type": "diffuse", "albedo": 0.5}],
+ "shapes": [{"type": "quad", "name": "floor", "material": "grey", "corner": [-1, 0, 1], "edge1": [2, 0, 0], "edge2": [0, 0, -2]}],
+ "environment": {"file": "huge-sky.png"},
+ "cameras": [{"name": "c", "position": [0, 1, 3], "target": [0, 0, 0], "up": [0, 1, 0], "fov": 50}]})";
+    for (const std::string args : {"--environment " + sky, scene + " --load-memory 2048"}) {
+        Timed t = renderLimited("", args);
+        SCOPED_TRACE(args + ": " + t.run.output);
+        EXPECT_EQ(t.run.exitCode, 1);
+        EXPECT_NE(t.run.output.find("environment image '" + sky +
+                                    "': a 100000 x 50000 image of 3 channels (while it loads): needs"),
+                  std::string::npos);
+        EXPECT_NE(t.run.output.find("raise --load-memory"), std::string::npos);
+        EXPECT_LT(t.seconds, kSeconds);
+    }
+}
+
 /// A real checkpoint of an 8x8 render, then rewritten by `edit` with a valid checksum.
 std::string forgedCheckpoint(const std::string& name, const std::function<void(std::string&)>& edit) {
     const std::string path = folder() + "/" + name + ".ckpt";
