@@ -70,9 +70,11 @@ public:
     /// The scattering at `hit` (its normals final: normal maps applied) of a path arriving along
     /// `dIn` in `medium`, `sp` the material there (core/material_eval.h). Draws from `rng` only
     /// for the mixes (see the file comment). Uniforms: Rng, or anything with float uniform().
+    /// Every path vertex builds one: the common part and the diffuse and delta components are
+    /// built inline, the components with a frame of their own out of line (buildFramed).
     template <class Uniforms>
-    static Bsdf at(const Scene& scene, const SurfaceHit& hit, const SurfacePoint& sp, const Vec3& dIn,
-                   MediumId medium, TransportMode mode, Uniforms& rng);
+    [[gnu::always_inline]] static Bsdf at(const Scene& scene, const SurfaceHit& hit, const SurfacePoint& sp,
+                                          const Vec3& dIn, MediumId medium, TransportMode mode, Uniforms& rng);
 
     /// Every lobe of the chosen component (a coat: diffuse and glossy or specular reflection).
     BsdfLobes lobes() const { return m_lobes; }
@@ -99,13 +101,16 @@ public:
     /// ends: no lobe allowed, a sample below the geometric surface or on a back-facing microfacet,
     /// or the roulette.
     template <class Uniforms, class Roulette = NoRoulette>
-    bool sample(Uniforms& rng, Rgb* beta, BsdfSample* s, BsdfLobes allowed = kLobesAll,
-                const Roulette& roulette = {}) const;
+    [[gnu::always_inline]] bool sample(Uniforms& rng, Rgb* beta, BsdfSample* s, BsdfLobes allowed = kLobesAll,
+                                       const Roulette& roulette = {}) const;
 
 private:
     enum class Kind : uint8_t { Diffuse, Coated, Conductor, RoughDielectric, Delta };
 
     bool sampleDelta(float u, BsdfSample* s, Rgb* w) const;
+    /// at()'s coat (Plastic without its metal part), GGX conductor or rough dielectric: the kind,
+    /// lobes, frame and component, from the fields at() set. `metal`: the metal part was chosen.
+    void buildFramed(const Material& mat, const SurfacePoint& sp, bool metal);
 
     Kind m_kind = Kind::Diffuse;
     MaterialType m_type = MaterialType::Diffuse;
@@ -139,8 +144,8 @@ private:
 };
 
 template <class Uniforms>
-Bsdf Bsdf::at(const Scene& scene, const SurfaceHit& hit, const SurfacePoint& sp, const Vec3& dIn, MediumId medium,
-              TransportMode mode, Uniforms& rng) {
+inline Bsdf Bsdf::at(const Scene& scene, const SurfaceHit& hit, const SurfacePoint& sp, const Vec3& dIn,
+                     MediumId medium, TransportMode mode, Uniforms& rng) {
     const TriangleMesh& mesh = scene.meshes[size_t(hit.mesh)];
     const Material& mat = scene.materials[size_t(mesh.material)];
     Bsdf b;
@@ -163,35 +168,14 @@ Bsdf Bsdf::at(const Scene& scene, const SurfaceHit& hit, const SurfacePoint& sp,
         return b;
     }
     const bool metal = mat.hasMetalMix() && rng.uniform() < sp.metallic;
-    const float roughness = std::max(sp.roughness, Material::kSmoothRoughness);
-    if (mat.type == MaterialType::Plastic && !metal) {
-        b.m_kind = Kind::Coated;
-        b.m_lobes = kLobeReflection | kLobeDiffuse | (mat.isRough() ? kLobeGlossy : kLobeSpecular);
-        b.m_parts.local.frame = Frame(b.m_side.nsf);
-        b.m_component.coat = CoatedDiffuse::make(roughness, !mat.isRough(), mat.ior, sp.baseColor);
-    } else if (mat.isGlossy() || (metal && mat.isRough())) {
-        // Conductors reflect on the side the path arrives from; dielectrics use the exterior side
-        // (+z = hit.ns) so eta = interior / exterior holds from both sides.
-        const Ggx ggx = Ggx::fromRoughness(roughness);
-        if (mat.type == MaterialType::Mirror || mat.type == MaterialType::Plastic) {
-            b.m_kind = Kind::Conductor;
-            b.m_lobes = kLobeReflection | kLobeGlossy;
-            b.m_parts.local.frame = Frame(b.m_side.nsf);
-            b.m_component.metal = RoughConductor{ggx, sp.baseColor};
-        } else {
-            b.m_kind = Kind::RoughDielectric;
-            b.m_lobes = kLobeReflection | kLobeTransmission | kLobeGlossy;
-            b.m_parts.local.frame = Frame(hit.ns);
-            b.m_component.glass = RoughDielectric{ggx, mat.ior, sp.baseColor};
-        }
-    } else {
-        b.m_kind = Kind::Delta;
-        b.m_lobes = mat.type == MaterialType::Interface    ? kLobeTransmission | kLobeSpecular
-                    : mat.type == MaterialType::Dielectric ? kLobeReflection | kLobeTransmission | kLobeSpecular
-                                                           : kLobeReflection | kLobeSpecular;
+    if ((mat.type == MaterialType::Plastic && !metal) || mat.isGlossy() || (metal && mat.isRough())) {
+        b.buildFramed(mat, sp, metal);
         return b;
     }
-    b.m_parts.local.wo = b.m_parts.local.frame.toLocal(b.m_wo);
+    b.m_kind = Kind::Delta;
+    b.m_lobes = mat.type == MaterialType::Interface    ? kLobeTransmission | kLobeSpecular
+                : mat.type == MaterialType::Dielectric ? kLobeReflection | kLobeTransmission | kLobeSpecular
+                                                       : kLobeReflection | kLobeSpecular;
     return b;
 }
 
@@ -290,7 +274,7 @@ inline bool Bsdf::sampleDelta(float u, BsdfSample* s, Rgb* w) const {
 }
 
 template <class Uniforms, class Roulette>
-bool Bsdf::sample(Uniforms& rng, Rgb* beta, BsdfSample* s, BsdfLobes allowed, const Roulette& roulette) const {
+inline bool Bsdf::sample(Uniforms& rng, Rgb* beta, BsdfSample* s, BsdfLobes allowed, const Roulette& roulette) const {
     s->medium = m_medium;
     s->eta = 1.0f;
     Rgb w;
