@@ -34,6 +34,7 @@ struct RenderOptions {
     bool quiet = false;
     double progressEvery = 5;
     bool aov = false;
+    bool transparent = false;
     std::string reference;
     std::string convergence;
 };
@@ -71,7 +72,7 @@ void rejectWithResume(const CLI::App* cmd) {
                                    "--photons",       "--alpha",         "--radius",       "--surface-radius",
                                    "--radius-offset", "--free-flights",  "--exposure",     "--aov",
                                    "--photon-angle",  "--planned-paths", "--direct-light", "--surface-boundary",
-                                   "--environment",   "--max-path-length", "--equiangular"};
+                                   "--environment",   "--max-path-length", "--equiangular", "--transparent"};
     for (const char* name : kFixed)
         if (given(cmd, name))
             throw Error(std::string("--resume: ") + (name[0] == '-' ? name : "the scene file") +
@@ -93,6 +94,9 @@ RenderStart startNew(RenderOptions& o, bool root) {
     finishOptions(c);
     if (root) checkOutputWritable(c.output);
     r.scene = loadScene(c);
+    if (o.transparent) c.settings.transparentFilm = true;
+    if (c.settings.transparentFilm && root && !formatHasAlpha(c.output))
+        throw Error("output '" + c.output + "': a transparent film writes an alpha channel, which needs .exr, .png or .tif");
     {
         // The automatic radii become plain numbers here, once, so a resume or another MPI rank
         // renders with the same ones whatever share of the target it runs. A --time budget plans
@@ -104,7 +108,9 @@ RenderStart startNew(RenderOptions& o, bool root) {
     r.record.environment = c.environment;
     allocating("the accumulator of a " + std::to_string(c.settings.width) + "x" + std::to_string(c.settings.height) +
                    " image",
-               accumulatorBytes(c.settings, o.aov), [&] { r.acc.emplace(c.settings.width, c.settings.height, o.aov); });
+               accumulatorBytes(c.settings, o.aov), [&] {
+                   r.acc.emplace(c.settings.width, c.settings.height, o.aov, c.settings.transparentFilm);
+               });
     return r;
 }
 
@@ -128,7 +134,7 @@ RenderStart startResumed(RenderOptions& o, const CLI::App* cmd, bool root) {
                     (record.scenePath.empty() ? std::string("<built-in default scene>") : record.scenePath) +
                     "' changed since (hash " + hashText(hash) + ", the checkpoint's " + hashText(record.sceneHash) +
                     "); render it afresh");
-    r.acc.emplace(LayerAccumulator::fromNamed(std::move(ck.layers), record.aov, where));
+    r.acc.emplace(LayerAccumulator::fromNamed(std::move(ck.layers), record.aov, where, record.settings.transparentFilm));
     if (r.acc->beauty().width() != record.settings.width || r.acc->beauty().height() != record.settings.height)
         throw Error(where + ": its image size does not match its settings");
     if (given(cmd, "--passes")) {
@@ -243,8 +249,10 @@ void runRender(RenderOptions& o, CLI::App* cmd, int& exitCode) {
     if (!root) return;
 
     const bool interrupted = interruptRequested();
+    const Image alpha = acc.transparent() ? acc.alpha() : Image();
     writeImageLayers(record.output, acc.beauty().mean(), acc.imageLayers(),
-                     renderMetadata(start.scene, s, renderer.radii(), acc, ranks.size()), record.exposure);
+                     renderMetadata(start.scene, s, renderer.radii(), acc, ranks.size()), record.exposure,
+                     acc.transparent() ? &alpha : nullptr);
     if (checkpoints.enabled()) checkpoints.write(acc, runElapsed);
     const uint64_t rejected = acc.beauty().rejectedSamples();
     if (rejected)
@@ -296,6 +304,10 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
         ->capture_default_str();
     cmd->add_flag("--aov", o->aov,
                   "EXR output gets layers media_primary, media_secondary, surface (they add up to R,G,B) and variance");
+    cmd->add_flag("--transparent", o->transparent,
+                  "Transparent film: the environment is not seen as the background (it still lights the scene) and "
+                  "the EXR/PNG gets an alpha channel, the pixel's coverage (fog in front of the background: 1 minus "
+                  "its transmittance); the render block's \"transparent\"");
     cmd->add_option("--reference", o->reference, "Reference image (same size) for the --convergence log (default: none)");
     cmd->add_option("--convergence", o->convergence,
                     "CSV: per pass elapsed time, photon paths, beam radius, relative RMSE and bias against --reference "

@@ -70,13 +70,53 @@ void writeImage(const std::string& path, const Image& image, const ImageMetadata
     if (!ok || !out->close()) throw Error("failed writing '" + path + "': " + out->geterror());
 }
 
+bool formatHasAlpha(const std::string& path) {
+    const std::string ext = extensionOf(path);
+    return ext == ".exr" || ext == ".png" || ext == ".tif" || ext == ".tiff";
+}
+
+namespace {
+/// A display format with an alpha channel: RGBA bytes, the colour unassociated before the tone map.
+void writeDisplayWithAlpha(const std::string& path, const Image& image, const Image& alpha,
+                           const ImageMetadata& metadata, float exposure) {
+    std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(path);
+    if (!out) throw Error("output '" + path + "': " + OIIO::geterror());
+    OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::UINT8);
+    spec.alpha_channel = 3;
+    spec.attribute("oiio:UnassociatedAlpha", 1);
+    for (const auto& [k, v] : metadata) spec.attribute(k, v);
+    if (!out->open(path, spec)) throw Error("cannot write '" + path + "': " + out->geterror());
+    std::vector<uint8_t> bytes(image.pixels.size() * 4);
+    for (size_t i = 0; i < image.pixels.size(); ++i) {
+        const float a = clampValue(alpha.pixels[i].r, 0.0f, 1.0f);
+        for (int c = 0; c < 3; ++c)
+            bytes[4 * i + c] =
+                a > 0 ? uint8_t(std::lround(255.0f * toneMapChannel(image.pixels[i][c] / a, exposure))) : uint8_t(0);
+        bytes[4 * i + 3] = uint8_t(std::lround(255.0f * a));
+    }
+    if (!out->write_image(OIIO::TypeDesc::UINT8, bytes.data()) || !out->close())
+        throw Error("failed writing '" + path + "': " + out->geterror());
+}
+}  // namespace
+
 void writeImageLayers(const std::string& path, const Image& beauty, const ImageLayers& layers,
-                      const ImageMetadata& metadata, float exposure) {
+                      const ImageMetadata& metadata, float exposure, const Image* alpha) {
     checkImageExtension(path);
-    if (layers.empty() || extensionOf(path) != ".exr") return writeImage(path, beauty, metadata, exposure);
-    const int nch = 3 * int(1 + layers.size());
+    if (alpha) {
+        TYNDALL_CHECK(alpha->width == beauty.width && alpha->height == beauty.height, "alpha size differs");
+        if (!formatHasAlpha(path)) throw Error("output '" + path + "': an alpha channel needs .exr, .png or .tif");
+        if (extensionOf(path) != ".exr") return writeDisplayWithAlpha(path, beauty, *alpha, metadata, exposure);
+    } else if (layers.empty() || extensionOf(path) != ".exr") {
+        return writeImage(path, beauty, metadata, exposure);
+    }
+    const int first = alpha ? 4 : 3;  // the layers' first channel
+    const int nch = first + 3 * int(layers.size());
     OIIO::ImageSpec spec(beauty.width, beauty.height, nch, OIIO::TypeDesc::FLOAT);
     spec.channelnames = {"R", "G", "B"};
+    if (alpha) {
+        spec.channelnames.push_back("A");
+        spec.alpha_channel = 3;
+    }
     for (const auto& [name, image] : layers) {
         TYNDALL_CHECK(image.width == beauty.width && image.height == beauty.height, "layer '" + name + "' size differs");
         for (const char* c : {".R", ".G", ".B"}) spec.channelnames.push_back(name + c);
@@ -87,8 +127,9 @@ void writeImageLayers(const std::string& path, const Image& beauty, const ImageL
     for (size_t i = 0; i < beauty.pixels.size(); ++i) {
         float* px = &data[i * nch];
         for (int c = 0; c < 3; ++c) px[c] = beauty.pixels[i][c];
+        if (alpha) px[3] = alpha->pixels[i].r;
         for (size_t l = 0; l < layers.size(); ++l)
-            for (int c = 0; c < 3; ++c) px[3 * (l + 1) + c] = layers[l].second.pixels[i][c];
+            for (int c = 0; c < 3; ++c) px[first + 3 * l + c] = layers[l].second.pixels[i][c];
     }
     std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(path);
     if (!out) throw Error("output '" + path + "': " + OIIO::geterror());

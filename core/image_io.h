@@ -18,8 +18,13 @@ void writeImage(const std::string& path, const Image& image, const ImageMetadata
 /// each layer as "<name>.R", "<name>.G", "<name>.B" (all the same size as `beauty`); other formats
 /// hold the beauty image only.
 using ImageLayers = std::vector<std::pair<std::string, Image>>;
+/// `alpha` (its r channel; the transparent film's coverage): an EXR gets channel A after R, G, B,
+/// a PNG or TIFF an alpha channel, unassociated as those formats keep it (the colour divided by
+/// alpha before the tone map); formatHasAlpha() says which outputs can hold it.
 void writeImageLayers(const std::string& path, const Image& beauty, const ImageLayers& layers,
-                      const ImageMetadata& metadata = {}, float exposure = 1.0f);
+                      const ImageMetadata& metadata = {}, float exposure = 1.0f, const Image* alpha = nullptr);
+/// .exr, .png, .tif: the outputs that hold an alpha channel.
+bool formatHasAlpha(const std::string& path);
 /// The channels "<layer>.R/G/B" of an image file ("" = R, G, B) as an image; Error naming the
 /// file and the channels it does have when they are missing.
 Image readImageLayer(const std::string& path, const std::string& layer);

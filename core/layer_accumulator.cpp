@@ -10,18 +10,24 @@ namespace {
 const char* const kAovNames[] = {"beauty", "media_primary", "media_secondary", "surface", "beauty_squares"};
 }
 
-LayerAccumulator::LayerAccumulator(int width, int height, bool aov) : m_aov(aov) {
+LayerAccumulator::LayerAccumulator(int width, int height, bool aov, bool transparent)
+    : m_aov(aov), m_transparent(transparent) {
     for (int i = 0; i < (aov ? 5 : 1); ++i) m_layers.emplace_back(kAovNames[i], Accumulator(width, height));
+    if (transparent) m_layers.emplace_back("alpha", Accumulator(width, height));
 }
 
 void LayerAccumulator::addPass(const Image& beauty) {
-    TYNDALL_CHECK(!m_aov, "an AOV render needs the pass's components");
+    TYNDALL_CHECK(!m_aov && !m_transparent, "an AOV render or a transparent film needs the pass's components");
     m_layers[0].second.addPass(beauty);
 }
 
 void LayerAccumulator::addPass(const Image& beauty, const Image& mediaPrimary, const Image& mediaSecondary,
-                               const Image& surface) {
+                               const Image& surface, const Image& alpha) {
     m_layers[0].second.addPass(beauty);
+    if (m_transparent) {
+        TYNDALL_CHECK(alpha.width == beauty.width && alpha.height == beauty.height, "a transparent film needs the pass's alpha");
+        m_layers.back().second.addPass(alpha);
+    }
     if (!m_aov) return;
     m_layers[1].second.addPass(mediaPrimary);
     m_layers[2].second.addPass(mediaSecondary);
@@ -52,21 +58,23 @@ ImageLayers LayerAccumulator::imageLayers() const {
 }
 
 LayerAccumulator LayerAccumulator::fromNamed(std::vector<std::pair<std::string, Accumulator>> layers, bool aov,
-                                             const std::string& where) {
-    const size_t count = aov ? 5 : 1;
+                                             const std::string& where, bool transparent) {
+    const size_t count = (aov ? 5 : 1) + (transparent ? 1 : 0);
     if (layers.size() != count)
         throw Error(where + ": holds " + std::to_string(layers.size()) + " layers, expected " + std::to_string(count) +
-                    (aov ? " (an --aov render)" : ""));
+                    (aov ? " (an --aov render)" : "") + (transparent ? " (a transparent film)" : ""));
     for (size_t i = 0; i < count; ++i) {
-        if (layers[i].first != kAovNames[i])
-            throw Error(where + ": layer " + std::to_string(i) + " is '" + layers[i].first + "', expected '" +
-                        kAovNames[i] + "'");
+        const char* name = transparent && i + 1 == count ? "alpha" : kAovNames[i];
+        if (layers[i].first != name)
+            throw Error(where + ": layer " + std::to_string(i) + " is '" + layers[i].first + "', expected '" + name +
+                        "'");
         const Accumulator &a = layers[i].second, &b = layers[0].second;
         if (a.width() != b.width() || a.height() != b.height() || a.passCount() != b.passCount())
             throw Error(where + ": layer '" + layers[i].first + "' does not match the beauty layer");
     }
     LayerAccumulator acc(1, 1, false);
     acc.m_aov = aov;
+    acc.m_transparent = transparent;
     acc.m_layers = std::move(layers);
     return acc;
 }

@@ -14,14 +14,20 @@ namespace tyndall {
 
 class LayerAccumulator {
 public:
-    LayerAccumulator(int width, int height, bool aov);
+    /// `transparent`: the transparent film's alpha is kept too (a last layer, "alpha").
+    LayerAccumulator(int width, int height, bool aov, bool transparent = false);
 
     /// Adds a pass without components (aov() must be false).
     void addPass(const Image& beauty);
-    /// Adds a pass and its components (with aov(); without, only `beauty` is kept).
-    void addPass(const Image& beauty, const Image& mediaPrimary, const Image& mediaSecondary, const Image& surface);
+    /// Adds a pass and its components (with aov(); without, only `beauty` is kept) and, with
+    /// transparent(), its alpha (PassLayers::alpha).
+    void addPass(const Image& beauty, const Image& mediaPrimary, const Image& mediaSecondary, const Image& surface,
+                 const Image& alpha = Image());
 
     bool aov() const { return m_aov; }
+    bool transparent() const { return m_transparent; }
+    /// The mean alpha (its r channel), transparent() only.
+    Image alpha() const { return m_layers.back().second.mean(); }
     const Accumulator& beauty() const { return m_layers[0].second; }
     uint64_t passCount() const { return beauty().passCount(); }
 
@@ -31,14 +37,15 @@ public:
     ImageLayers imageLayers() const;
 
     /// Named accumulators ("beauty", then with AOVs "media_primary", "media_secondary",
-    /// "surface", "beauty_squares") for checkpoints and MPI.
+    /// "surface", "beauty_squares", then with a transparent film "alpha") for checkpoints and MPI.
     const std::vector<std::pair<std::string, Accumulator>>& named() const { return m_layers; }
     /// Rebuilds from named(); Error when a layer is missing or the sizes or pass counts differ.
     static LayerAccumulator fromNamed(std::vector<std::pair<std::string, Accumulator>> layers, bool aov,
-                                      const std::string& where);
+                                      const std::string& where, bool transparent = false);
 
 private:
     bool m_aov = false;
+    bool m_transparent = false;
     std::vector<std::pair<std::string, Accumulator>> m_layers;
 };
 

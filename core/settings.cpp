@@ -83,7 +83,8 @@ nlohmann::json RenderSettings::toJson() const {
             {"simd", onOffText(simd)},
             {"direct_light", onOffText(directLight)},
             {"surface_boundary", onOffText(surfaceBoundary)},
-            {"equiangular", onOffText(equiangular)}};
+            {"equiangular", onOffText(equiangular)},
+            {"transparent", onOffText(transparentFilm)}};
     if (!region.whole()) j["region"] = {region.x, region.y, region.width, region.height};
     return j;
 }
@@ -151,7 +152,8 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
     static const char* kKeys[] = {"width", "height", "passes", "time", "photons", "alpha", "radius",
                                   "surface_radius", "radius_offset", "planned_paths", "photon_angle", "seed", "threads",
                                   "max_photon_bounces", "max_camera_bounces", "free_flights", "gpu", "memory", "simd",
-                                  "direct_light", "surface_boundary", "max_path_length", "region", "equiangular"};
+                                  "direct_light", "surface_boundary", "max_path_length", "region", "equiangular",
+                                  "transparent"};
     for (auto it = j.begin(); it != j.end(); ++it) {
         bool known = false;
         for (const char* k : kKeys) known |= it.key() == k;
@@ -191,6 +193,7 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
     read(j, "direct_light", s.directLight, where);
     read(j, "surface_boundary", s.surfaceBoundary, where);
     read(j, "equiangular", s.equiangular, where);
+    read(j, "transparent", s.transparentFilm, where);
     return s;
 }
 

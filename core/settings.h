@@ -98,6 +98,12 @@ struct RenderSettings {
     /// which are then not stored (docs/algorithm.md, "Single scattering by equiangular sampling").
     /// false = beams only.
     bool equiangular = false;
+    /// Transparent film (render block "transparent", `tyndall render --transparent`): camera paths
+    /// that reach the environment straight, through index-matched Interfaces alone, do not see it
+    /// (it still lights the scene), and the output gets an alpha channel, the pixel's coverage: 1
+    /// minus the share of its camera paths' throughput that reached the background, so fog in
+    /// front of an empty background composites by its transmittance (Cycles' transparent film).
+    bool transparentFilm = false;
 
     /// Throws SettingError naming the setting when a value is out of range.
     void validate() const;

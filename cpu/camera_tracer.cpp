@@ -226,8 +226,8 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
     // The environment, where paths that leave the scene arrive (with the emission: one batch).
     const EnvironmentLight* environment = emission && m_scene.environment ? &*m_scene.environment : nullptr;
     // Camera paths that reach it straight (through Interface crossings alone) see it as the
-    // background, unless it is hidden or the film is transparent (`alpha`).
-    const bool background = environment && environment->visible() && !alpha;
+    // background, unless it is hidden or the film is transparent.
+    const bool background = environment && environment->visible() && !m_settings.transparentFilm;
     if (alpha) *alpha = Image(w, h);
 
     // Tiles of kTile x kTile pixels, row by row inside: neighbouring paths reuse each other's beam

@@ -129,12 +129,12 @@ public:
     /// what the paths see of emitters and the direct light of their shadow rays, which belong to
     /// one batch only (the pass's first).
     /// `layers`, when given, also receives that radiance split in two (it does not change it).
-    /// `alpha`, when given (with `emission`: once per pass), makes the film transparent: paths
-    /// that reach the environment straight (through Interface crossings alone) no longer see it,
-    /// and `alpha` receives each pixel's coverage, 1 minus the mean over r, g, b of such a path's
+    /// With RenderSettings::transparentFilm, paths that reach the environment straight (through
+    /// Interface crossings alone) do not see it. `alpha`, when given (with `emission`: once per
+    /// pass), receives each pixel's coverage: 1 minus the mean over r, g, b of such a path's
     /// throughput (its transmittance through the media it crossed), in every channel; 1 where the
-    /// path met a visible surface. Averaged over passes: the fraction of the pixel's camera paths
-    /// that reached neither a surface nor the background (Cycles' transparent film).
+    /// path met a visible surface. Averaged over passes: 1 minus the share of the pixel's camera
+    /// paths that reached the background (Cycles' transparent film).
     Image traceSecondary(const PrimaryPass& primary, const PhotonMap& photons, const BeamBvh& beams,
                          const SurfacePhotonGrid& surface, CameraPassStats* stats,
                          SecondaryLayers* layers = nullptr, bool emission = true, Image* alpha = nullptr) const;

@@ -116,23 +116,24 @@ void PassRenderer::sceneChanged() {
 }
 
 Image PassRenderer::renderPass(uint64_t pass, PassStats* stats) const {
-    return renderBatches(pass, stats, nullptr);
+    return renderBatches(pass, stats, nullptr, nullptr);
 }
 
 PassLayers PassRenderer::renderPassLayers(uint64_t pass, PassStats* stats) const {
     PassLayers layers;
-    layers.beauty = renderBatches(pass, stats, &layers);
+    layers.beauty = renderBatches(pass, stats, &layers, m_settings.transparentFilm ? &layers.alpha : nullptr);
     return layers;
 }
 
 PassLayers PassRenderer::renderPass(uint64_t pass, bool layers, PassStats* stats,
                                     const std::function<bool()>& abandon) const {
     PassLayers out;
-    out.beauty = renderBatches(pass, stats, layers ? &out : nullptr, abandon);
+    out.beauty = renderBatches(pass, stats, layers ? &out : nullptr, m_settings.transparentFilm ? &out.alpha : nullptr,
+                               abandon);
     return out;
 }
 
-Image PassRenderer::renderBatches(uint64_t pass, PassStats* stats, PassLayers* layers,
+Image PassRenderer::renderBatches(uint64_t pass, PassStats* stats, PassLayers* layers, Image* alpha,
                                   const std::function<bool()>& abandon) const {
     PassStats local;
     auto t0 = Clock::now();
@@ -148,7 +149,7 @@ Image PassRenderer::renderBatches(uint64_t pass, PassStats* stats, PassLayers* l
         auto t2 = Clock::now();
         CameraPassStats camera;
         SecondaryLayers secondary;
-        Image radiance = traceSecondary(primary, photons, &camera, first, layers ? &secondary : nullptr);
+        Image radiance = traceSecondary(primary, photons, &camera, first, layers ? &secondary : nullptr, alpha);
         auto t3 = Clock::now();
         RasterStats raster;
         Image part = splatPrimary(primary.segments, photons, &raster);

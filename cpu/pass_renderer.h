@@ -59,6 +59,9 @@ struct PassLayers {
     Image mediaPrimary;    ///< media seen directly by the camera (the primary segments' beams)
     Image mediaSecondary;  ///< media seen through mirrors and glass
     Image surface;         ///< surface photons and emission
+    /// With RenderSettings::transparentFilm (renderPass with or without layers): the coverage,
+    /// in every channel (CameraTracer::traceSecondary).
+    Image alpha;
 };
 
 class PassRenderer {
@@ -77,8 +80,8 @@ public:
     /// Builds the beam BVH and surface-photon grid of `photons` (a pass or one batch of it) and
     /// traces the secondary stage. `emission`: add what the paths see of emitters (the first
     /// batch of a pass only; see CameraTracer::traceSecondary); `layers` also receives the
-    /// radiance split into media and surface parts; `alpha` (with `emission`) makes the film
-    /// transparent and receives the pass's coverage (CameraTracer::traceSecondary).
+    /// radiance split into media and surface parts; `alpha` (with `emission`) receives the pass's
+    /// coverage (CameraTracer::traceSecondary; the transparent film's alpha).
     Image traceSecondary(const PrimaryPass& primary, const PhotonMap& photons, CameraPassStats* stats = nullptr,
                          bool emission = true, SecondaryLayers* layers = nullptr, Image* alpha = nullptr) const;
     CameraPassResult traceCamera(uint64_t pass, const PhotonMap& photons) const;
@@ -110,7 +113,7 @@ public:
 
 private:
     /// renderPass, batch by batch; with `layers`, its components are summed there too.
-    Image renderBatches(uint64_t pass, PassStats* stats, PassLayers* layers,
+    Image renderBatches(uint64_t pass, PassStats* stats, PassLayers* layers, Image* alpha,
                         const std::function<bool()>& abandon = {}) const;
 
     const Scene& m_scene;

@@ -18,33 +18,37 @@ struct PassSink {
     LayerAccumulator* layers = nullptr;
 
     bool aov() const { return layers && layers->aov(); }
+    bool transparent() const { return layers && layers->transparent(); }
     const Accumulator& beauty() const { return plain ? *plain : layers->beauty(); }
     void add(const PassLayers& p) {
         if (plain)
             plain->addPass(p.beauty);
         else
-            layers->addPass(p.beauty, p.mediaPrimary, p.mediaSecondary, p.surface);  // beauty alone without AOVs
+            layers->addPass(p.beauty, p.mediaPrimary, p.mediaSecondary, p.surface, p.alpha);  // beauty alone without AOVs
     }
     void reset() {
         if (plain)
             plain->reset();
         else
-            *layers = LayerAccumulator(layers->beauty().width(), layers->beauty().height(), layers->aov());
+            *layers = LayerAccumulator(layers->beauty().width(), layers->beauty().height(), layers->aov(),
+                                       layers->transparent());
     }
 };
 
 /// A pass's images as one float block for the gather: beauty, then (AOV) media primary, media
-/// secondary, surface.
-std::vector<float> pack(const PassLayers& p, bool aov) {
-    const Image* images[4] = {&p.beauty, &p.mediaPrimary, &p.mediaSecondary, &p.surface};
+/// secondary, surface, then (transparent film) the alpha.
+std::vector<float> pack(const PassLayers& p, bool aov, bool transparent) {
+    std::vector<const Image*> images = {&p.beauty};
+    if (aov) images.insert(images.end(), {&p.mediaPrimary, &p.mediaSecondary, &p.surface});
+    if (transparent) images.push_back(&p.alpha);
     std::vector<float> out;
-    out.reserve(p.beauty.pixels.size() * 3 * (aov ? 4 : 1));
-    for (int i = 0; i < (aov ? 4 : 1); ++i)
-        for (const Rgb& c : images[i]->pixels) out.insert(out.end(), {c.r, c.g, c.b});
+    out.reserve(p.beauty.pixels.size() * 3 * images.size());
+    for (const Image* image : images)
+        for (const Rgb& c : image->pixels) out.insert(out.end(), {c.r, c.g, c.b});
     return out;
 }
 
-PassLayers unpack(const float* data, int w, int h, bool aov) {
+PassLayers unpack(const float* data, int w, int h, bool aov, bool transparent) {
     auto image = [&](int i) {
         Image img(w, h);
         const float* d = data + size_t(i) * img.pixels.size() * 3;
@@ -54,6 +58,7 @@ PassLayers unpack(const float* data, int w, int h, bool aov) {
     PassLayers p;
     p.beauty = image(0);
     if (aov) p.mediaPrimary = image(1), p.mediaSecondary = image(2), p.surface = image(3);
+    if (transparent) p.alpha = image(aov ? 4 : 1);
     return p;
 }
 }  // namespace
@@ -180,7 +185,7 @@ DisplayCommand PassScheduler::Run::distributedRound(uint64_t n) {
             renderOnCpu(f, false);
         else if (traceGlFirst(f))
             traceGlBatches(f);
-        mine = pack(complete(f), aov);
+        mine = pack(complete(f), aov, m_sink.transparent());
         stats = f.stats;
     } else {
         mine.assign(size_t(w) * h * 3 * (aov ? 4 : 1), 0.0f);
@@ -194,7 +199,7 @@ DisplayCommand PassScheduler::Run::distributedRound(uint64_t n) {
             PassStats s;
             s.photonPaths = allCounts[2 * k];
             s.beams = allCounts[2 * k + 1];
-            if (add(unpack(all.data() + k * mine.size(), w, h, aov), m_next + k, s) != DisplayCommand::Continue)
+            if (add(unpack(all.data() + k * mine.size(), w, h, aov, m_sink.transparent()), m_next + k, s) != DisplayCommand::Continue)
                 command = DisplayCommand::Exit;  // after the round: every rank hears it at the next plan
         }
     m_next += n;
@@ -226,7 +231,8 @@ void PassScheduler::Run::traceGlBatches(PassFlight& f) {
         f.splats.push_back(m_s.submitSplat(f.pass, m_primary, m_photons));
         SecondaryLayers secondary;
         addBatch(f.image.beauty,
-                 m_renderer.traceSecondary(*m_primary, *m_photons, &m_camera, batch == 0, layers ? &secondary : nullptr));
+                 m_renderer.traceSecondary(*m_primary, *m_photons, &m_camera, batch == 0, layers ? &secondary : nullptr,
+                                           m_renderer.settings().transparentFilm ? &f.image.alpha : nullptr));
         if (layers) {
             addBatch(f.image.mediaSecondary, std::move(secondary.media));
             addBatch(f.image.surface, std::move(secondary.surface));

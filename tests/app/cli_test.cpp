@@ -3,6 +3,7 @@
 // header carries the settings that reproduce it, and `--passes 8` is exactly the first 8 passes of
 // `--passes 16`.
 #include <gtest/gtest.h>
+#include <OpenImageIO/imageio.h>
 
 #include <array>
 #include <cstdio>
@@ -122,7 +123,7 @@ TEST(Cli, HelpListsEveryOptionWithDefaults) {
     const std::map<std::string, std::set<std::string>> expected = {
         {"render", join({scene, output, ppb,
                          {"--gpu", "--checkpoint", "--checkpoint-every", "--resume", "--quiet", "--progress-every", "--aov",
-                          "--reference", "--convergence", "--max-path-length", "--region"}})},
+                          "--reference", "--convergence", "--max-path-length", "--region", "--transparent"}})},
         {"reference", join({scene, output, {"--spp", "--max-depth", "--max-path-length", "--no-nee"}})},
         {"bench", join({scene, {"--passes", "--photons", "--no-hybrid", "--radius", "--radius-offset", "--simd",
                             "--direct-light", "--surface-boundary", "--equiangular"}})},
@@ -520,4 +521,50 @@ TEST(Cli, TimeBudgetRecordsItsPlanAndReplaysFromIt) {
     tyndall::PassRenderer renderer(scene, s);
     EXPECT_TRUE(tyndall::test::identicalImages(tyndall::readImage(dir + "/cli_time.exr"),
                                                renderPasses(renderer, 0, s.passes)));
+}
+
+// The transparent film through the binary: --transparent (EXR) and the render block's
+// "transparent" (PNG) write an alpha channel: 0 where the environment is the background (no
+// radiance there), 1 on a surface.
+TEST(Cli, TransparentFilmWritesAlpha) {
+    const std::string dir = tyndall::test::outputDir();
+    const std::string scene = dir + "/transparent_film.json";
+    auto writeScene = [&](const std::string& render) {
+        std::ofstream(scene) << R"({"name": "film", )" << render << R"(
+          "environment": {"radiance": 1.5},
+          "materials": [{"name": "card", "albedo": 0.5}],
+          "shapes": [{"type": "quad", "name": "card", "material": "card",
+                      "corner": [-2, -2, -3], "edge1": [2, 0, 0], "edge2": [0, 4, 0]}],
+          "cameras": [{"position": [0, 0, 0], "target": [0, 0, -3], "fov": 40}]})";
+    };
+    auto readRgba = [](const std::string& path, std::vector<float>* px, int* w) {
+        auto in = OIIO::ImageInput::open(path);
+        if (!in) return 0;
+        const OIIO::ImageSpec& spec = in->spec();
+        *w = spec.width;
+        px->resize(size_t(spec.width) * spec.height * spec.nchannels);
+        in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px->data());
+        return spec.nchannels == 4 && spec.alpha_channel == 3 ? 4 : -spec.nchannels;
+    };
+    writeScene("");
+    const std::string exr = dir + "/transparent_film.exr", png = dir + "/transparent_film.png";
+    CliRun r = runTyndall("render " + scene + " --transparent --size 16x16 --passes 2 --photons 100 --gpu off -o " + exr);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    writeScene(R"("render": {"transparent": "on"},)");
+    CliRun p = runTyndall("render " + scene + " --size 16x16 --passes 2 --photons 100 --gpu off -o " + png);
+    ASSERT_EQ(p.exitCode, 0) << p.output;
+    for (const std::string& path : {exr, png}) {
+        std::vector<float> px;
+        int w = 0;
+        ASSERT_EQ(readRgba(path, &px, &w), 4) << path << ": not RGBA";
+        const float* card = &px[size_t(8 * w + 2) * 4];    // left: the card
+        const float* empty = &px[size_t(8 * w + 13) * 4];  // right: the environment
+        EXPECT_EQ(card[3], 1.0f) << path;
+        EXPECT_GT(card[0], 0.0f) << path;
+        EXPECT_EQ(empty[3], 0.0f) << path;
+        EXPECT_EQ(empty[0], 0.0f) << path << ": the background is left out";
+    }
+    CliRun bad = runTyndall("render " + scene + " --transparent --size 16x16 --passes 1 -o " + dir + "/film.jpg");
+    EXPECT_NE(bad.exitCode, 0);
+    EXPECT_NE(bad.output.find("needs .exr, .png or .tif"), std::string::npos) << bad.output;
 }

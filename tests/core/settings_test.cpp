@@ -17,18 +17,22 @@ TEST(Settings, TypedSwitchesRoundTripThroughTheirText) {
     s.directLight = true;
     s.surfaceBoundary = false;
     s.equiangular = true;
+    s.transparentFilm = true;
     nlohmann::json j = s.toJson();
     EXPECT_EQ(j.at("gpu"), "off");
     EXPECT_EQ(j.at("simd"), "off");
     EXPECT_EQ(j.at("direct_light"), "on");
     EXPECT_EQ(j.at("surface_boundary"), "off");
     EXPECT_EQ(j.at("equiangular"), "on");
+    EXPECT_EQ(j.at("transparent"), "on");
     RenderSettings back = RenderSettings::fromJson(j, "test");
     EXPECT_EQ(back.gpu, GpuMode::Off);
     EXPECT_FALSE(back.simd);
     EXPECT_TRUE(back.directLight);
     EXPECT_FALSE(back.surfaceBoundary);
     EXPECT_TRUE(back.equiangular);
+    EXPECT_TRUE(back.transparentFilm);
+    EXPECT_FALSE(RenderSettings::fromJson(nlohmann::json{{"transparent", false}}, "test").transparentFilm);
     for (GpuMode m : {GpuMode::Auto, GpuMode::On, GpuMode::Off}) EXPECT_EQ(gpuModeFromText(gpuModeText(m)), m);
 }
 

@@ -1,6 +1,7 @@
-// The transparent film's coverage (CameraTracer::traceSecondary's `alpha`) against closed forms,
+// The transparent film (RenderSettings::transparentFilm) and its coverage (CameraTracer::
+// traceSecondary's `alpha`) against closed forms,
 // under a constant visible environment: a pixel that sees only the environment reads alpha 0 and
-// no radiance (the background is left out), a pixel on a diffuse card alpha 1, and a pixel that
+// no radiance (the background is left out; 2 on an opaque film), a pixel on a diffuse card alpha 1, and a pixel that
 // sees the environment through a box of homogeneous grey fog behind an Interface hull reads
 // 1 - exp(-sigma_t d), d the chord through the box (averaged here over 8 x 8 pinhole rays from
 // edge to edge of the pixel; the render averages its jittered camera rays over the passes).
@@ -86,6 +87,8 @@ TEST(FilmAlpha, EmptySurfaceAndFogPixelsReadTheirCoverage) {
     ps.width = ps.height = kSize;
     ps.photonsPerPass = 500;
     ps.seed = 9;
+    PassRenderer opaqueRenderer(s, ps);
+    ps.transparentFilm = true;
     PassRenderer renderer(s, ps);
     const int passes = 16;
     std::vector<double> alpha(kSize * kSize, 0.0), radiance(kSize * kSize, 0.0), opaque(kSize * kSize, 0.0);
@@ -94,7 +97,7 @@ TEST(FilmAlpha, EmptySurfaceAndFogPixelsReadTheirCoverage) {
         const PhotonMap photons = renderer.tracePhotons(uint64_t(p));
         Image a;
         const Image transparent = renderer.traceSecondary(primary, photons, nullptr, true, nullptr, &a);
-        const Image plain = renderer.traceSecondary(primary, photons, nullptr, true, nullptr, nullptr);
+        const Image plain = opaqueRenderer.traceSecondary(primary, photons, nullptr, true, nullptr, nullptr);
         ASSERT_EQ(a.width, kSize);
         for (size_t i = 0; i < alpha.size(); ++i) {
             ASSERT_EQ(a.pixels[i].r, a.pixels[i].b) << "alpha in every channel";
