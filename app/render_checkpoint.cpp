@@ -67,6 +67,7 @@ uint64_t sceneHash(const std::string& scenePath, const Scene& scene) {
         h = hashRgb(m.sigmaA, hashRgb(m.sigmaS, h));
         h = hashValue(m.g, h);
         h = hashRgb(m.emission, h);
+        h = hashValue(m.emissionScale, h);
         const uint8_t kinds[2] = {m.density != nullptr, m.emissionField != nullptr};
         h = fnv1a(kinds, sizeof kinds, h);
         if (m.density) h = hashGridMedium(m, h);

@@ -9,7 +9,8 @@
 //
 // Emission (fire, glowing gas; pbrt-v4's convention): the radiative transfer source term is
 // sigma_a(p) Le(p), so a medium emits only where it absorbs. Le is `emission` (a constant) or,
-// when `emissionField` is set, emissionField->radiance(p) (an emission or temperature grid).
+// when `emissionField` is set, emissionField->radiance(p) (an emission or temperature grid), times
+// `emissionScale` (1 as loaded; the viewer's emission slider sets it).
 // Along a ray through a homogeneous medium the emitted radiance reaching the ray's origin from
 // [0, d] is sigma_a Le (1 - exp(-sigma_t d)) / sigma_t; the tracers estimate the same integral in
 // grid media at the tracking's tentative collisions (cpu/free_flight.h).
@@ -38,6 +39,7 @@ struct Medium {
     std::shared_ptr<const DensityGrid> density;  ///< null for homogeneous media
     Rgb emission{0.0f};  ///< Le where emissionField is null (W m^-2 sr^-1)
     std::shared_ptr<const EmissionField> emissionField;  ///< Le(p) of a grid medium; null = `emission`
+    float emissionScale = 1.0f;  ///< multiplies Le, finite and >= 0
 
     bool homogeneous() const { return density == nullptr; }
     Rgb sigmaT() const { return sigmaS + sigmaA; }
@@ -48,12 +50,18 @@ struct Medium {
     /// Scattering coefficient at `p` (the constant for homogeneous media).
     Rgb sigmaSAt(const Vec3& p) const { return density ? sigmaS * density->density(p) : sigmaS; }
     /// True when the medium emits: it absorbs and has an emission.
-    bool emissive() const { return !sigmaA.isBlack() && (emissionField || !emission.isBlack()); }
-    /// Le at `p` (before sigma_a).
-    Rgb emissionAt(const Vec3& p) const { return emissionField ? emissionField->radiance(p) : emission; }
+    bool emissive() const {
+        return !sigmaA.isBlack() && emissionScale > 0 && (emissionField || !emission.isBlack());
+    }
+    /// The constant Le (homogeneous media, or grid media without a field), scale applied.
+    Rgb constantEmission() const { return emission * emissionScale; }
+    /// Le at `p` (before sigma_a), scale applied.
+    Rgb emissionAt(const Vec3& p) const {
+        return (emissionField ? emissionField->radiance(p) : emission) * emissionScale;
+    }
     /// The source term sigma_a(p) Le(p) (W m^-3 sr^-1).
     Rgb sourceAt(const Vec3& p) const {
-        if (!density) return sigmaA * emission;
+        if (!density) return sigmaA * constantEmission();
         const float d = density->density(p);
         return d > 0 ? sigmaA * d * emissionAt(p) : Rgb(0.0f);
     }

@@ -95,6 +95,8 @@ void Scene::validate() const {
         if (!finiteNonNegative(m.sigmaA)) fail(at + "absorption coefficient must be finite and >= 0");
         if (!(m.g > -1.0f && m.g < 1.0f)) fail(at + "phase asymmetry g must lie in (-1, 1)");
         if (!finiteNonNegative(m.emission)) fail(at + "emission must be finite and >= 0");
+        if (!(m.emissionScale >= 0) || !std::isfinite(m.emissionScale))
+            fail(at + "emission scale must be finite and >= 0");
         if (m.emissionField && !m.density) fail(at + "an emission grid needs a density grid");
         if (m.density) {
             Rgb t = m.sigmaT();

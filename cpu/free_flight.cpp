@@ -142,7 +142,7 @@ float sampleCollisionDistance(const Medium& medium, const Ray& ray, float tEnd, 
 
 Rgb homogeneousEmission(const Medium& medium, float d) {
     if (!medium.emissive() || !(d > 0)) return Rgb(0.0f);
-    const Rgb st = medium.sigmaT(), source = medium.sigmaA * medium.emission;
+    const Rgb st = medium.sigmaT(), source = medium.sigmaA * medium.constantEmission();
     Rgb e;
     for (int c = 0; c < 3; ++c) {
         const float x = st[c] * d;

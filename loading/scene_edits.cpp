@@ -34,7 +34,11 @@ nlohmann::json sceneEdits(const Scene& scene) {
                                {"intensity", rgb(l.intensity)}});
     j["media"] = nlohmann::json::array();
     for (const Medium& m : scene.media)
-        j["media"].push_back({{"name", m.name}, {"sigma_s", rgb(m.sigmaS)}, {"sigma_a", rgb(m.sigmaA)}, {"g", m.g}});
+        j["media"].push_back({{"name", m.name},
+                              {"sigma_s", rgb(m.sigmaS)},
+                              {"sigma_a", rgb(m.sigmaA)},
+                              {"g", m.g},
+                              {"emission_scale", m.emissionScale}});
     if (scene.environment)
         j["environment"] = {{"scale", scene.environment->scale()}, {"rotate", scene.environment->rotation()}};
     return j;
@@ -79,6 +83,7 @@ void applySceneEdits(Scene& scene, const nlohmann::json& edits, const std::strin
             m.sigmaS = o.require("sigma_s").rgb();
             m.sigmaA = o.require("sigma_a").rgb();
             m.g = float(o.require("g").number(-0.999, 0.999));
+            m.emissionScale = float(o.number("emission_scale", 1.0, 0.0, 1e6));
             Rgb t = m.sigmaT();
             if (!(t.r > 0 || t.g > 0 || t.b > 0)) o.fail("sigma_s + sigma_a must not be 0");
             if (m.density && (std::abs(t.r - t.g) > 1e-5f * t.r || std::abs(t.r - t.b) > 1e-5f * t.r))

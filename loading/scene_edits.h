@@ -20,7 +20,8 @@ namespace tyndall {
 /// The editable fields of `scene` as JSON:
 ///   {"camera": {"position", "forward", "up" (vec3), "y_fov" (radians), "lens_radius", "focus_distance"},
 ///    "lights": [{"name", "position", "direction", "intensity"} per light, in scene order],
-///    "media":  [{"name", "sigma_s", "sigma_a" (rgb), "g"} per medium, in scene order],
+///    "media":  [{"name", "sigma_s", "sigma_a" (rgb), "g", "emission_scale" (multiplies the
+///               medium's emission; optional when applied, default 1)} per medium, in scene order],
 ///    "environment": {"scale", "rotate" (degrees)} (only when the scene has one)}
 nlohmann::json sceneEdits(const Scene& scene);
 

@@ -144,6 +144,9 @@ void Viewer::drawPanel() {
             }
             interactive(ImGui::SliderFloat("g", &u.g, -0.95f, 0.95f, "%.2f"));
             interactive(ImGui::DragFloat("density scale", &u.densityScale, 0.01f, 0.001f, 1e3f, "%.3f"));
+            if (u.emits)  // fire, glowing gas: Le times this
+                interactive(ImGui::SliderFloat("emission", &u.emissionScale, 0.0f, 100.0f, "%.3g",
+                                               ImGuiSliderFlags_Logarithmic));
             ImGui::PopID();
         }
     }

@@ -29,6 +29,8 @@ void Viewer::initEditUi() {
         u.sigmaS[0] = m.sigmaS.r, u.sigmaS[1] = m.sigmaS.g, u.sigmaS[2] = m.sigmaS.b;
         u.sigmaA[0] = m.sigmaA.r, u.sigmaA[1] = m.sigmaA.g, u.sigmaA[2] = m.sigmaA.b;
         u.g = m.g;
+        u.emissionScale = m.emissionScale;
+        u.emits = !m.sigmaA.isBlack() && (m.emissionField || !m.emission.isBlack());
         u.heterogeneous = !m.homogeneous();
         m_mediumUi.push_back(u);
     }
@@ -109,6 +111,7 @@ void Viewer::pushEdits() {
         m.sigmaS = Rgb(u.sigmaS[0], u.sigmaS[1], u.sigmaS[2]) * u.densityScale;
         m.sigmaA = Rgb(u.sigmaA[0], u.sigmaA[1], u.sigmaA[2]) * u.densityScale;
         m.g = u.g;
+        m.emissionScale = u.emissionScale;
     }
     if (m_edited.environment) {
         m_edited.environment->setScale(m_environmentScale);

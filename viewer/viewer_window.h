@@ -51,6 +51,8 @@ struct MediumUi {
     float sigmaA[3] = {0, 0, 0};
     float g = 0;
     float densityScale = 1;
+    float emissionScale = 1;  ///< Medium::emissionScale
+    bool emits = false;       ///< the medium has an emission to scale
     bool heterogeneous = false;
 };
 

@@ -56,6 +56,47 @@ TEST(SceneEdits, RoundTripThroughJsonTextIsExact) {
     EXPECT_EQ(sceneEdits(c)["media"].dump(), sceneEdits(a)["media"].dump());
 }
 
+// The viewer's emission slider: "emission_scale" multiplies the medium's Le wherever it is read
+// (the source term, the constant that the homogeneous closed form uses), round-trips exactly,
+// defaults to 1 when a view file leaves it out, and 0 turns the fire off.
+TEST(SceneEdits, EmissionScaleMultipliesTheMediumsEmission) {
+    Scene s = makeDefaultScene();
+    s.media[0].sigmaA = Rgb(0.1f);
+    s.media[0].emission = Rgb(2.0f, 1.0f, 0.5f);
+    ASSERT_TRUE(s.media[0].emissive());
+    const Rgb before = s.media[0].sourceAt(Vec3(0.0f));
+    nlohmann::json edits = sceneEdits(s);
+    ASSERT_EQ(edits["media"][0]["emission_scale"], 1.0);
+    edits["media"][0]["emission_scale"] = 2.5;
+    Scene a = s;
+    applySceneEdits(a, nlohmann::json::parse(edits.dump()), "test");
+    EXPECT_EQ(a.media[0].emissionScale, 2.5f);
+    const Rgb after = a.media[0].sourceAt(Vec3(0.0f));
+    for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(after[c], 2.5f * before[c]);
+    EXPECT_FLOAT_EQ(a.media[0].constantEmission().r, 5.0f);
+    EXPECT_EQ(sceneEdits(a)["media"][0]["emission_scale"], 2.5);
+    // Applied again (the viewer applies every snapshot to the scene it renders): still 2.5x.
+    applySceneEdits(a, sceneEdits(a), "test");
+    EXPECT_FLOAT_EQ(a.media[0].sourceAt(Vec3(0.0f)).r, 2.5f * before.r);
+    // Left out: 1.
+    edits["media"][0].erase("emission_scale");
+    applySceneEdits(a, edits, "test");
+    EXPECT_EQ(a.media[0].emissionScale, 1.0f);
+    // Off.
+    edits["media"][0]["emission_scale"] = 0;
+    applySceneEdits(a, edits, "test");
+    EXPECT_FALSE(a.media[0].emissive());
+    EXPECT_TRUE(a.media[0].sourceAt(Vec3(0.0f)).isBlack());
+    // Negative: an error naming the place.
+    edits["media"][0]["emission_scale"] = -1;
+    try {
+        applySceneEdits(a, edits, "test");
+        FAIL() << "a negative emission scale was accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("/edits/media/0/emission_scale"), std::string::npos) << e.what();
+    }
+}
+
 TEST(SceneEdits, ViewFileLoadsTheBaseWithTheEditsAndItsRenderBlock) {
     namespace fs = std::filesystem;
     Scene edited = editedDefaultScene();
