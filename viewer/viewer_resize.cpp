@@ -66,23 +66,7 @@ void Viewer::openDropped(const std::string& path) {
         m_status = "drop: --compare shows the scene it was opened with";
         return;
     }
-    std::vector<std::string> names;
-    std::vector<Camera> cameras;
-    Scene scene;
-    try {
-        scene = m_o.load(path, &names, &cameras);
-    } catch (const std::exception& e) {
-        m_status = std::string("drop: not opened, the scene stays: ") + e.what();
-        std::fprintf(stderr, "tyndall view: %s\n", m_status.c_str());
-        return;
-    }
-    for (auto& loop : m_loops) loop->stop();
-    m_loops.clear();
-    m_pendingChanges.clear();
-    m_dragButton = -1;
-    m_o.scene = std::move(scene);
-    m_o.cameraNames = std::move(names);
-    m_o.cameras = std::move(cameras);
+    if (!replaceScene(path, "drop: not opened, the scene stays: ")) return;
     m_o.scenePath = m_o.base = path;
     m_o.baseCamera.clear();
     m_edited = m_o.scene;

@@ -52,6 +52,30 @@ void Viewer::startLoops() {
     }
 }
 
+/// Loads the scene file at `path` and, if it loads, stops the render loops and puts its scene and
+/// cameras in place of the current ones; if not, says `failure` and the loader's error and keeps
+/// the current scene. The caller rebuilds what depends on the scene and starts the loops again.
+bool Viewer::replaceScene(const std::string& path, const char* failure) {
+    std::vector<std::string> names;
+    std::vector<Camera> cameras;
+    Scene scene;
+    try {
+        scene = m_o.load(path, &names, &cameras);
+    } catch (const std::exception& e) {
+        m_status = std::string(failure) + e.what();
+        std::fprintf(stderr, "tyndall view: %s\n", m_status.c_str());
+        return false;
+    }
+    for (auto& loop : m_loops) loop->stop();
+    m_loops.clear();
+    m_pendingChanges.clear();
+    m_dragButton = -1;
+    m_o.scene = std::move(scene);
+    m_o.cameraNames = std::move(names);
+    m_o.cameras = std::move(cameras);
+    return true;
+}
+
 /// The scene file again, with the camera kept and the lights and media as the file now says; a file
 /// that does not load leaves the last good scene rendering and says why.
 void Viewer::reloadScene() {
@@ -61,23 +85,7 @@ void Viewer::reloadScene() {
         m_status = "reload: only a scene file reloads (not a built-in scene, nor with --compare)";
         return;
     }
-    std::vector<std::string> names;
-    std::vector<Camera> cameras;
-    Scene scene;
-    try {
-        scene = m_o.load(m_o.scenePath, &names, &cameras);
-    } catch (const std::exception& e) {
-        m_status = std::string("reload failed, the last good scene stays: ") + e.what();
-        std::fprintf(stderr, "tyndall view: %s\n", m_status.c_str());
-        return;
-    }
-    for (auto& loop : m_loops) loop->stop();
-    m_loops.clear();
-    m_pendingChanges.clear();
-    m_dragButton = -1;
-    m_o.scene = std::move(scene);
-    m_o.cameraNames = std::move(names);
-    m_o.cameras = std::move(cameras);
+    if (!replaceScene(m_o.scenePath, "reload failed, the last good scene stays: ")) return;
     m_edited = m_o.scene;
     initEditUi();
     m_cameraIndex = std::min(m_cameraIndex, std::max(int(m_o.cameras.size()) - 1, 0));

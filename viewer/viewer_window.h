@@ -102,6 +102,7 @@ private:
     void initEditUi();
     void startLoops();
     void reloadScene();
+    bool replaceScene(const std::string& path, const char* failure);
     void pollSceneFile();
     void pushEdits();
     void pushSettings();
