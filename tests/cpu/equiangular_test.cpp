@@ -224,14 +224,6 @@ Scene fogBoxWithLamp(bool inView) {
     return s;
 }
 
-/// Mean over a rectangle of pixels [x0, x1) x [y0, y1), all three channels.
-double meanOf(const Image& img, int x0, int y0, int x1, int y1) {
-    double sum = 0;
-    for (int y = y0; y < y1; ++y)
-        for (int x = x0; x < x1; ++x) sum += img.at(x, y).r + img.at(x, y).g + img.at(x, y).b;
-    return sum / (3.0 * (x1 - x0) * (y1 - y0));
-}
-
 TEST(EquiangularPpb, FogBoxWithTheLampInViewAgreesWithThePathTracer) {
     const Scene scene = fogBoxWithLamp(true);
     const int size = 16;
@@ -264,11 +256,11 @@ TEST(EquiangularPpb, FogBoxWithTheLampInViewAgreesWithThePathTracer) {
     for (const auto& r : regions) {
         std::vector<double> m;
         double mean = 0;
-        for (const Image& img : means) m.push_back(meanOf(img, r[0], r[1], r[2], r[3])), mean += m.back() / batches;
+        for (const Image& img : means) m.push_back(test::regionMean(img, r[0], r[1], r[2], r[3])), mean += m.back() / batches;
         double var = 0;
         for (double v : m) var += (v - mean) * (v - mean) / (batches - 1);
         const double se = std::sqrt(var / batches);
-        const double reference = meanOf(ref.mean, r[0], r[1], r[2], r[3]);
+        const double reference = test::regionMean(ref.mean, r[0], r[1], r[2], r[3]);
         double refVar = 0;
         for (int y = r[1]; y < r[3]; ++y)
             for (int x = r[0]; x < r[2]; ++x) refVar += ref.varianceOfMean.at(x, y).g;
