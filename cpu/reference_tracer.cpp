@@ -3,11 +3,12 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
+#include <cmath>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "core/equiangular.h"
 #include "core/error.h"
 #include "core/phase.h"
 #include "core/sampling.h"
@@ -256,9 +257,16 @@ Rgb ReferenceTracer::pointLightInScattering(const Ray& seg, MediumId medium, Rng
     if (!isPointLike(int(source))) return Rgb(0.0f);
     const Light& light = m_scene.lights[source];
     const Medium& med = m_scene.media[medium];
-    const EquiangularSample es = sampleEquiangular(seg.o, seg.d, 0.0f, seg.tMax, light.position, uDistance);
-    if (!(es.pdf > 0)) return Rgb(0.0f);
-    const float t = es.t, pdfT = es.pdf;
+    // Its own equiangular sampler, in double precision and over the whole segment (no cone clip),
+    // written apart from core/equiangular.h so a pdf bug there cannot move both sides of a test.
+    const double tc = dot(light.position - seg.o, seg.d);  // the line's closest approach to the light
+    const double h = length(seg.o + seg.d * float(tc) - light.position);
+    if (!(h > 1e-7)) return Rgb(0.0f);  // the line runs through the light: a set of measure zero
+    const double thetaA = std::atan2(-tc, h), thetaB = std::atan2(double(seg.tMax) - tc, h);
+    if (!(thetaB > thetaA)) return Rgb(0.0f);
+    const double tSample = std::clamp(tc + h * std::tan(thetaA + uDistance * (thetaB - thetaA)), 0.0, double(seg.tMax));
+    const float t = float(tSample);
+    const float pdfT = float(h / ((thetaB - thetaA) * (h * h + (tSample - tc) * (tSample - tc))));
     Vec3 x = seg.at(t);
 
     DirectLightSample ls;
