@@ -25,24 +25,13 @@ uint64_t hashValue(const T& v, uint64_t h) {
     return fnv1a(&v, sizeof v, h);
 }
 
-/// A grid medium's fields as the passes see them: the density's bounds, mass and maximum, and the
-/// density and source term sigma_a Le at the centres of a 16^3 lattice over those bounds (so a
-/// grid file rewritten behind an unchanged scene file, or an emission grid, scale or temperature
-/// mapping that changed, changes the hash).
+/// A grid medium's fields as the passes see them: the whole density grid and emission field
+/// (DensityGrid::contentHash, EmissionField::contentHash: for OpenVDB grids every stored value),
+/// so a grid file rewritten behind an unchanged scene file, even in one voxel, or an emission grid,
+/// scale or temperature mapping that changed, changes the hash.
 uint64_t hashGridMedium(const Medium& m, uint64_t h) {
-    const Bounds3 b = m.density->bounds();
-    h = hashValue(b.lo, hashValue(b.hi, h));
-    h = hashValue(m.density->integratedDensity(), hashValue(m.density->maxDensity(), h));
-    if (b.empty()) return h;
-    constexpr int kSide = 16;
-    const Vec3 cell = b.diagonal() * (1.0f / kSide);
-    for (int k = 0; k < kSide; ++k)
-        for (int j = 0; j < kSide; ++j)
-            for (int i = 0; i < kSide; ++i) {
-                const Vec3 p = b.lo + Vec3((i + 0.5f) * cell.x, (j + 0.5f) * cell.y, (k + 0.5f) * cell.z);
-                h = hashValue(m.density->density(p), h);
-                if (m.emissive()) h = hashRgb(m.sourceAt(p), h);
-            }
+    h = m.density->contentHash(h);
+    if (m.emissionField) h = m.emissionField->contentHash(h, m.density->bounds());
     return h;
 }
 }  // namespace

@@ -29,10 +29,10 @@ struct RenderRecord {
 
 /// Hash of what the passes read from the scene: the scene file's bytes (for .json and .gltf),
 /// then the loaded geometry (catches a changed glTF buffer or .glb), materials' and media's
-/// coefficients (g and emission included), the light count, and for grid media the density and
-/// the emission source term sampled on a 16^3 lattice over the grid (catches a VDB file, or its
-/// emission or temperature grid, changed behind an unchanged scene file, unless the change falls
-/// wholly between the lattice points and leaves the grid's mass and maximum as they were).
+/// coefficients (g and emission included), the light count, and for grid media the whole density
+/// grid and emission field (DensityGrid::contentHash: every stored voxel of an OpenVDB grid, so a
+/// VDB file, or its emission or temperature grid, changed behind an unchanged scene file is seen,
+/// down to one voxel).
 uint64_t sceneHash(const std::string& scenePath, const Scene& scene);
 std::string hashText(uint64_t hash);
 

@@ -6,6 +6,7 @@
 // Tracking (cpu/free_flight.cpp) bounds the density along a ray by majorantGrid() when the grid
 // has one (piecewise-constant, tight) and by majorant(ray) otherwise (one value per segment).
 #include <cstddef>
+#include <cstdint>
 
 #include "core/density_volume.h"
 #include "core/majorant_grid.h"
@@ -36,6 +37,12 @@ public:
     /// `out->sample(p)` must match density(p) by), when it has one of at most `maxVoxels` voxels;
     /// false otherwise, and the primary-segment splat of this medium stays on the CPU.
     virtual bool denseVolume(DensityVolume* out, size_t maxVoxels) const { return false; }
+    /// `h` (an FNV-1a state, core/checkpoint.h) mixed with the whole field, for the resume check
+    /// (a checkpoint's scene hash): any change to any value changes it, with near certainty.
+    /// OpenVDB grids hash every stored value (leaf buffers, tiles), the scale and the transform;
+    /// the default, for analytic fields, hashes bounds() and density() at the centres of a 32^3
+    /// lattice over them.
+    virtual uint64_t contentHash(uint64_t h) const;
 };
 
 /// The integral of `grid`'s density over the world box `box` (clipped to grid.bounds()), in world

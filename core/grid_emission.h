@@ -40,6 +40,8 @@ public:
         if (!m_blackbody) return m_color * v;
         return blackbodyRgb((v - m_bb.temperatureOffset) * m_bb.temperatureScale) * m_bb.scale;
     }
+    /// The values grid's content hash and every parameter above (core/field_hash.cpp).
+    uint64_t contentHash(uint64_t h, const Bounds3& where) const override;
     const DensityGrid& values() const { return *m_values; }
     bool blackbody() const { return m_blackbody; }
     float ambient() const { return m_ambient; }

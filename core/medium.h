@@ -29,6 +29,10 @@ class EmissionField {
 public:
     virtual ~EmissionField() = default;
     virtual Rgb radiance(const Vec3& p) const = 0;
+    /// `h` mixed with the whole field, for the resume check (DensityGrid::contentHash). The
+    /// default hashes radiance() at the centres of a 32^3 lattice over `where` (the medium's
+    /// density bounds); GridEmission hashes its grid and parameters.
+    virtual uint64_t contentHash(uint64_t h, const Bounds3& where) const;
 };
 
 struct Medium {

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/rng.h"
 #include "loading/mesh_builders.h"
 
 namespace tyndall {
@@ -23,6 +24,40 @@ bool holds(const Bounds3& outer, const Bounds3& inner) {
 double volume(const Bounds3& b) {
     Vec3 d = b.diagonal();
     return double(d.x) * double(d.y) * double(d.z);
+}
+
+/// The density-weighted mean of the grid medium `m`'s Le without its emissionScale (header) over
+/// `region` (empty = all space): the integral of d Le by stratified sampling (one jittered point in
+/// each of kEmissionCells^3 cells over the density's bounds clipped to the region, a fixed seed)
+/// over the integral of d. The constant `emission` when `m` has no emission field.
+Rgb meanEmission(const Medium& m, const Bounds3& region) {
+    if (!m.emissionField) return m.emission;
+    const DensityGrid& grid = *m.density;
+    Bounds3 b = grid.bounds();
+    if (!region.empty()) {
+        b.lo = vmax(b.lo, region.lo);
+        b.hi = vmin(b.hi, region.hi);
+    }
+    if (b.empty()) return Rgb(0.0f);
+    const double mass = region.empty() || holds(region, grid.bounds()) ? grid.integratedDensity()
+                                                                        : integrateDensity(grid, region);
+    if (!(mass > 0)) return Rgb(0.0f);
+    constexpr int kEmissionCells = 96;
+    const Vec3 step = b.diagonal() / float(kEmissionCells);
+    Rng rng(0x7717, 24);
+    double weighted[3] = {0, 0, 0};
+    for (int k = 0; k < kEmissionCells; ++k)
+        for (int j = 0; j < kEmissionCells; ++j)
+            for (int i = 0; i < kEmissionCells; ++i) {
+                const float u = rng.uniform(), v = rng.uniform(), w = rng.uniform();
+                const Vec3 p = b.lo + Vec3((float(i) + u) * step.x, (float(j) + v) * step.y, (float(k) + w) * step.z);
+                const float d = grid.density(p);
+                if (!(d > 0)) continue;
+                const Rgb le = m.emissionField->radiance(p);
+                for (int c = 0; c < 3; ++c) weighted[c] += double(d) * double(le[c]);
+            }
+    const double cell = double(step.x) * double(step.y) * double(step.z);
+    return Rgb(float(weighted[0] * cell / mass), float(weighted[1] * cell / mass), float(weighted[2] * cell / mass));
 }
 
 /// Confines the global grid medium `g` of `twin` to its support box (header): adds the hull, moves
@@ -98,9 +133,12 @@ Scene makeHomogeneousTwin(const Scene& scene, float density, std::vector<float>*
             t.box = confineToSupport(twin, t.medium, &mean);
         t.density = density >= 0 ? density : float(mean);
         Medium& m = twin.media[i];
+        t.emission = meanEmission(m, t.box);
         m.sigmaS = m.sigmaS * t.density;
         m.sigmaA = m.sigmaA * t.density;
         m.density = nullptr;
+        m.emissionField = nullptr;
+        m.emission = t.emission;
         m.name += " (homogeneous twin)";
         if (used) used->push_back(t.density);
         if (converted) converted->push_back(t);

@@ -44,6 +44,16 @@ nlohmann::json sceneEdits(const Scene& scene) {
     return j;
 }
 
+nlohmann::json twinSceneEdits(const Scene& edited, const Scene& twin) {
+    if (twin.media.size() != edited.media.size())
+        throw Error("twin scene '" + twin.name + "' has " + std::to_string(twin.media.size()) + " media, its base '" +
+                    edited.name + "' " + std::to_string(edited.media.size()));
+    nlohmann::json j = sceneEdits(edited);
+    j["media"] = sceneEdits(twin)["media"];
+    for (size_t i = 0; i < twin.media.size(); ++i) j["media"][i]["emission_scale"] = edited.media[i].emissionScale;
+    return j;
+}
+
 void applySceneEdits(Scene& scene, const nlohmann::json& edits, const std::string& where) {
     JsonObject top = JsonValue(edits, where, "/edits").object();
     auto camera = top.get("camera"), lights = top.get("lights"), media = top.get("media");

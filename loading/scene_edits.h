@@ -25,6 +25,14 @@ namespace tyndall {
 ///    "environment": {"scale", "rotate" (degrees)} (only when the scene has one)}
 nlohmann::json sceneEdits(const Scene& scene);
 
+/// The edits for the homogeneous twin of `edited` (the right half of the viewer's compare view;
+/// loading/homogeneous_twin.h, which keeps the media in order): `edited`'s camera, lights and
+/// environment, and `twin`'s own media (their names and coefficients), each with the emission
+/// scale of the same medium of `edited`, so that one emission slider drives both halves (the
+/// twin's Le is the grid's density-weighted mean before the scale). Throws Error when the media
+/// counts differ.
+nlohmann::json twinSceneEdits(const Scene& edited, const Scene& twin);
+
 /// Sets the fields named in `edits` (any of the four keys; lights and media must list every
 /// light/medium of the scene, by the same names in the same order). The camera is rebuilt with
 /// Camera::lookAt(position, position + forward, up, y_fov); light directions are normalized.

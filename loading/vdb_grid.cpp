@@ -14,6 +14,7 @@
 #include <regex>
 #include <sstream>
 
+#include "core/checkpoint.h"
 #include "core/error.h"
 #include "core/load_budget.h"
 #include "loading/vdb_file.h"
@@ -374,6 +375,41 @@ const MajorantGrid* VdbDensityGrid::majorantGrid() const {
 float VdbDensityGrid::maxDensity() const {
     return m_impl->maxDensity;
 }
+uint64_t VdbDensityGrid::contentHash(uint64_t h) const {
+    const Impl& m = *m_impl;
+    auto mix = [&h](const void* data, size_t size) {
+        const uint64_t c = checksum64(data, size);
+        h = fnv1a(&c, sizeof c, h);
+    };
+    const float params[2] = {m.scale, m.background};
+    mix(params, sizeof params);
+    mix(&m.indexToWorld, sizeof m.indexToWorld);
+    const openvdb::FloatTree& tree = m.grid->tree();
+    for (auto leaf = tree.cbeginLeaf(); leaf; ++leaf) {
+        const openvdb::Coord o = leaf->origin();
+        const int32_t origin[3] = {o.x(), o.y(), o.z()};
+        mix(origin, sizeof origin);
+        const auto& mask = leaf->getValueMask();
+        uint64_t words[mask.WORD_COUNT];
+        for (openvdb::Index w = 0; w < mask.WORD_COUNT; ++w) words[w] = mask.template getWord<uint64_t>(w);
+        mix(words, sizeof words);
+        mix(leaf->buffer().data(), leaf->buffer().size() * sizeof(float));
+    }
+    // Tiles: the value iterator above the leaf level.
+    auto tile = tree.cbeginValueAll();
+    tile.setMaxDepth(openvdb::FloatTree::ValueAllCIter::LEAF_DEPTH - 1);
+    for (; tile; ++tile) {
+        openvdb::CoordBBox b;
+        tile.getBoundingBox(b);
+        const int32_t box[7] = {b.min().x(), b.min().y(), b.min().z(), b.max().x(), b.max().y(), b.max().z(),
+                                tile.isValueOn() ? 1 : 0};
+        mix(box, sizeof box);
+        const float v = *tile;
+        mix(&v, sizeof v);
+    }
+    return h;
+}
+
 float VdbDensityGrid::meanDensity() const {
     return m_impl->meanDensity;
 }

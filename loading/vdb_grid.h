@@ -94,6 +94,9 @@ public:
     /// Exact for the trilinear field: the sum of the positive voxel values x voxel volume x scale.
     double integratedDensity() const override;
     bool denseVolume(DensityVolume* out, size_t maxVoxels) const override;
+    /// Every stored value (each leaf's origin, value mask and 512 values; each tile above the
+    /// leaves with its extent and state), the scale, the background and the world <- index map.
+    uint64_t contentHash(uint64_t h) const override;
 
     /// "file 'x' grid 'density'" or the label given to fromDense.
     const std::string& label() const;

@@ -132,18 +132,27 @@ void Viewer::drawPanel() {
                                      1e9f, "%.3g"));
         interactive(ImGui::SliderFloat("rotation", &m_environmentRotation, -180.0f, 180.0f, "%.0f deg"));
     }
-    if (!m_o.compare && !m_edited.media.empty() && ImGui::CollapsingHeader("Media", ImGuiTreeNodeFlags_DefaultOpen)) {
+    // With --compare only the emission sliders show (the twin's coefficients differ from the grid's;
+    // one emission scale drives both halves: twinSceneEdits).
+    bool anyEmits = false;
+    for (const MediumUi& u : m_mediumUi) anyEmits |= u.emits;
+    if (!m_edited.media.empty() && (!m_o.compare || anyEmits) &&
+        ImGui::CollapsingHeader("Media", ImGuiTreeNodeFlags_DefaultOpen)) {
+        if (m_o.compare) ImGui::TextWrapped("emission: both halves");
         for (size_t i = 0; i < m_edited.media.size(); ++i) {
             MediumUi& u = m_mediumUi[i];
+            if (m_o.compare && !u.emits) continue;
             ImGui::PushID(1000 + int(i));
             ImGui::Text("%s%s", m_edited.media[i].name.c_str(), u.heterogeneous ? " (grid)" : "");
-            if (!u.heterogeneous) {
-                // A grid medium's extinction must stay grey (docs/scene-format.md): only scale and g.
-                interactive(ImGui::DragFloat3("sigma_s", u.sigmaS, 0.001f, 0.0f, 1e4f, "%.4g"));
-                interactive(ImGui::DragFloat3("sigma_a", u.sigmaA, 0.001f, 0.0f, 1e4f, "%.4g"));
+            if (!m_o.compare) {
+                if (!u.heterogeneous) {
+                    // A grid medium's extinction must stay grey (docs/scene-format.md): only scale and g.
+                    interactive(ImGui::DragFloat3("sigma_s", u.sigmaS, 0.001f, 0.0f, 1e4f, "%.4g"));
+                    interactive(ImGui::DragFloat3("sigma_a", u.sigmaA, 0.001f, 0.0f, 1e4f, "%.4g"));
+                }
+                interactive(ImGui::SliderFloat("g", &u.g, -0.95f, 0.95f, "%.2f"));
+                interactive(ImGui::DragFloat("density scale", &u.densityScale, 0.01f, 0.001f, 1e3f, "%.3f"));
             }
-            interactive(ImGui::SliderFloat("g", &u.g, -0.95f, 0.95f, "%.2f"));
-            interactive(ImGui::DragFloat("density scale", &u.densityScale, 0.01f, 0.001f, 1e3f, "%.3f"));
             if (u.emits)  // fire, glowing gas: Le times this
                 interactive(ImGui::SliderFloat("emission", &u.emissionScale, 0.0f, 100.0f, "%.3g",
                                                ImGuiSliderFlags_Logarithmic));

@@ -44,11 +44,9 @@ void Viewer::startLoops() {
     for (auto& loop : m_loops)
         if (!loop->notice().empty()) std::fprintf(stderr, "tyndall: %s\n", loop->notice().c_str());
     m_edited.camera = m_camera.camera();
-    nlohmann::json edits = sceneEdits(m_edited);
-    if (m_o.compare) edits.erase("media");
-    for (auto& loop : m_loops) {
-        loop->onPublish([] { glfwPostEmptyEvent(); });  // wakes the UI thread's event wait
-        loop->start(edits);
+    for (size_t i = 0; i < m_loops.size(); ++i) {
+        m_loops[i]->onPublish([] { glfwPostEmptyEvent(); });  // wakes the UI thread's event wait
+        m_loops[i]->start(loopEdits(i));
     }
 }
 
@@ -125,10 +123,13 @@ void Viewer::pushEdits() {
         m_edited.environment->setScale(m_environmentScale);
         m_edited.environment->setRotation(m_environmentRotation);
     }
-    nlohmann::json edits = sceneEdits(m_edited);
-    if (m_o.compare) edits.erase("media");  // the twin's media differ: only camera and lights are shared
     m_pendingChanges.push_back({m_loops[0]->control().version() + 1, seconds(Clock::now()), m_dragButton < 0});
-    for (auto& loop : m_loops) loop->setEdits(edits);
+    for (size_t i = 0; i < m_loops.size(); ++i) m_loops[i]->setEdits(loopEdits(i));
+}
+
+nlohmann::json Viewer::loopEdits(size_t loop) const {
+    // The compare view's twin has its own media; the emission scales are shared (twinSceneEdits).
+    return loop == 0 ? sceneEdits(m_edited) : twinSceneEdits(m_edited, m_o.twin);
 }
 
 void Viewer::setRegion(const PixelRegion& region) {

@@ -105,6 +105,8 @@ private:
     bool replaceScene(const std::string& path, const char* failure);
     void pollSceneFile();
     void pushEdits();
+    /// The edits render loop `loop` applies: the edited scene's (0), the compare twin's (1).
+    nlohmann::json loopEdits(size_t loop) const;
     void pushSettings();
     void resetControllerTo(const Camera& camera);
     /// Writes STEM.{exr,png,json}; returns the view file's path ("" when nothing was saved).

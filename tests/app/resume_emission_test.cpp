@@ -1,7 +1,8 @@
 // A resume refuses a scene whose emission changed, as it refuses other scene changes, including a
-// change the scene file does not show: the VDB's temperature grid rewritten behind an unchanged
-// scene file, or the emission's own coefficients (sceneHash, app/render_checkpoint.h). A resume
-// of the unchanged scene is accepted, so the refusals are not a hash that never matches.
+// change the scene file does not show: one voxel of the VDB's temperature grid rewritten behind an
+// unchanged scene file, a density grid with two voxels changed and its mass and maximum kept, or
+// the emission's own coefficients (sceneHash, app/render_checkpoint.h). A resume of the unchanged
+// scene is accepted, so the refusals are not a hash that never matches.
 #include <gtest/gtest.h>
 #include <openvdb/openvdb.h>
 
@@ -29,21 +30,29 @@ std::string readBytes(const std::string& path) {
     return s.str();
 }
 
-/// fire.vdb: "density" 1 and "temperature" `kelvin` on a 6^3 block of voxels of 0.1.
-void writeFire(const std::string& path, float kelvin) {
+/// Edge of the fire's block of voxels. 47 voxels and their one-voxel border span 48: a 16^3
+/// lattice of sample points over the grid's bounds sits at index 0.5 + 3i, so no sample reads
+/// voxel (2, 2, 2) (each stencil reaches one voxel): a change there is invisible to sampling.
+constexpr int kFireVoxels = 47;
+
+/// fire.vdb: "density" 1 and "temperature" 2500 K on a kFireVoxels^3 block of voxels 0.6 wide,
+/// voxel (2, 2, 2) at `corner` kelvin.
+void writeFire(const std::string& path, float corner) {
     openvdb::initialize();
+    const double voxel = 0.6 / kFireVoxels;
     auto density = openvdb::FloatGrid::create(0.0f);
     density->setName("density");
-    density->setTransform(openvdb::math::Transform::createLinearTransform(0.1));
+    density->setTransform(openvdb::math::Transform::createLinearTransform(voxel));
     auto temperature = openvdb::FloatGrid::create(0.0f);
     temperature->setName("temperature");
-    temperature->setTransform(openvdb::math::Transform::createLinearTransform(0.1));
-    for (int k = 0; k < 6; ++k)
-        for (int j = 0; j < 6; ++j)
-            for (int i = 0; i < 6; ++i) {
+    temperature->setTransform(openvdb::math::Transform::createLinearTransform(voxel));
+    for (int k = 0; k < kFireVoxels; ++k)
+        for (int j = 0; j < kFireVoxels; ++j)
+            for (int i = 0; i < kFireVoxels; ++i) {
                 density->tree().setValue(openvdb::Coord(i, j, k), 1.0f);
-                temperature->tree().setValue(openvdb::Coord(i, j, k), kelvin);
+                temperature->tree().setValue(openvdb::Coord(i, j, k), 2500.0f);
             }
+    temperature->tree().setValue(openvdb::Coord(2, 2, 2), corner);
     openvdb::io::File(path).write({density, temperature});
 }
 
@@ -57,7 +66,7 @@ constexpr const char* kScene = R"({
   "global_medium": "fire"
 })";
 
-TEST(ResumeEmission, ATemperatureGridRewrittenBehindTheSceneIsRefused) {
+TEST(ResumeEmission, OneTemperatureVoxelRewrittenBehindTheSceneIsRefused) {
     const std::string d = test::outputDir() + "/resume-emission";
     fs::remove_all(d);
     fs::create_directories(d);
@@ -73,9 +82,10 @@ TEST(ResumeEmission, ATemperatureGridRewrittenBehindTheSceneIsRefused) {
     r = runTyndall("render --resume " + ck + " --passes 3 -q");
     ASSERT_EQ(r.exitCode, 0) << r.output;
 
-    // The temperature rewritten (the density and the scene file as they were): refused, untouched.
+    // One temperature voxel of 110,592 rewritten (the density and the scene file as they were):
+    // refused, the checkpoint untouched.
     const std::string now = readBytes(ck);
-    writeFire(d + "/fire.vdb", 3000.0f);
+    writeFire(d + "/fire.vdb", 3500.0f);
     r = runTyndall("render --resume " + ck + " --passes 4 -q");
     EXPECT_EQ(r.exitCode, 1) << r.output;
     EXPECT_NE(r.output.find("different scene"), std::string::npos) << r.output;
@@ -125,6 +135,31 @@ TEST(ResumeEmission, SceneHashSeesEveryEmissionParameter) {
     EXPECT_EQ(withField(1.0f, 1.0f), hf);
     EXPECT_NE(withField(2.0f, 1.0f), hf) << "the emission scale";
     EXPECT_NE(withField(1.0f, 1.5f), hf) << "the temperature scale";
+}
+
+/// One voxel, or two with the grid's mass and maximum kept, where no sampling lattice looks.
+TEST(ResumeEmission, SceneHashSeesOneVoxel) {
+    const int n = kFireVoxels, dims[3] = {n, n, n};
+    std::vector<float> values(size_t(n) * n * n, 1.0f);
+    values[size_t(40 + n * (40 + n * 40))] = 2.0f;  // the maximum, away from the voxels changed
+    auto hashOf = [&](const std::vector<float>& v) {
+        Scene s;
+        Medium smoke;
+        smoke.name = "smoke";
+        smoke.density = VdbDensityGrid::fromDense(dims, v, Affine3::scaleTranslate(Vec3(0.6f / n), Vec3(0.0f)), "b");
+        s.media.push_back(smoke);
+        s.globalMedium = 0;
+        return app::sceneHash("", s);
+    };
+    const uint64_t h = hashOf(values);
+    EXPECT_EQ(hashOf(values), h);
+    std::vector<float> moved = values;
+    moved[size_t(2 + n * (2 + n * 2))] = 1.5f;  // voxel (2, 2, 2)
+    moved[size_t(2 + n * (5 + n * 2))] = 0.5f;  // voxel (2, 5, 2)
+    EXPECT_NE(hashOf(moved), h) << "two voxels changed, mass and maximum kept";
+    std::vector<float> one = values;
+    one[size_t(2 + n * (2 + n * 2))] = 1.0f + 1e-6f;
+    EXPECT_NE(hashOf(one), h) << "one voxel, by one part in a million";
 }
 
 }  // namespace

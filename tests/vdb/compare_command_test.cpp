@@ -143,6 +143,45 @@ TEST(CompareCommand, SceneFileAndExplicitDensity) {
     EXPECT_NE(negative.output.find("--density"), std::string::npos) << negative.output;
 }
 
+/// Mean of channel `c` over an image.
+double imageMean(const Image& img, int c) {
+    double sum = 0;
+    for (const Rgb& p : img.pixels) sum += p[c];
+    return sum / double(img.pixels.size());
+}
+
+TEST(CompareCommand, AnEmittingGridsTwinGlows) {
+    // A procedural fire in a dark room, the only light: the twin lights the room only if it carries
+    // the fire's emission (the grid's power, spread over its support box).
+    const std::string dir = test::outputDir() + "/compare-fire";
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir + "/fire.json") << R"({
+  "materials": [{"name": "white", "albedo": 0.6}],
+  "media": [{"name": "fire", "sigma_s": 1.0, "sigma_a": 1.0,
+             "density": {"procedural": "fire", "radius": 0.3, "flame_height": 0.6, "height": 1.0, "voxel_size": 0.05},
+             "emission": {"grid": "temperature", "blackbody": true, "scale": 50}}],
+  "global_medium": "fire",
+  "shapes": [{"type": "box", "name": "room", "material": "white", "min": [-1.5, 0, -1.5], "max": [1.5, 2, 1.5],
+              "inward": true}],
+  "cameras": [{"position": [0, 1, 1.4], "target": [0, 0.4, 0], "fov": 80}]
+})";
+    const std::string out = dir + "/compare.exr";
+    test::CliRun r =
+        test::runTyndall("compare " + dir + "/fire.json --size 32x24 --passes 2 --photons 400 --gpu off -o " + out);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const Image het = readImage(dir + "/compare-heterogeneous.exr");
+    const Image hom = readImage(dir + "/compare-homogeneous.exr");
+    for (int c = 0; c < 3; ++c) {
+        const double h = imageMean(het, c), t = imageMean(hom, c);
+        std::printf("channel %d: image mean, grid %.4g, twin %.4g\n", c, h, t);
+        EXPECT_GT(h, 0.0);
+        // The same power from a box about the fire's size, seen from the same place: the images'
+        // means agree to well within a factor of 2.
+        EXPECT_GT(t, 0.5 * h) << "channel " << c;
+        EXPECT_LT(t, 2.0 * h) << "channel " << c;
+    }
+}
+
 TEST(CompareCommand, InterruptKeepsBothHalvesAtTheSamePassCount) {
     // Ctrl-C during the heterogeneous half: that half is written at once and the homogeneous twin
     // still renders as many passes, so the comparison stays fair.

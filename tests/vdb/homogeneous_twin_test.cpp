@@ -1,17 +1,22 @@
 // The homogeneous twin's region (loading/homogeneous_twin.h): confined to the grid's support box,
 // the twin is clear air outside it and holds the grid's own amount of medium inside (exact for a
 // block of voxels, Monte Carlo for the smoke plume in the room); meshes that cross the box are
-// taken whole; the domain twin keeps the old global medium.
+// taken whole; the domain twin keeps the old global medium. An emitting grid's twin sends the
+// grid's photon power, from inside its box only (a block whose density and Le vary against each
+// other, and the campfire's procedural fire).
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "core/error.h"
+#include "core/grid_emission.h"
 #include "core/rng.h"
 #include "cpu/embree_scene.h"
+#include "cpu/medium_emitters.h"
 #include "loading/default_scene.h"
 #include "loading/default_smoke_scene.h"
 #include "loading/homogeneous_twin.h"
+#include "loading/scene_file.h"
 #include "loading/vdb_grid.h"
 #include "tests/test_scenes.h"
 
@@ -161,6 +166,103 @@ TEST(HomogeneousTwin, PlumeInARoomIsClearAirOutsideItsSupport) {
                 mcMean, grid.density->meanDensity());
     EXPECT_NEAR(conv[0].density, mcMean, 0.01 * mcMean);
     EXPECT_NEAR(hom.sigmaT().r, grid.sigmaT().r * mcMean, 0.01 * hom.sigmaT().r);
+}
+
+/// Mean photon power of `e` over `n` photons with its standard error, per channel; `box`, when not
+/// empty, must hold every photon that carries power (`*outside` counts those that do not).
+void meanPower(const MediumEmitters& e, int n, Rgb* mean, Rgb* se, const Bounds3& box = {}, int* outside = nullptr) {
+    Rng rng(2026, 12);
+    double sum[3] = {}, sum2[3] = {};
+    for (int i = 0; i < n; ++i) {
+        const MediumEmitters::Photon ph = e.sample(rng);
+        if (outside && !ph.power.isBlack() && !box.contains(ph.ray.o)) ++*outside;
+        for (int c = 0; c < 3; ++c) sum[c] += ph.power[c], sum2[c] += double(ph.power[c]) * ph.power[c];
+    }
+    for (int c = 0; c < 3; ++c) {
+        const double m = sum[c] / n;
+        (*mean)[c] = float(m);
+        (*se)[c] = float(std::sqrt(std::max(0.0, sum2[c] / n - m * m) / n));
+    }
+}
+
+/// The twin of the emitting grid medium `grid` (the global medium of `s`): its Le is constant
+/// and its photons' power, all from inside the support box, is the grid's photon power: the
+/// closed form 4 pi sigma_a Le x the box's volume against the grid's photons (Monte Carlo), and
+/// the twin's own photons against that closed form. Returns the twin's medium.
+Medium checkTwinPower(const Scene& s, const char* what, double tolerance) {
+    std::vector<TwinMedium> conv;
+    Scene twin = makeHomogeneousTwin(s, -1.0f, nullptr, TwinRegion::Support, &conv);
+    twin.validate();
+    const Medium& hom = twin.media[size_t(conv[0].medium)];
+    EXPECT_TRUE(hom.homogeneous() && hom.emissive() && !hom.emissionField) << what;
+    EXPECT_EQ(hom.constantEmission().r, conv[0].emission.r * hom.emissionScale) << what;
+    const Bounds3 box = conv[0].box;
+    const Rgb closed = hom.sigmaA * hom.constantEmission() * float(4 * kPi * volume(box));
+
+    EmbreeScene rtGrid(s), rtTwin(twin);
+    MediumEmitters grid(rtGrid), hull(rtTwin);
+    Rgb gridMean, gridSe, twinMean, twinSe;
+    meanPower(grid, 100000, &gridMean, &gridSe);
+    int outside = 0;
+    meanPower(hull, 20000, &twinMean, &twinSe, box, &outside);
+    EXPECT_EQ(outside, 0) << what << ": twin photons with power outside the support box";
+    for (int c = 0; c < 3; ++c) {
+        std::printf("%s, channel %d: grid photons %.5g +- %.2g, twin closed form %.5g, twin photons %.5g\n", what, c,
+                    gridMean[c], gridSe[c], closed[c], twinMean[c]);
+        EXPECT_NEAR(closed[c], gridMean[c], 4 * gridSe[c] + tolerance * gridMean[c]) << what << " channel " << c;
+        EXPECT_NEAR(twinMean[c], closed[c], 4 * twinSe[c] + 1e-4f * closed[c]) << what << " channel " << c;
+    }
+    return hom;
+}
+
+TEST(HomogeneousTwin, EmittingTwinSendsTheGridsPowerFromItsBoxOnly) {
+    // A 4x4x4 block (clear of the glass ball) whose density rises along x (1..4) while its Le falls
+    // (colour grid 4..1 x (1, 0.5, 0.25) x 3): the plain mean of Le over the voxels is not the
+    // density-weighted mean the power needs.
+    Scene s = blockScene({0.6f, -1.2f, -1.0f});
+    const int dims[3] = {6, 6, 6};
+    std::vector<float> density(216, 0.0f), le(216, 0.0f);
+    for (int k = 1; k <= 4; ++k)
+        for (int j = 1; j <= 4; ++j)
+            for (int i = 1; i <= 4; ++i) {
+                density[size_t(i + 6 * (j + 6 * k))] = float(i);
+                le[size_t(i + 6 * (j + 6 * k))] = float(5 - i);
+            }
+    const Affine3 xf = Affine3::scaleTranslate({0.1f, 0.2f, 0.05f}, {0.6f, -1.2f, -1.0f});
+    Medium& m = s.media[0];
+    m.sigmaS = Rgb(0.3f);
+    m.sigmaA = Rgb(0.2f);
+    m.density = VdbDensityGrid::fromDense(dims, density, xf, "block");
+    m.emissionField = std::make_shared<GridEmission>(VdbDensityGrid::fromDense(dims, le, xf, "le"),
+                                                     Rgb(1.0f, 0.5f, 0.25f), 3.0f);
+    m.emissionScale = 0.5f;  // kept by the twin, not folded into its Le
+    s.lights.clear();
+    s.finalize();
+    s.validate();
+    const Medium hom = checkTwinPower(s, "block", 2e-3);
+    EXPECT_EQ(hom.emissionScale, 0.5f);
+
+    // Outside the box the twin is clear air: nothing there emits (room points, as the renderer
+    // asks for the medium at a point).
+    std::vector<TwinMedium> conv;
+    Scene twin = makeHomogeneousTwin(s, -1.0f, nullptr, TwinRegion::Support, &conv);
+    EmbreeScene rt(twin);
+    Rng rng(7, 3);
+    int outside = 0;
+    for (int i = 0; i < 2000; ++i) {
+        const Vec3 e = s.bounds.diagonal();
+        const Vec3 p = s.bounds.lo + Vec3(rng.uniform() * e.x, rng.uniform() * e.y, rng.uniform() * e.z);
+        if (conv[0].box.contains(p)) continue;
+        ++outside;
+        EXPECT_EQ(rt.mediumAt(p), kVacuum) << "at " << p.x << " " << p.y << " " << p.z;
+    }
+    EXPECT_GT(outside, 1500);
+}
+
+TEST(HomogeneousTwin, CampfireTwinSendsTheFiresPower) {
+    SceneFile f = loadSceneFile(std::string(TYNDALL_SOURCE_DIR) + "/scenes/campfire.json");
+    f.scene.validate();
+    checkTwinPower(f.scene, "campfire", 1e-2);
 }
 
 TEST(HomogeneousTwin, DomainKeepsTheGlobalMediumAtTheActiveMean) {

@@ -6,9 +6,12 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "core/grid_emission.h"
 #include "loading/default_scene.h"
+#include "loading/homogeneous_twin.h"
 #include "loading/scene_edits.h"
 #include "loading/scene_file.h"
+#include "loading/vdb_grid.h"
 #include "viewer/camera_controller.h"
 
 namespace tyndall {
@@ -95,6 +98,51 @@ TEST(SceneEdits, EmissionScaleMultipliesTheMediumsEmission) {
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("/edits/media/0/emission_scale"), std::string::npos) << e.what();
     }
+}
+
+// The compare view's emission slider: one scale drives both halves. The grid scene renders the
+// edited scene's edits, its twin twinSceneEdits (the twin's own media, the edited scale): both
+// emit 3x what they did, so their emitted powers stay equal; the grid's edits do not fit the twin.
+TEST(SceneEdits, CompareEmissionSliderDrivesTheGridAndItsTwin) {
+    Scene grid = makeDefaultScene();
+    const int dims[3] = {6, 6, 6};
+    std::vector<float> values(216, 0.0f);
+    for (int k = 1; k <= 4; ++k)
+        for (int j = 1; j <= 4; ++j)
+            for (int i = 1; i <= 4; ++i) values[size_t(i + 6 * (j + 6 * k))] = float(i);
+    const Affine3 xf = Affine3::scaleTranslate(Vec3(0.1f), Vec3(-0.3f));
+    Medium& m = grid.media[0];
+    m.sigmaS = Rgb(0.5f);
+    m.sigmaA = Rgb(0.5f);
+    m.density = VdbDensityGrid::fromDense(dims, values, xf, "block");
+    m.emissionField = std::make_shared<GridEmission>(m.density, Rgb(1.0f, 0.5f, 0.25f), 2.0f);
+    grid.finalize();
+    const Scene twin = makeHomogeneousTwin(grid);
+    const Vec3 inside(0.0f);
+    const Rgb gridBefore = grid.media[0].sourceAt(inside), twinBefore = twin.media[0].sourceAt(inside);
+    ASSERT_GT(gridBefore.r, 0.0f);
+    ASSERT_GT(twinBefore.r, 0.0f);
+
+    Scene edited = grid;
+    edited.media[0].emissionScale = 3.0f;
+    Scene left = grid, right = twin;
+    applySceneEdits(left, sceneEdits(edited), "test");
+    applySceneEdits(right, twinSceneEdits(edited, twin), "test");
+    EXPECT_EQ(left.media[0].emissionScale, 3.0f);
+    EXPECT_EQ(right.media[0].emissionScale, 3.0f);
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_FLOAT_EQ(left.media[0].sourceAt(inside)[c], 3.0f * gridBefore[c]);
+        EXPECT_FLOAT_EQ(right.media[0].sourceAt(inside)[c], 3.0f * twinBefore[c]);
+    }
+    // The twin keeps its own medium: name, coefficients, no grid.
+    EXPECT_EQ(right.media[0].name, twin.media[0].name);
+    EXPECT_EQ(right.media[0].sigmaA.r, twin.media[0].sigmaA.r);
+    EXPECT_TRUE(right.media[0].homogeneous());
+    // The camera and lights are the edited scene's on both sides.
+    EXPECT_EQ(twinSceneEdits(edited, twin)["camera"].dump(), sceneEdits(edited)["camera"].dump());
+    EXPECT_EQ(twinSceneEdits(edited, twin)["lights"].dump(), sceneEdits(edited)["lights"].dump());
+    Scene wrong = twin;
+    EXPECT_THROW(applySceneEdits(wrong, sceneEdits(edited), "test"), Error);
 }
 
 TEST(SceneEdits, ViewFileLoadsTheBaseWithTheEditsAndItsRenderBlock) {
