@@ -104,8 +104,8 @@ RenderStart startNew(RenderOptions& o, bool root) {
         const EmbreeScene rt(r.scene);
         c.settings = resolveRadiusDefaults(c.settings, rt);
     }
-    r.record = {c.scene, c.camera, sceneHash(c.scene, r.scene), c.settings, c.output, c.exposure, o.aov, 0.0};
-    r.record.environment = c.environment;
+    r.record = {c.scene, c.camera, sceneHash(c.scene, r.scene), c.settings, c.output, c.exposure, o.aov, 0.0,
+                c.environment};
     allocating("the accumulator of a " + std::to_string(c.settings.width) + "x" + std::to_string(c.settings.height) +
                    " image",
                accumulatorBytes(c.settings, o.aov), [&] {
