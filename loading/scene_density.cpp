@@ -51,18 +51,27 @@ std::shared_ptr<const DensityGrid> readProcedural(JsonObject& obj, const JsonVal
             options.budget->reserve(voxels * 8, what);
         }
     };
-    if (type == "smoke") {
-        ProceduralSmoke p;
-        p.base = obj.vec3("base", p.base);
-        p.height = float(obj.number("height", p.height, 1e-3, 1e4));
-        p.baseRadius = float(obj.number("base_radius", p.baseRadius, 1e-3, 1e4));
-        p.topRadius = float(obj.number("top_radius", p.topRadius, 1e-3, 1e4));
-        p.voxelSize = float(obj.number("voxel_size", p.voxelSize, 1e-4, 1e4));
-        p.noiseFrequency = float(obj.number("noise_frequency", p.noiseFrequency, 1e-4, 1e4));
+    // A length or a frequency in world units.
+    auto positive = [&](const char* key, float value, double min = 1e-3) {
+        return float(obj.number(key, value, min, 1e4));
+    };
+    // The keys every procedural grid ends with (`noise`: its noise frequency, where it has one),
+    // then its voxels against the budget.
+    auto finish = [&](auto& p, float* noise) {
+        p.voxelSize = positive("voxel_size", p.voxelSize, 1e-4);
+        if (noise) *noise = positive("noise_frequency", *noise, 1e-4);
         p.seed = readSeed(obj, p.seed);
         p.densityScale = scale;
         obj.finish();
         checkSize(voxelCount(p));
+    };
+    if (type == "smoke") {
+        ProceduralSmoke p;
+        p.base = obj.vec3("base", p.base);
+        p.height = positive("height", p.height);
+        p.baseRadius = positive("base_radius", p.baseRadius);
+        p.topRadius = positive("top_radius", p.topRadius);
+        finish(p, &p.noiseFrequency);
         return makeProceduralSmoke(p);
     }
     if (type == "rolling_fog") {
@@ -71,29 +80,20 @@ std::shared_ptr<const DensityGrid> readProcedural(JsonObject& obj, const JsonVal
         f.hi = obj.vec3("max", f.hi);
         if (!(f.lo.x < f.hi.x && f.lo.y < f.hi.y && f.lo.z < f.hi.z))
             obj.fail("'min' must lie below 'max' on every axis");
-        f.layerHeight = float(obj.number("layer_height", f.layerHeight, 1e-3, 1e4));
-        f.bankSize = float(obj.number("bank_size", f.bankSize, 1e-3, 1e4));
-        f.voxelSize = float(obj.number("voxel_size", f.voxelSize, 1e-4, 1e4));
-        f.seed = readSeed(obj, f.seed);
-        f.densityScale = scale;
-        obj.finish();
-        checkSize(voxelCount(f));
+        f.layerHeight = positive("layer_height", f.layerHeight);
+        f.bankSize = positive("bank_size", f.bankSize);
+        finish(f, nullptr);
         return makeRollingFog(f);
     }
     if (type == "fire") {
         ProceduralFire f;
         f.base = obj.vec3("base", f.base);
-        f.radius = float(obj.number("radius", f.radius, 1e-3, 1e4));
-        f.flameHeight = float(obj.number("flame_height", f.flameHeight, 1e-3, 1e4));
-        f.height = float(obj.number("height", f.height, 1e-3, 1e4));
+        f.radius = positive("radius", f.radius);
+        f.flameHeight = positive("flame_height", f.flameHeight);
+        f.height = positive("height", f.height);
         if (f.flameHeight > f.height) obj.get("flame_height")->fail("'flame_height' must not exceed 'height'");
         f.temperature = float(obj.number("temperature", f.temperature, 1.0, 1e6));
-        f.voxelSize = float(obj.number("voxel_size", f.voxelSize, 1e-4, 1e4));
-        f.noiseFrequency = float(obj.number("noise_frequency", f.noiseFrequency, 1e-4, 1e4));
-        f.seed = readSeed(obj, f.seed);
-        f.densityScale = scale;
-        obj.finish();
-        checkSize(voxelCount(f));
+        finish(f, &f.noiseFrequency);
         FireGrids g = makeProceduralFire(f);
         if (channels) {
             channels->procedural = "fire";
