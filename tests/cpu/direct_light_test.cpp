@@ -73,13 +73,7 @@ float directAt(const Scene& scene, float x, float z, uint64_t key = 0) {
     return dl.diffuse(hit, hitSide(hit, {0, -1, 0}), scene.globalMedium, rng, false).g;
 }
 
-Light pointLight(Vec3 p, float intensity) {
-    Light l;
-    l.name = "point";
-    l.position = p;
-    l.intensity = Rgb(intensity);
-    return l;
-}
+using test::pointLight;
 
 TEST(DirectLight, PointLightInFogGivesICosOverDistanceSquaredTimesTransmittance) {
     const Vec3 light{0.4f, 2.0f, -0.3f};
@@ -265,24 +259,7 @@ TEST(DirectLightPpb, FogAndWallsAgreeWithThePathTracer) {
     // light: the walls' direct light comes from shadow rays, their indirect light and the fog from
     // photons. Counting the direct photons too adds ~50% to the walls; a shadow ray without
     // transmittance ~35%.
-    Scene s;
-    s.name = "fog-walls";
-    s.source = "<test>";
-    Material white;
-    white.name = "white";
-    white.albedo = Rgb(0.5f);
-    s.materials.push_back(white);
-    s.meshes.push_back(makeBox("room", {-1, -1, -1}, {1, 1, 1}, 0, true));
-    Medium fog;
-    fog.name = "fog";
-    fog.sigmaS = Rgb(0.3f);
-    fog.sigmaA = Rgb(0.1f);
-    s.media.push_back(fog);
-    s.globalMedium = 0;
-    s.lights.push_back(pointLight({0.3f, 0.7f, 0.2f}, 1.0f));
-    s.camera = Camera::lookAt({0, 0, 0.95f}, {0, 0, -1}, {0, 1, 0}, 1.4f);
-    s.finalize();
-    s.validate();
+    const Scene s = test::makeFogBoxWithLamp(Rgb(0.3f), Rgb(0.1f), 0.0f, {0.3f, 0.7f, 0.2f}, 1.4f);
     RegionMeans r = compareRegion(s, 16, 0, 4000, 8, 4, 256);
     const double se = std::sqrt(r.seOn * r.seOn + r.seReference * r.seReference);
     EXPECT_LT(se, 0.02 * r.reference) << "too noisy to test";

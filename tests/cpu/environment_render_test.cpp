@@ -89,12 +89,7 @@ std::vector<Estimate> referenceRegions(const Scene& scene, int size, uint32_t sp
     return out;
 }
 
-Material diffuse(const char* name, Rgb albedo) {
-    Material m;
-    m.name = name;
-    m.albedo = albedo;
-    return m;
-}
+Material diffuse(const char* name, Rgb albedo) { return test::makeMaterial(name, MaterialType::Diffuse, albedo); }
 
 // ---- 1. The white furnace ----
 
@@ -203,28 +198,14 @@ Scene sunnyScene(bool fog) {
     s.source = "<test>";
     s.materials.push_back(diffuse("floor", Rgb(0.6f)));
     s.materials.push_back(diffuse("ball", Rgb(0.7f, 0.35f, 0.25f)));
-    Material glass;
-    glass.name = "glass";
-    glass.type = MaterialType::Dielectric;
-    glass.ior = 1.5f;
-    glass.albedo = Rgb(1.0f);
-    s.materials.push_back(glass);
-    Material mirror;
-    mirror.name = "mirror";
-    mirror.type = MaterialType::Mirror;
-    mirror.albedo = Rgb(0.9f);
-    s.materials.push_back(mirror);
+    test::addMaterial(s, "glass", MaterialType::Dielectric, Rgb(1.0f));  // ior 1.5
+    test::addMaterial(s, "mirror", MaterialType::Mirror, Rgb(0.9f));
     s.meshes.push_back(makeQuad("floor", {-1.5f, 0, 1.5f}, {3, 0, 0}, {0, 0, -3}, 0));
     s.meshes.push_back(makeSphere("ball", {-0.45f, 0.35f, 0.0f}, 0.35f, 3, 1));
     s.meshes.push_back(makeSphere("glass ball", {0.45f, 0.35f, 0.1f}, 0.3f, 3, 2));
     s.meshes.push_back(makeQuad("mirror", {-0.8f, 0.05f, -0.9f}, {1.6f, 0, 0}, {0, 0.9f, 0}, 3));
     if (fog) {
-        Medium m;
-        m.name = "fog";
-        m.sigmaS = Rgb(0.25f);
-        m.sigmaA = Rgb(0.03f);
-        m.g = 0.4f;
-        s.media.push_back(m);
+        s.media.push_back(test::homogeneousMedium(Rgb(0.25f), Rgb(0.03f), 0.4f));
         s.globalMedium = 0;
     }
     s.environment = sunnySky();
@@ -301,26 +282,13 @@ Scene brightSunFogScene(bool glass) {
     s.source = "<test>";
     s.materials.push_back(diffuse("floor", Rgb(0.6f)));
     s.materials.push_back(diffuse("ball", Rgb(0.7f, 0.35f, 0.25f)));
-    Material hull;
-    hull.name = "fog boundary";
-    hull.type = MaterialType::Interface;
-    s.materials.push_back(hull);
-    Material glassMat;
-    glassMat.name = "glass";
-    glassMat.type = MaterialType::Dielectric;
-    glassMat.ior = 1.5f;
-    glassMat.albedo = Rgb(1.0f);
-    s.materials.push_back(glassMat);
+    test::addMaterial(s, "fog boundary", MaterialType::Interface, Rgb(0.8f));
+    test::addMaterial(s, "glass", MaterialType::Dielectric, Rgb(1.0f));  // ior 1.5
     s.meshes.push_back(makeQuad("floor", {-1.5f, 0, 1.5f}, {3, 0, 0}, {0, 0, -3}, 0));
     s.meshes.push_back(makeSphere("ball", {-0.5f, 0.3f, -0.2f}, 0.3f, 3, 1));
     s.meshes.push_back(makeBox("fog box", {-1.3f, 0.001f, -1.3f}, {1.3f, 1.1f, 1.3f}, 2, false));
     if (glass) s.meshes.push_back(makeSphere("glass ball", {0.45f, 0.32f, 0.15f}, 0.3f, 3, 3));
-    Medium fog;
-    fog.name = "fog";
-    fog.sigmaS = Rgb(0.3f);
-    fog.sigmaA = Rgb(0.02f);
-    fog.g = 0.5f;
-    s.media.push_back(fog);
+    s.media.push_back(test::homogeneousMedium(Rgb(0.3f), Rgb(0.02f), 0.5f));
     s.meshes[2].interiorMedium = 0;
     s.environment = brightSunSky(1e4f);
     s.camera = Camera::lookAt({0.2f, 1.3f, 2.6f}, {0, 0.25f, -0.1f}, {0, 1, 0}, 0.75f);
@@ -484,12 +452,7 @@ Scene smokeBulbScene() {
     s.materials.push_back(thinGlass(Rgb(0.95f, 0.9f, 0.85f)));
     s.meshes.push_back(makeQuad("floor", {-1.5f, 0, 1.5f}, {3, 0, 0}, {0, 0, -3}, 0));
     s.meshes.push_back(makeSphere("bulb", {0.0f, 0.45f, 0.0f}, 0.42f, 3, 1));
-    Medium smoke;
-    smoke.name = "smoke";
-    smoke.sigmaS = Rgb(2.5f, 2.0f, 1.5f);
-    smoke.sigmaA = Rgb(0.2f);
-    smoke.g = 0.3f;
-    s.media.push_back(smoke);
+    s.media.push_back(test::homogeneousMedium(Rgb(2.5f, 2.0f, 1.5f), Rgb(0.2f), 0.3f, "smoke"));
     s.meshes[1].interiorMedium = 0;
     s.environment = sunnySky();
     s.camera = Camera::lookAt({0.2f, 1.1f, 2.4f}, {0, 0.35f, 0.0f}, {0, 1, 0}, 0.7f);

@@ -148,13 +148,7 @@ Estimate estimateMany(const Scene& scene, Vec3 o, Vec3 d, float sMax, int n) {
     return e;
 }
 
-Light pointLight(Vec3 p, float intensity) {
-    Light l;
-    l.name = "point";
-    l.position = p;
-    l.intensity = Rgb(intensity);
-    return l;
-}
+using test::pointLight;
 
 TEST(Equiangular, PointLightInHomogeneousFogAgainstQuadrature) {
     // A ray passing 0.3 from the light; its stretch covers the closest approach.
@@ -199,29 +193,11 @@ TEST(Equiangular, SpotLightConeAgainstQuadrature) {
 
 // ---- 3. PPB with equiangular single scattering against the path tracer ----
 
-/// A closed 2-unit box of albedo-0.5 walls full of fog round a point light that the camera sees
-/// (or, `inView` false, that lies behind it).
+/// The fixtures' fog box (albedo-0.5 walls, sigma_s 0.5, sigma_a 0.1, g 0.4) round a point light
+/// that the camera sees (or, `inView` false, that lies behind it).
 Scene fogBoxWithLamp(bool inView) {
-    Scene s;
-    s.name = "fog-lamp-walls";
-    s.source = "<test>";
-    Material white;
-    white.name = "white";
-    white.albedo = Rgb(0.5f);
-    s.materials.push_back(white);
-    s.meshes.push_back(makeBox("room", {-1, -1, -1}, {1, 1, 1}, 0, true));
-    Medium fog;
-    fog.name = "fog";
-    fog.sigmaS = Rgb(0.5f);
-    fog.sigmaA = Rgb(0.1f);
-    fog.g = 0.4f;
-    s.media.push_back(fog);
-    s.globalMedium = 0;
-    s.lights.push_back(pointLight(inView ? Vec3(0.2f, 0.25f, -0.3f) : Vec3(0.5f, 0.5f, 0.8f), 1.0f));
-    s.camera = Camera::lookAt({0, 0, 0.95f}, {0, 0, -1}, {0, 1, 0}, 1.2f);
-    s.finalize();
-    s.validate();
-    return s;
+    return test::makeFogBoxWithLamp(Rgb(0.5f), Rgb(0.1f), 0.4f,
+                                    inView ? Vec3(0.2f, 0.25f, -0.3f) : Vec3(0.5f, 0.5f, 0.8f), 1.2f);
 }
 
 TEST(EquiangularPpb, FogBoxWithTheLampInViewAgreesWithThePathTracer) {

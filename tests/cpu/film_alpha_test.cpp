@@ -13,6 +13,7 @@
 #include "core/environment_light.h"
 #include "cpu/pass_renderer.h"
 #include "loading/mesh_builders.h"
+#include "tests/test_scenes.h"
 
 namespace tyndall {
 namespace {
@@ -26,20 +27,11 @@ Scene filmScene() {
     Scene s;
     s.name = "film-alpha";
     s.source = "<test>";
-    Material card;
-    card.name = "card";
-    card.albedo = Rgb(0.5f);
-    Material hull;
-    hull.name = "fog hull";
-    hull.type = MaterialType::Interface;
-    s.materials = {card, hull};
+    test::addMaterial(s, "card", MaterialType::Diffuse, Rgb(0.5f));
+    test::addMaterial(s, "fog hull", MaterialType::Interface, Rgb(0.8f));
     s.meshes.push_back(makeQuad("card", {-1, -1, -4}, {0.75f, 0, 0}, {0, 2, 0}, 0));
     s.meshes.push_back(makeBox("fog box", {0.25f, -1, -4}, {1, 1, -3}, 1, false));
-    Medium fog;
-    fog.name = "fog";
-    fog.sigmaS = Rgb(0.5f);
-    fog.sigmaA = Rgb(kSigmaT - 0.5f);
-    s.media.push_back(fog);
+    s.media.push_back(test::homogeneousMedium(Rgb(0.5f), Rgb(kSigmaT - 0.5f)));
     s.meshes[1].interiorMedium = 0;
     s.environment = EnvironmentLight::constant(Rgb(2.0f));
     s.camera = Camera::lookAt({0, 0, 0}, {0, 0, -5}, {0, 1, 0}, 0.3f);

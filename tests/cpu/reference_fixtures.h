@@ -17,6 +17,7 @@
 #include "cpu/radius_defaults.h"
 #include "cpu/reference_tracer.h"
 #include "loading/mesh_builders.h"
+#include "tests/test_scenes.h"
 #include "tests/test_util.h"
 
 namespace tyndall::test {
@@ -64,17 +65,6 @@ inline Scene makeMediumSphereScene(const Medium& medium, float radius, const Lig
     return s;
 }
 
-/// Appends a material to `s`; returns its index.
-inline int addMaterial(Scene& s, const char* name, MaterialType type, Rgb albedo, Rgb emission = Rgb(0.0f)) {
-    Material m;
-    m.name = name;
-    m.type = type;
-    m.albedo = albedo;
-    m.emission = emission;
-    s.materials.push_back(m);
-    return int(s.materials.size() - 1);
-}
-
 /// The six walls of the room x in [-1, 1], y in [0, 2], z in [-1, 1], facing inward, as quads in
 /// the order floor, ceiling, back, front, left (material `left`), right (`right`); the others `white`.
 inline void addRoomWalls(Scene& s, int white, int left, int right) {
@@ -84,6 +74,33 @@ inline void addRoomWalls(Scene& s, int white, int left, int right) {
     s.meshes.push_back(makeQuad("front wall", {1, 0, 1}, {-2, 0, 0}, {0, 2, 0}, white));
     s.meshes.push_back(makeQuad("left wall", {-1, 0, 1}, {0, 0, -2}, {0, 2, 0}, left));
     s.meshes.push_back(makeQuad("right wall", {1, 0, -1}, {0, 0, 2}, {0, 2, 0}, right));
+}
+
+/// A point light at `p` of grey intensity `intensity`.
+inline Light pointLight(Vec3 p, float intensity) {
+    Light l;
+    l.name = "point";
+    l.position = p;
+    l.intensity = Rgb(intensity);
+    return l;
+}
+
+/// A closed 2-unit box (x, y, z in [-1, 1]) of albedo-0.5 diffuse walls full of fog (the global
+/// medium: `sigmaS`, `sigmaA`, Henyey-Greenstein `g`) round a point light of intensity 1 at
+/// `light`, seen from (0, 0, 0.95) looking down -z with the vertical field of view `fov` (radians).
+inline Scene makeFogBoxWithLamp(Rgb sigmaS, Rgb sigmaA, float g, Vec3 light, float fov) {
+    Scene s;
+    s.name = "fog-box-lamp";
+    s.source = "<test scene>";
+    addMaterial(s, "white", MaterialType::Diffuse, Rgb(0.5f));
+    s.meshes.push_back(makeBox("room", {-1, -1, -1}, {1, 1, 1}, 0, true));
+    s.media.push_back(homogeneousMedium(sigmaS, sigmaA, g));
+    s.globalMedium = 0;
+    s.lights.push_back(pointLight(light, 1.0f));
+    s.camera = Camera::lookAt({0, 0, 0.95f}, {0, 0, -1}, {0, 1, 0}, fov);
+    s.finalize();
+    s.validate();
+    return s;
 }
 
 /// The consistency scene: a 2 x 2 x 2 room full of fog, coloured walls, a spot light shining down
