@@ -15,6 +15,7 @@
 #include "core/grid_emission.h"
 #include "loading/vdb_grid.h"
 #include "tests/test_util.h"
+#include "tests/vdb/block_grids.h"
 #include "tests/tyndall_cli.h"
 
 namespace tyndall {
@@ -38,22 +39,10 @@ constexpr int kFireVoxels = 47;
 /// fire.vdb: "density" 1 and "temperature" 2500 K on a kFireVoxels^3 block of voxels 0.6 wide,
 /// voxel (2, 2, 2) at `corner` kelvin.
 void writeFire(const std::string& path, float corner) {
-    openvdb::initialize();
     const double voxel = 0.6 / kFireVoxels;
-    auto density = openvdb::FloatGrid::create(0.0f);
-    density->setName("density");
-    density->setTransform(openvdb::math::Transform::createLinearTransform(voxel));
-    auto temperature = openvdb::FloatGrid::create(0.0f);
-    temperature->setName("temperature");
-    temperature->setTransform(openvdb::math::Transform::createLinearTransform(voxel));
-    for (int k = 0; k < kFireVoxels; ++k)
-        for (int j = 0; j < kFireVoxels; ++j)
-            for (int i = 0; i < kFireVoxels; ++i) {
-                density->tree().setValue(openvdb::Coord(i, j, k), 1.0f);
-                temperature->tree().setValue(openvdb::Coord(i, j, k), 2500.0f);
-            }
+    auto temperature = test::blockGrid("temperature", voxel, 0, kFireVoxels - 1, 2500.0f);
     temperature->tree().setValue(openvdb::Coord(2, 2, 2), corner);
-    openvdb::io::File(path).write({density, temperature});
+    openvdb::io::File(path).write({test::blockGrid("density", voxel, 0, kFireVoxels - 1, 1.0f), temperature});
 }
 
 constexpr const char* kScene = R"({

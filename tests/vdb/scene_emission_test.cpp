@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "loading/scene_file.h"
 #include "tests/test_util.h"
+#include "tests/vdb/block_grids.h"
 
 namespace tyndall {
 namespace {
@@ -30,26 +31,10 @@ std::string dir() {
 /// voxels of 0.2 (another resolution) holding 2000 except one voxel of -50; "flames" 0.5 on voxels
 /// of 0.1; "velocity" a vec3 grid; "heat_level_set" a level set.
 void writeFireFile() {
-    openvdb::initialize();
-    auto density = openvdb::FloatGrid::create(0.0f);
-    density->setName("density");
-    density->setTransform(openvdb::math::Transform::createLinearTransform(0.1));
-    auto temperature = openvdb::FloatGrid::create(0.0f);
-    temperature->setName("temperature");
-    temperature->setTransform(openvdb::math::Transform::createLinearTransform(0.2));
-    auto flames = openvdb::FloatGrid::create(0.0f);
-    flames->setName("flames");
-    flames->setTransform(openvdb::math::Transform::createLinearTransform(0.1));
-    for (int k = 0; k < 10; ++k)
-        for (int j = 0; j < 10; ++j)
-            for (int i = 0; i < 10; ++i) {
-                density->tree().setValue(openvdb::Coord(i, j, k), 1.0f);
-                flames->tree().setValue(openvdb::Coord(i, j, k), 0.5f);
-            }
-    for (int k = -1; k < 7; ++k)
-        for (int j = -1; j < 7; ++j)
-            for (int i = -1; i < 7; ++i) temperature->tree().setValue(openvdb::Coord(i, j, k), 2000.0f);
+    auto density = test::blockGrid("density", 0.1, 0, 9, 1.0f);
+    auto temperature = test::blockGrid("temperature", 0.2, -1, 6, 2000.0f);
     temperature->tree().setValue(openvdb::Coord(0, 0, 0), -50.0f);
+    auto flames = test::blockGrid("flames", 0.1, 0, 9, 0.5f);
     auto velocity = openvdb::Vec3SGrid::create();
     velocity->setName("velocity");
     velocity->tree().setValue(openvdb::Coord(0, 0, 0), openvdb::Vec3s(1, 0, 0));
@@ -132,19 +117,8 @@ TEST(SceneEmission, ConstantGridAndBlackbodyEmission) {
 /// background 1500 (an ambient temperature) with 3000 on index 0..1 and 1000 (below the
 /// background) at index 3, on the same voxels.
 void writeAmbientFile() {
-    openvdb::initialize();
-    auto density = openvdb::FloatGrid::create(0.0f);
-    density->setName("density");
-    density->setTransform(openvdb::math::Transform::createLinearTransform(0.1));
-    auto temperature = openvdb::FloatGrid::create(1500.0f);
-    temperature->setName("temperature");
-    temperature->setTransform(openvdb::math::Transform::createLinearTransform(0.1));
-    for (int k = 0; k < 5; ++k)
-        for (int j = 0; j < 5; ++j)
-            for (int i = 0; i < 5; ++i) density->tree().setValue(openvdb::Coord(i, j, k), 1.0f);
-    for (int k = 0; k < 2; ++k)
-        for (int j = 0; j < 2; ++j)
-            for (int i = 0; i < 2; ++i) temperature->tree().setValue(openvdb::Coord(i, j, k), 3000.0f);
+    auto density = test::blockGrid("density", 0.1, 0, 4, 1.0f);
+    auto temperature = test::blockGrid("temperature", 0.1, 0, 1, 3000.0f, 1500.0f);
     temperature->tree().setValue(openvdb::Coord(3, 3, 3), 1000.0f);
     openvdb::io::File(dir() + "/ambient.vdb").write({density, temperature});
 }
