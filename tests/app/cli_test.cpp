@@ -440,67 +440,40 @@ TEST(Cli, AutomaticRadiiAreRecordedAsPlainSettingsThatReproduceTheImage) {
                                                tyndall::readImage(dir + "/cli_auto_replay.exr")));
 }
 
-TEST(Cli, EquiangularIsRecordedAndReplays) {
-    // --equiangular goes into the header; the recorded settings reproduce the image bit for bit,
-    // and the two modes differ (the default scene's fog is lit by a spot light).
+/// An on/off option goes into the header as `key`; the recorded settings reproduce each mode's
+/// image bit for bit, and the two modes' images differ (the default scene, 3 passes).
+void expectSwitchRecordedAndReplays(const std::string& option, const std::string& key) {
     const std::string dir = tyndall::test::outputDir();
     for (const std::string mode : {"on", "off"}) {
-        const std::string out = dir + "/cli_equiangular_" + mode + ".exr";
-        CliRun r = runTyndall("render --photons 300 --size 40x24 --seed 5 --gpu off --passes 3 --equiangular " + mode +
+        const std::string out = dir + "/cli_" + key + "_" + mode + ".exr";
+        CliRun r = runTyndall("render --photons 300 --size 40x24 --seed 5 --gpu off --passes 3 " + option + " " + mode +
                               " -o " + out);
         ASSERT_EQ(r.exitCode, 0) << r.output;
         nlohmann::json j = recordedSettings(out);
-        EXPECT_EQ(j.at("equiangular"), mode);
+        EXPECT_EQ(j.at(key), mode);
         tyndall::RenderSettings s = tyndall::RenderSettings::fromJson(j, out);
         tyndall::Scene scene = tyndall::makeDefaultScene();
         scene.validate();
         tyndall::PassRenderer renderer(scene, s);
         EXPECT_TRUE(tyndall::test::identicalImages(tyndall::readImage(out), renderPasses(renderer, 0, s.passes))) << mode;
     }
-    EXPECT_FALSE(tyndall::test::identicalImages(tyndall::readImage(dir + "/cli_equiangular_on.exr"),
-                                                tyndall::readImage(dir + "/cli_equiangular_off.exr")));
+    EXPECT_FALSE(tyndall::test::identicalImages(tyndall::readImage(dir + "/cli_" + key + "_on.exr"),
+                                                tyndall::readImage(dir + "/cli_" + key + "_off.exr")));
+}
+
+TEST(Cli, EquiangularIsRecordedAndReplays) {
+    // The default scene's fog is lit by a spot light, which equiangular sampling estimates.
+    expectSwitchRecordedAndReplays("--equiangular", "equiangular");
 }
 
 TEST(Cli, DirectLightIsRecordedAndReplays) {
-    // --direct-light goes into the header; the recorded settings reproduce the image bit for bit,
-    // and the two modes differ (the default scene's walls get shadow rays with it on).
-    const std::string dir = tyndall::test::outputDir();
-    for (const std::string mode : {"on", "off"}) {
-        const std::string out = dir + "/cli_direct_" + mode + ".exr";
-        CliRun r = runTyndall("render --photons 300 --size 40x24 --seed 5 --gpu off --passes 3 --direct-light " + mode +
-                              " -o " + out);
-        ASSERT_EQ(r.exitCode, 0) << r.output;
-        nlohmann::json j = recordedSettings(out);
-        EXPECT_EQ(j.at("direct_light"), mode);
-        tyndall::RenderSettings s = tyndall::RenderSettings::fromJson(j, out);
-        tyndall::Scene scene = tyndall::makeDefaultScene();
-        scene.validate();
-        tyndall::PassRenderer renderer(scene, s);
-        EXPECT_TRUE(tyndall::test::identicalImages(tyndall::readImage(out), renderPasses(renderer, 0, s.passes))) << mode;
-    }
-    EXPECT_FALSE(tyndall::test::identicalImages(tyndall::readImage(dir + "/cli_direct_on.exr"),
-                                                tyndall::readImage(dir + "/cli_direct_off.exr")));
+    // The default scene's walls get shadow rays with it on.
+    expectSwitchRecordedAndReplays("--direct-light", "direct_light");
 }
 
 TEST(Cli, SurfaceBoundaryIsRecordedAndReplays) {
-    // --surface-boundary goes into the header; the recorded settings reproduce the image bit for
-    // bit, and the two modes differ (the default scene's walls meet at edges).
-    const std::string dir = tyndall::test::outputDir();
-    for (const std::string mode : {"on", "off"}) {
-        const std::string out = dir + "/cli_boundary_" + mode + ".exr";
-        CliRun r = runTyndall("render --photons 300 --size 40x24 --seed 5 --gpu off --passes 3 --surface-boundary " +
-                              mode + " -o " + out);
-        ASSERT_EQ(r.exitCode, 0) << r.output;
-        nlohmann::json j = recordedSettings(out);
-        EXPECT_EQ(j.at("surface_boundary"), mode);
-        tyndall::RenderSettings s = tyndall::RenderSettings::fromJson(j, out);
-        tyndall::Scene scene = tyndall::makeDefaultScene();
-        scene.validate();
-        tyndall::PassRenderer renderer(scene, s);
-        EXPECT_TRUE(tyndall::test::identicalImages(tyndall::readImage(out), renderPasses(renderer, 0, s.passes))) << mode;
-    }
-    EXPECT_FALSE(tyndall::test::identicalImages(tyndall::readImage(dir + "/cli_boundary_on.exr"),
-                                                tyndall::readImage(dir + "/cli_boundary_off.exr")));
+    // The default scene's walls meet at edges.
+    expectSwitchRecordedAndReplays("--surface-boundary", "surface_boundary");
 }
 
 TEST(Cli, TimeBudgetRecordsItsPlanAndReplaysFromIt) {
