@@ -22,7 +22,7 @@ void Bsdf::buildFramed(const Material& mat, const SurfacePoint& sp, bool metal) 
             m_kind = Kind::RoughDielectric;
             m_lobes = kLobeReflection | kLobeTransmission | kLobeGlossy;
             m_parts.local.frame = Frame(m_ns);
-            m_component.glass = RoughDielectric{ggx, mat.ior, sp.baseColor};
+            m_component.glass = RoughDielectric{ggx, mat.ior, sp.baseColor, mat.thin};
         }
     }
     m_parts.local.wo = m_parts.local.frame.toLocal(m_wo);

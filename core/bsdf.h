@@ -10,7 +10,7 @@
 //   - Coated: a Plastic's coat over its diffuse base (core/coated_diffuse.h); a plastic with a
 //     metal part is its conductor instead with probability metallic (one number drawn), which is
 //     Glossy when rough, Specular when smooth;
-//   - Glossy: GGX conductor (rough Mirror) or rough dielectric (core/microfacet.h);
+//   - Glossy: GGX conductor (rough Mirror) or rough dielectric, or a thin rough sheet (core/microfacet.h);
 //   - Specular: delta mirror, smooth dielectric (Fresnel's choice of reflection or refraction; a
 //     thin one's choice of reflection or passing straight through, Material::thin), Interface (straight through, switching the medium: pbrt's empty BSDF).
 // Then sample() draws a direction from the component, f() and pdf() evaluate it toward any.
@@ -340,7 +340,7 @@ inline bool Bsdf::sample(Uniforms& rng, Rgb* beta, BsdfSample* s, BsdfLobes allo
             s->lobe = kLobeGlossy | (m.transmitted ? kLobeTransmission : kLobeReflection);
             if (m.transmitted) {
                 s->medium = m_beyond;
-                s->eta = m_side.entering ? 1.0f / m_ior : m_ior;
+                if (!m_thin) s->eta = m_side.entering ? 1.0f / m_ior : m_ior;
             }
             if (!(m.transmitted ? dot(s->wi, m_side.nf) < 0 : dot(s->wi, m_side.nf) > 0)) return false;
             w = m.weight;

@@ -43,12 +43,14 @@ struct Material {
     /// point (this x transmissionTexture R) is t < 1, the surface is a mix: the dielectric lobe with
     /// probability t, else the diffuse base (albedo); chosen per path vertex (docs/algorithm.md).
     float transmission = 1.0f;
-    /// Dielectric only, smooth only: a thin-walled sheet (a soap film, a bulb's wall, a window pane;
-    /// glTF's transmission without a volume) instead of the boundary of a solid. Light reflects with
+    /// Dielectric only: a thin-walled sheet (a soap film, a bulb's wall, a window pane; glTF's
+    /// transmission without a volume) instead of the boundary of a solid. Smooth: light reflects with
     /// the slab's reflectance R' = R + T^2 R / (1 - R^2) (Fresnel R = 1 - T at the incident angle,
     /// the internal bounces summed: fresnelThinSlab) and goes straight through with 1 - R' times the
-    /// tint, without refraction; crossing still switches between the mesh's exterior and interior
-    /// media (a closed thin mesh can hold smoke).
+    /// tint, without refraction. Rough (a frosted pane): the same split per GGX microfacet, the
+    /// transmitted light spread as the reflected is (RoughDielectric::thin, core/microfacet.h).
+    /// Crossing still switches between the mesh's exterior and interior media (a closed thin mesh
+    /// can hold smoke).
     bool thin = false;
     /// glTF normalTexture scale: multiplies the tangent-space normal's x and y.
     float normalScale = 1.0f;

@@ -119,10 +119,24 @@ struct RoughConductor {
 
 /// Rough dielectric interface with relative index `eta` (interior over exterior) and a tint on
 /// the transmitted lobe.
+///
+/// `thin`: a thin rough sheet instead (Material::thin with roughness; a frosted pane, the same
+/// medium index on both sides, no refraction). A visible microfacet wm is drawn as for the
+/// interface; the sheet reflects about it with the thin slab's reflectance R'(wo . wm)
+/// (fresnelThinSlab: the first face and the internal bounces), and the rest, 1 - R' times the tint,
+/// crosses the sheet along that reflection mirrored through the sheet's plane (z negated):
+///   f_r = R'(wo.h) D(h) G(wo, wi) / (4 |wo.z wi.z|),  h = the half vector of wo and wi;
+///   f_t = tint (1 - R'(wo.h)) D(h) G(wo, wi) / (4 |wo.z wi.z|),  h = that of wo and wi mirrored.
+/// An approximation: the transmitted light spreads as widely as the reflected (as through a pane
+/// whose two faces are rough), not by the smaller angle one rough face refracts it; it is
+/// reciprocal (no eta^2 in either mode), its albedo is the GGX single-scattering albedo with
+/// F = 1 (a white sheet loses only what G masks; RoughConductor's with f0 = 1), and as the
+/// roughness goes to 0 it becomes the smooth thin sheet (R' mirrored, 1 - R' straight through).
 struct RoughDielectric {
     Ggx ggx;
     float eta = 1.5f;
     Rgb tint{1.0f};
+    bool thin = false;
 
     /// The generalized half vector of (wo, wi), in the upper hemisphere, and eta' (the index ratio
     /// across the surface seen from wo: eta when wo is outside). False for configurations with no
@@ -140,6 +154,7 @@ struct RoughDielectric {
     }
 
     Rgb eval(const Vec3& wo, const Vec3& wi, TransportMode mode) const {
+        if (thin) return evalThin(wo, wi);
         Vec3 wm;
         float etap;
         if (!halfVector(wo, wi, &wm, &etap)) return Rgb(0.0f);
@@ -152,6 +167,7 @@ struct RoughDielectric {
         return tint * ft;
     }
     float pdf(const Vec3& wo, const Vec3& wi) const {
+        if (thin) return pdfThin(wo, wi);
         Vec3 wm;
         float etap;
         if (!halfVector(wo, wi, &wm, &etap)) return 0.0f;
@@ -165,6 +181,7 @@ struct RoughDielectric {
         MicrofacetSample s;
         if (wo.z == 0) return s;
         Vec3 wm = ggx.sampleVisibleNormal(wo, u1, u2);
+        if (thin) return sampleThin(wo, wm, uLobe);
         float R = fresnelDielectric(dot(wo, wm), eta);
         if (uLobe < R) {
             s.wi = reflect(wo, wm);
@@ -177,6 +194,45 @@ struct RoughDielectric {
         s.pdf = pdf(wo, s.wi);
         if (!(s.pdf > 0)) return s;
         s.weight = eval(wo, s.wi, mode) * (std::abs(s.wi.z) / s.pdf);
+        s.valid = isFinite(s.weight);
+        return s;
+    }
+
+private:
+    static Vec3 mirrored(const Vec3& w) { return {w.x, w.y, -w.z}; }
+    /// The thin sheet's half vector for (wo, wi), in the upper hemisphere (wi mirrored to wo's side
+    /// when it crossed the sheet). False when wo or wi lies in the sheet's plane.
+    static bool thinHalfVector(const Vec3& wo, const Vec3& wi, Vec3* h) {
+        if (wo.z == 0 || wi.z == 0) return false;
+        const Vec3 w = wo.z * wi.z > 0 ? wi : mirrored(wi);
+        Vec3 m = wo + w;
+        if (!(lengthSquared(m) > 0)) return false;
+        m = normalize(m);
+        *h = m.z < 0 ? -m : m;
+        return true;
+    }
+    Rgb evalThin(const Vec3& wo, const Vec3& wi) const {
+        Vec3 h;
+        if (!thinHalfVector(wo, wi, &h)) return Rgb(0.0f);
+        const float R = fresnelThinSlab(dot(wo, h), eta);
+        const float common = ggx.D(h) * ggx.G(wo, wi) / std::abs(4.0f * wo.z * wi.z);
+        return wo.z * wi.z > 0 ? Rgb(R * common) : tint * ((1.0f - R) * common);
+    }
+    float pdfThin(const Vec3& wo, const Vec3& wi) const {
+        Vec3 h;
+        if (!thinHalfVector(wo, wi, &h)) return 0.0f;
+        const float R = fresnelThinSlab(dot(wo, h), eta);
+        return ggx.visibleD(wo, h) / (4.0f * std::abs(dot(wo, h))) * (wo.z * wi.z > 0 ? R : 1.0f - R);
+    }
+    MicrofacetSample sampleThin(const Vec3& wo, const Vec3& wm, float uLobe) const {
+        MicrofacetSample s;
+        const Vec3 wr = reflect(wo, wm);
+        if (!(wo.z * wr.z > 0)) return s;
+        s.transmitted = !(uLobe < fresnelThinSlab(dot(wo, wm), eta));
+        s.wi = s.transmitted ? mirrored(wr) : wr;
+        s.pdf = pdfThin(wo, s.wi);
+        if (!(s.pdf > 0)) return s;
+        s.weight = evalThin(wo, s.wi) * (std::abs(s.wi.z) / s.pdf);
         s.valid = isFinite(s.weight);
         return s;
     }

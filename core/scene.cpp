@@ -79,8 +79,7 @@ void Scene::validate() const {
         if (!finiteNonNegative(m.albedo)) fail(at + "albedo must be finite and >= 0");
         if (!finiteNonNegative(m.emission)) fail(at + "emission must be finite and >= 0");
         if (!(m.ior > 0) || !std::isfinite(m.ior)) fail(at + "ior must be a finite number > 0");
-        if (m.thin && (m.type != MaterialType::Dielectric || m.isRough()))
-            fail(at + "thin applies to smooth dielectrics only (roughness at most 0.05)");
+        if (m.thin && m.type != MaterialType::Dielectric) fail(at + "thin applies to dielectrics only");
         for (const TextureRef* t : {&m.baseColorTexture, &m.emissiveTexture, &m.metallicRoughnessTexture}) {
             if (!t->present()) continue;
             if (!textures || size_t(t->texture) >= textures->size())

@@ -56,11 +56,7 @@ GltfMaterialMapping mapGltfMaterial(const GltfMaterialInput& in) {
         m.transmission = in.transmission;
         // glTF: without KHR_materials_volume, or with a thicknessFactor of 0, the material is
         // thin-walled (no refraction, no volume).
-        const bool thinWalled = !in.hasVolume || in.thickness == 0.0f;
-        if (thinWalled && in.roughness > Material::kSmoothRoughness)
-            note("rough thin-walled", "rough and thin-walled (no volume): rendered as rough glass bounding a solid");
-        else
-            m.thin = thinWalled;
+        m.thin = !in.hasVolume || in.thickness == 0.0f;
     } else if (in.metallic >= 1.0f && !in.metallicRoughnessTexture) {
         m.type = MaterialType::Mirror;  // a GGX conductor when roughness > Material::kSmoothRoughness
         m.albedo = in.baseColor;

@@ -127,8 +127,6 @@ Material readMaterial(JsonObject& obj, const std::string& baseDir, const SceneLo
     if (auto t = obj.get("thin")) {
         if (m.type != MaterialType::Dielectric) t->fail("thin applies to dielectric materials only");
         m.thin = t->boolean();
-        if (m.thin && m.isRough())
-            t->fail("a thin dielectric must be smooth (roughness at most 0.05): rough thin sheets are not modelled");
     }
     m.transmissionTexture =
         readTexture(obj, "transmission_texture", TextureEncoding::Linear, scale, baseDir, options, scene);

@@ -443,13 +443,15 @@ TEST(EnvironmentRender, ThinWalledSphereReflectsAndTransmitsEverythingUnderACons
 }
 
 /// The sunny sky over a floor and a closed thin-walled glass sphere (a bulb) full of smoke, nothing
-/// else: the environment's light reaches the smoke only through the thin wall.
-Scene smokeBulbScene() {
+/// else: the environment's light reaches the smoke only through the thin wall (frosted when
+/// `roughness` > 0).
+Scene smokeBulbScene(float roughness = 0.0f) {
     Scene s;
     s.name = "env-smoke-bulb";
     s.source = "<test>";
     s.materials.push_back(diffuse("floor", Rgb(0.6f)));
     s.materials.push_back(thinGlass(Rgb(0.95f, 0.9f, 0.85f)));
+    s.materials.back().roughness = roughness;
     s.meshes.push_back(makeQuad("floor", {-1.5f, 0, 1.5f}, {3, 0, 0}, {0, 0, -3}, 0));
     s.meshes.push_back(makeSphere("bulb", {0.0f, 0.45f, 0.0f}, 0.42f, 3, 1));
     s.media.push_back(test::homogeneousMedium(Rgb(2.5f, 2.0f, 1.5f), Rgb(0.2f), 0.3f, "smoke"));
@@ -466,6 +468,15 @@ TEST(EnvironmentRender, ThinWalledSphereHoldingSmokePpbAgreesWithThePathTracer) 
     ASSERT_EQ(s.meshes[1].interiorMedium, 0);
     ASSERT_EQ(s.meshes[1].exteriorMedium, kVacuum);
     comparePpbWithReference(s, "env_smoke_bulb", {0, 1, kMiss}, {"floor", "bulb", "sky"}, 8000, 8, 512, 0.04, 1,
+                            0.04);
+}
+
+TEST(EnvironmentRender, ThinWalledFrostedSphereHoldingSmokePpbAgreesWithThePathTracer) {
+    // The same bulb frosted (a thin rough sheet, roughness 0.4): the light reaches the smoke through
+    // the glossy lobes, and the sky and sun seen through the wall are blurred.
+    const Scene s = smokeBulbScene(0.4f);
+    ASSERT_TRUE(s.materials[1].isGlossy());
+    comparePpbWithReference(s, "env_frosted_bulb", {0, 1, kMiss}, {"floor", "bulb", "sky"}, 8000, 8, 512, 0.04, 1,
                             0.04);
 }
 
