@@ -136,6 +136,9 @@ std::vector<ScriptEvent> parseViewScript(const std::string& text, const std::str
                 r.fail("key: expected F, R, S, H, B, F5, F12, 1-9, plus, minus, space or escape, got '" + e.text + "'");
         } else if (cmd == "exposure") {
             e.op = ScriptOp::Exposure, e.value = r.number("exposure", 1e-6, 1e6);
+        } else if (cmd == "emission") {
+            e.op = ScriptOp::Emission, e.medium = int(r.number("medium index", 0, 1e6));
+            e.value = r.number("emission scale", 0, 1e6);
         } else if (cmd == "save" || cmd == "screenshot") {
             e.op = cmd == "save" ? ScriptOp::Save : ScriptOp::Screenshot;
             e.text = r.word(cmd == "save" ? "file stem" : "file name");
@@ -144,7 +147,7 @@ std::vector<ScriptEvent> parseViewScript(const std::string& text, const std::str
         } else {
             r.fail("unknown command '" + cmd +
                    "' (expected sleep, wait-frames, wait-passes, wait-input, wait-reload, press, move, release, drag, double-click, scroll, "
-                   "key, exposure, save, screenshot or quit)");
+                   "key, exposure, emission, save, screenshot or quit)");
         }
         r.done();
         events.push_back(e);

@@ -21,6 +21,8 @@
 //   scroll X Y STEPS              the wheel: STEPS > 0 dollies in
 //   key NAME                      F, 1-9, plus, minus, space, R, S, H, B, F5, F12, escape (as typed)
 //   exposure VALUE                sets the display exposure
+//   emission MEDIUM SCALE         sets the emission slider of medium MEDIUM (from 0, in scene order;
+//                                 with --compare it drives the grid and its twin) to SCALE
 //   save STEM                     writes STEM.exr, STEM.png and STEM.json (as the S key)
 //   screenshot FILE               the window's pixels as PNG
 //   quit                          closes the window, exit status 0
@@ -30,7 +32,7 @@
 
 namespace tyndall {
 
-enum class ScriptOp { Sleep, WaitFrames, WaitPasses, WaitInput, WaitReload, WaitFinal, WaitResize, Drop, Press, Move, Release, DoubleClick, Scroll, Key, Exposure, Save,
+enum class ScriptOp { Sleep, WaitFrames, WaitPasses, WaitInput, WaitReload, WaitFinal, WaitResize, Drop, Press, Move, Release, DoubleClick, Scroll, Key, Exposure, Emission, Save,
                       Screenshot, Quit };
 
 enum ScriptModifier : int { kModShift = 1, kModCtrl = 2, kModAlt = 4 };
@@ -40,7 +42,8 @@ struct ScriptEvent {
     int button = 0;        ///< 0 left, 1 right, 2 middle
     int modifiers = 0;     ///< ScriptModifier bits
     float x = 0, y = 0;    ///< image-area pixels
-    double value = 0;      ///< ms, frames, passes, scroll steps, exposure
+    double value = 0;      ///< ms, frames, passes, scroll steps, exposure, emission scale
+    int medium = 0;        ///< emission: the medium's index
     double timeout = 600;  ///< wait-passes: seconds
     std::string text;      ///< key name, file stem or path
     int line = 0;          ///< in the script file, for messages

@@ -218,6 +218,14 @@ bool Viewer::stepScript(bool* acted) {
             case ScriptOp::Key: key(e.text); break;
             case ScriptOp::Drop: openDropped(e.text); break;
             case ScriptOp::Exposure: m_exposure = float(e.value); break;
+            case ScriptOp::Emission:
+                if (size_t(e.medium) >= m_mediumUi.size() || !m_mediumUi[size_t(e.medium)].emits)
+                    throw Error(m_o.script + ": line " + std::to_string(e.line) + ": emission: medium " +
+                                std::to_string(e.medium) + " is not a medium that emits (the scene has " +
+                                std::to_string(m_mediumUi.size()) + " media)");
+                m_mediumUi[size_t(e.medium)].emissionScale = float(e.value);
+                pushEdits();
+                break;
             case ScriptOp::Save: save(e.text); break;
             case ScriptOp::Screenshot: screenshot(e.text); break;
             case ScriptOp::Quit: ++m_scriptNext; return false;

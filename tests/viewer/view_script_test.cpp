@@ -38,6 +38,16 @@ TEST(ViewScript, ParsesEveryCommandAndExpandsDrags) {
     EXPECT_EQ(e.back().op, ScriptOp::Quit);
 }
 
+TEST(ViewScript, ParsesEmission) {
+    auto e = parseViewScript("emission 2 0.25\n", "t.txt");
+    ASSERT_EQ(e.size(), 1u);
+    EXPECT_EQ(e[0].op, ScriptOp::Emission);
+    EXPECT_EQ(e[0].medium, 2);
+    EXPECT_EQ(e[0].value, 0.25);
+    EXPECT_THROW(parseViewScript("emission 0 -1\n", "t.txt"), Error);
+    EXPECT_THROW(parseViewScript("emission 0\n", "t.txt"), Error);
+}
+
 TEST(ViewScript, ParsesWaitReloadAndTheF5Key) {
     auto e = parseViewScript("wait-reload 2 30\nkey F5\nwait-reload 3\n", "t.txt");
     ASSERT_EQ(e.size(), 3u);

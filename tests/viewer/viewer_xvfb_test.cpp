@@ -438,24 +438,49 @@ TEST(ViewerXvfb, WithGlSplattingTheSavedViewReproducesUnderGpuOn) {
     EXPECT_TRUE(test::identicalImages(readImage((d / "view.exr").string()), readImage((d / "render.exr").string())));
 }
 
-TEST(ViewerXvfb, CompareShowsTwoDifferentHalves) {
+TEST(ViewerXvfb, CompareShowsTwoDifferentHalvesAndTheEmissionSliderDrivesBoth) {
     SKIP_WITHOUT_XVFB();
+    // A procedural fire in a dark room, its only light: the grid left, its glowing twin right.
     fs::path d = outDir("compare");
-    test::CliRun r = runView(d, "--compare --gpu off --size 96x96 --photons 300",
-                             "wait-passes 2\nscreenshot " + (d / "compare.png").string() + "\nquit\n");
+    std::ofstream(d / "fire.json") << R"({
+  "materials": [{"name": "white", "albedo": 0.6}],
+  "media": [{"name": "fire", "sigma_s": 1.0, "sigma_a": 1.0,
+             "density": {"procedural": "fire", "radius": 0.3, "flame_height": 0.6, "height": 1.0, "voxel_size": 0.05},
+             "emission": {"grid": "temperature", "blackbody": true, "scale": 2000}}],
+  "global_medium": "fire",
+  "shapes": [{"type": "box", "name": "room", "material": "white", "min": [-1.5, 0, -1.5], "max": [1.5, 2, 1.5],
+              "inward": true}],
+  "cameras": [{"position": [0, 1, 1.4], "target": [0, 0.4, 0], "fov": 80}]
+})";
+    test::CliRun r = runView(d, "--compare " + (d / "fire.json").string() + " --gpu off --size 96x96 --photons 300",
+                             "wait-passes 2\nscreenshot " + (d / "compare.png").string() +
+                                 "\nemission 0 0.02\nwait-passes 2\nscreenshot " + (d / "dim.png").string() +
+                                 "\nquit\n");
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    Image shot = readImage((d / "compare.png").string());
+    Image shot = readImage((d / "compare.png").string()), dim = readImage((d / "dim.png").string());
     ASSERT_EQ(shot.width, 330 + 96 + 4 + 96);
-    double diff = 0, level = 0;
+    double diff = 0, level = 0, half[2] = {0, 0}, dimHalf[2] = {0, 0};
     for (int y = 0; y < 96; ++y)
         for (int x = 0; x < 96; ++x) {
             const Rgb& l = shot.at(330 + x, y);
             const Rgb& rr = shot.at(330 + 100 + x, y);
             diff += std::abs(l.r - rr.r) + std::abs(l.g - rr.g) + std::abs(l.b - rr.b);
             level += l.r + l.g + l.b + rr.r + rr.g + rr.b;
+            for (int h = 0; h < 2; ++h) {
+                const Rgb& a = shot.at(330 + 100 * h + x, y);
+                const Rgb& b = dim.at(330 + 100 * h + x, y);
+                half[h] += a.r + a.g + a.b;
+                dimHalf[h] += b.r + b.g + b.b;
+            }
         }
     EXPECT_GT(level / (96 * 96 * 6), 0.005) << "the halves are black";
     EXPECT_GT(diff / (96 * 96 * 3), 0.01) << "the grid and its homogeneous twin look the same";
+    // The emission slider at 0.02 dims both halves (the fire is the only light; display values).
+    for (int h = 0; h < 2; ++h) {
+        std::printf("%s half: mean display value %.4f, with the emission at 0.02 %.4f\n", h ? "twin" : "grid",
+                    half[h] / (96 * 96 * 3), dimHalf[h] / (96 * 96 * 3));
+        EXPECT_LT(dimHalf[h], 0.5 * half[h]) << (h ? "the twin" : "the grid") << " did not follow the emission slider";
+    }
 }
 
 }  // namespace
