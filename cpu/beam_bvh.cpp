@@ -153,7 +153,7 @@ void BeamBvh::query(const Vec3& o, const Vec3& d, float sMax, std::vector<BeamHi
         for (int i = 0; i < cache.m_used; ++i) {
             const BeamQueryCache::Entry& c = cache.m_entries[i];
             if (distance2ToSegment(o, c.a, c.b) <= near2 && distance2ToSegment(e, c.a, c.b) <= near2) {
-                exactHits(o, d, sMax, c.beams, hits);
+                scanBeamHits(c.scan, o, d, sMax, hits);
                 cache.m_reused++;
                 return;
             }
@@ -163,20 +163,13 @@ void BeamBvh::query(const Vec3& o, const Vec3& d, float sMax, std::vector<BeamHi
     cache.m_next = (cache.m_next + 1) % BeamQueryCache::kEntries;
     cache.m_used = std::min(cache.m_used + 1, BeamQueryCache::kEntries);
     candidates(o, d, sMax, c.beams);
-    exactHits(o, d, sMax, c.beams, hits);
+    c.scan.assign(m_beams, c.beams);
+    scanBeamHits(c.scan, o, d, sMax, hits);
     if (std::isfinite(sMax)) {
         c.a = o;
         c.b = e;
     } else {
         c.a = c.b = Vec3(kInfinity);  // never reused
-    }
-}
-
-void BeamBvh::exactHits(const Vec3& o, const Vec3& d, float sMax, const std::vector<uint32_t>& beams,
-                        std::vector<BeamHitRecord>& hits) const {
-    for (uint32_t b : beams) {
-        BeamRayHit h;
-        if (intersectBeamRay(o, d, sMax, m_beams[b], &h)) hits.push_back({b, h});
     }
 }
 

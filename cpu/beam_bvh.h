@@ -17,20 +17,17 @@
 // Embree traversal along a segment S0 finds every beam within its radius plus `reach` of S0 (the
 // candidates), and any segment whose two ends lie within `reach` of S0 (so all of it does) needs
 // only the exact beam x ray test against those candidates (BeamQueryCache). Every query, cached or
-// not, returns the exact test's beams among an Embree candidate set.
+// not, returns the exact test's beams among an Embree candidate set; the test runs over the
+// candidates with SIMD (cpu/beam_hit_scan.h), bit for bit intersectBeamRay.
 #include <embree3/rtcore.h>
 
 #include <vector>
 
 #include "core/beam_estimator.h"
+#include "cpu/beam_hit_scan.h"
 #include "cpu/embree_scene.h"
 
 namespace tyndall {
-
-struct BeamHitRecord {
-    uint32_t beam = 0;
-    BeamRayHit hit;
-};
 
 /// The candidate lists of a thread's recent queries (BeamBvh::query). What a query returns may
 /// depend on the cache's content where Embree's ribbon approximation misses a beam by a hair, so
@@ -50,6 +47,7 @@ private:
     struct Entry {
         Vec3 a, b;                     ///< the segment S0 the candidates were found along
         std::vector<uint32_t> beams;   ///< beams within radius + reach of S0, ascending, once each
+        BeamCandidates scan;           ///< those beams' data for the exact test (cpu/beam_hit_scan.h)
     };
     static constexpr int kEntries = 8;
     Entry m_entries[kEntries];
@@ -93,10 +91,7 @@ public:
 private:
     /// The candidates along o + s d, s in [0, sMax] (flat curves): ascending, once each.
     void candidates(const Vec3& o, const Vec3& d, float sMax, std::vector<uint32_t>& beams) const;
-    /// Appends the exact test's hits among `beams` (ascending) to `hits`.
     void traceUserGeometry(const Vec3& o, const Vec3& d, float sMax, std::vector<BeamHitRecord>& hits) const;
-    void exactHits(const Vec3& o, const Vec3& d, float sMax, const std::vector<uint32_t>& beams,
-                   std::vector<BeamHitRecord>& hits) const;
 
     const std::vector<PhotonBeam>& m_beams;
     Kind m_kind;
