@@ -9,7 +9,7 @@
 namespace tyndall {
 
 namespace {
-constexpr char kMagic[8] = {'T', 'Y', 'N', 'A', 'C', 'C', '1', '\0'};
+constexpr char kAccumulatorMagic[8] = {'T', 'Y', 'N', 'A', 'C', 'C', '1', '\0'};
 }
 
 Accumulator::Accumulator(int width, int height)
@@ -74,7 +74,7 @@ void Accumulator::save(const std::string& path) const {
     std::ofstream out(path, std::ios::binary);
     if (!out) throw Error("cannot write accumulator checkpoint '" + path + "'");
     int32_t dims[2] = {m_width, m_height};
-    out.write(kMagic, sizeof(kMagic));
+    out.write(kAccumulatorMagic, sizeof(kAccumulatorMagic));
     out.write(reinterpret_cast<const char*>(dims), sizeof(dims));
     out.write(reinterpret_cast<const char*>(&m_passes), sizeof(m_passes));
     out.write(reinterpret_cast<const char*>(m_sum.data()), std::streamsize(m_sum.size() * sizeof(double)));
@@ -88,7 +88,7 @@ Accumulator Accumulator::load(const std::string& path) {
     int32_t dims[2];
     uint64_t passes = 0;
     in.read(magic, sizeof(magic));
-    if (!in || std::memcmp(magic, kMagic, sizeof(kMagic)) != 0)
+    if (!in || std::memcmp(magic, kAccumulatorMagic, sizeof(kAccumulatorMagic)) != 0)
         throw Error("'" + path + "' is not a Tyndall accumulator checkpoint (bad magic)");
     in.read(reinterpret_cast<char*>(dims), sizeof(dims));
     in.read(reinterpret_cast<char*>(&passes), sizeof(passes));

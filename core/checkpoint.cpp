@@ -14,7 +14,7 @@
 namespace tyndall {
 
 namespace {
-constexpr char kMagic[8] = {'T', 'Y', 'N', 'C', 'K', 'P', 'T', '\x01'};
+constexpr char kCheckpointMagic[8] = {'T', 'Y', 'N', 'C', 'K', 'P', 'T', '\x01'};
 
 template <class T>
 void put(std::string& out, const T& v) {
@@ -77,9 +77,9 @@ const Accumulator& Checkpoint::layer(const std::string& name, const std::string&
 }
 
 std::string serializeCheckpoint(const Checkpoint& c) {
-    std::string out(kMagic, sizeof kMagic);
+    std::string out(kCheckpointMagic, sizeof kCheckpointMagic);
     std::string header = c.header.dump();
-    size_t total = sizeof kMagic + 8 + header.size() + 4 + 8;
+    size_t total = sizeof kCheckpointMagic + 8 + header.size() + 4 + 8;
     for (const auto& [name, acc] : c.layers) total += 4 + name.size() + 24 + acc.sums().size() * sizeof(double);
     out.reserve(total);
     put(out, uint64_t(header.size()));
@@ -99,9 +99,10 @@ std::string serializeCheckpoint(const Checkpoint& c) {
 }
 
 Checkpoint parseCheckpoint(const std::string& bytes, const std::string& file) {
-    if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
+    if (bytes.size() < sizeof kCheckpointMagic ||
+        std::memcmp(bytes.data(), kCheckpointMagic, sizeof kCheckpointMagic) != 0)
         throw Error(file + ": not a Tyndall checkpoint (it does not start with the checkpoint signature)");
-    if (bytes.size() < sizeof kMagic + 8 + 4 + 8)
+    if (bytes.size() < sizeof kCheckpointMagic + 8 + 4 + 8)
         throw Error(file + ": truncated checkpoint (" + std::to_string(bytes.size()) + " bytes)");
     const size_t body = bytes.size() - 8;
     uint64_t stored;
@@ -109,7 +110,7 @@ Checkpoint parseCheckpoint(const std::string& bytes, const std::string& file) {
     if (stored != checksum64(bytes.data(), body))
         throw Error(file + ": truncated or damaged checkpoint (checksum mismatch); it cannot be resumed");
     Reader r(bytes, body, file);
-    r.take(sizeof kMagic);
+    r.take(sizeof kCheckpointMagic);
     Checkpoint c;
     uint64_t headerSize = r.get<uint64_t>();
     if (headerSize > body) throw Error(file + ": malformed checkpoint (header size)");

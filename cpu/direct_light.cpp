@@ -8,7 +8,7 @@ namespace tyndall {
 
 namespace {
 // Interface crossings on one shadow ray; this only stops pathological loops.
-constexpr int kMaxInterfaceCrossings = 256;
+constexpr int kMaxShadowRayCrossings = 256;
 }  // namespace
 
 Rgb shadowTransmittance(const EmbreeScene& rt, const Vec3& origin, const DirectLightSample& light, MediumId medium,
@@ -27,7 +27,7 @@ Rgb shadowTransmittance(const EmbreeScene& rt, const Vec3& origin, const DirectL
             : nullptr;
     Ray ray{origin, d, 0.0f, finite ? dot(target - origin, d) : kInfinity};
     Rgb tr(1.0f);
-    for (int crossing = 0; crossing <= kMaxInterfaceCrossings; ++crossing) {
+    for (int crossing = 0; crossing <= kMaxShadowRayCrossings; ++crossing) {
         if (!(ray.tMax > 0)) return tr;
         SurfaceHit hit;
         bool surface = rt.intersect(ray, &hit);

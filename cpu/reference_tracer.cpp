@@ -20,7 +20,7 @@ namespace tyndall {
 
 namespace {
 // Interface crossings neither scatter nor count as depth; this only stops pathological loops.
-constexpr int kMaxInterfaceCrossings = 256;
+constexpr int kMaxPathInterfaceCrossings = 256;
 }  // namespace
 
 void ReferenceSettings::validate() const {
@@ -194,7 +194,7 @@ Rgb ReferenceTracer::radiance(Ray ray, MediumId medium, Rng& rng) const {
 
         const Bsdf bsdf = Bsdf::at(m_scene, hit, sp, ray.d, medium, TransportMode::Radiance, rng);
         if (bsdf.isPassThrough()) {
-            if (++crossings > kMaxInterfaceCrossings) break;
+            if (++crossings > kMaxPathInterfaceCrossings) break;
             medium = bsdf.mediumBeyond();
             ray = Ray{m_rt.offsetOrigin(hit.p, hit.ng, ray.d), ray.d};
             continue;

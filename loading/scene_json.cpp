@@ -14,8 +14,6 @@ namespace tyndall {
 
 namespace {
 
-constexpr double kDegrees = 3.14159265358979323846 / 180.0;
-
 std::string nameList(const std::vector<std::string>& names) {
     std::string out;
     for (size_t i = 0; i < names.size() && i < 12; ++i) out += (i ? ", '" : "'") + names[i] + "'";
@@ -185,8 +183,8 @@ Light readLight(JsonObject& obj, const std::string& defaultName) {
         auto innerValue = obj.get("inner_angle");
         double inner = innerValue ? innerValue->number(0.0, 90.0) : 0.0;
         if (inner >= outer) innerValue->fail("inner_angle must be smaller than outer_angle");
-        l.cosOuterAngle = float(std::cos(outer * kDegrees));
-        l.cosInnerAngle = float(std::cos(inner * kDegrees));
+        l.cosOuterAngle = float(std::cos(outer * kRadiansPerDegree));
+        l.cosInnerAngle = float(std::cos(inner * kRadiansPerDegree));
     } else if (type == "directional") {
         l.type = LightType::Directional;
         l.direction = normalize(obj.require("direction").direction());
@@ -210,7 +208,7 @@ NamedCamera readCamera(JsonObject& obj, const std::string& defaultName) {
     Vec3 up = obj.get("up") ? obj.get("up")->direction() : Vec3(0, 1, 0);
     if (!(length(cross(normalize(d), normalize(up))) > 1e-4f)) obj.fail("'up' is parallel to the view direction");
     double fov = obj.number("fov", 40.0, 1e-3, 179.0);
-    c.camera = Camera::lookAt(eye, target ? target->vec3() : eye + normalize(d), up, float(fov * kDegrees));
+    c.camera = Camera::lookAt(eye, target ? target->vec3() : eye + normalize(d), up, float(fov * kRadiansPerDegree));
     c.camera.focusDistance = float(obj.number("focus_distance", target ? length(d) : 1.0, 1e-6));
     c.camera.lensRadius = float(obj.number("lens_radius", 0.0, 0.0));
     obj.finish();

@@ -15,6 +15,9 @@
 
 namespace tyndall {
 
+/// Scene files give angles in degrees; this converts them to radians.
+constexpr double kRadiansPerDegree = 3.14159265358979323846 / 180.0;
+
 /// Reads a whole scene description. `render` receives the "render" block (checked).
 SceneDraft readSceneJson(const std::string& text, const std::string& file, const std::string& baseDir,
                          const SceneLoadOptions& options, WarnOnce& warn, SceneFile* render);

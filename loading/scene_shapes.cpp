@@ -11,8 +11,6 @@ namespace tyndall {
 
 namespace {
 
-constexpr double kDegrees = 3.14159265358979323846 / 180.0;
-
 int subdivisions(JsonObject& obj, int fallback) {
     return int(obj.integer("subdivisions", fallback, 0, 8));
 }
@@ -162,7 +160,7 @@ TriangleMesh readShape(JsonObject& obj, const std::string& defaultName, int mate
         float r = float(obj.require("radius").number(1e-9));
         int s = subdivisions(obj, 3);
         int holes = int(obj.integer("holes", 24, 0, 10000));
-        float holeAngle = float(obj.number("hole_angle", 6.0, 0.0, 90.0) * kDegrees);
+        float holeAngle = float(obj.number("hole_angle", 6.0, 0.0, 90.0) * kRadiansPerDegree);
         budget(sphereTriangles(s));
         m = makePerforatedSphere(name, c, r, s, holes, holeAngle, material);
     } else if (type == "mesh") {

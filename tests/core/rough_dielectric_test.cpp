@@ -22,10 +22,10 @@
 namespace tyndall {
 namespace {
 
-constexpr float kGlass = 1.5f;
+constexpr float kGlassIor = 1.5f;
 
 /// Unpolarised Fresnel reflectance from the sine and tangent laws, light in index n1 meeting n2.
-double fresnelFromAngles(double cosI, double n1, double n2) {
+double fresnelFromCosine(double cosI, double n1, double n2) {
     double thetaI = std::acos(std::min(1.0, std::abs(cosI)));
     double s = n1 / n2 * std::sin(thetaI);
     if (s >= 1.0) return 1.0;
@@ -106,7 +106,7 @@ TEST(RoughDielectric, VisibleNormalsIntegrateToOneFromEitherSide) {
 TEST(RoughDielectric, AlmostEverySampleFromInsideIsValid) {
     // From inside, microfacets either reflect (Fresnel or TIR) or refract out; the samples lost
     // leave on the wrong side of the macro surface (single-scattering loss: under 3% here).
-    RoughDielectric m{Ggx::fromRoughness(0.3f), kGlass, Rgb(1.0f)};
+    RoughDielectric m{Ggx::fromRoughness(0.3f), kGlassIor, Rgb(1.0f)};
     for (float cosO : {-0.95f, -0.7f, -0.4f}) {
         LobeMeans r = sampleMeans(m, dirOf(cosO, 0.4f), TransportMode::Radiance, 100000, 5);
         EXPECT_GT(r.valid, 0.97) << "cos " << cosO;
@@ -117,11 +117,11 @@ TEST(RoughDielectric, AlmostEverySampleFromInsideIsValid) {
 TEST(RoughDielectric, NearlySmoothGlassSplitsEnergyByFresnelFromBothSides) {
     // Roughness 0.1 (alpha 0.01): the lobes are a hair wide, so reflected energy is the smooth
     // interface's F and transmitted 1 - F (importance) or (1 - F) (n_wo / n_other)^2 (radiance).
-    RoughDielectric m{Ggx::fromRoughness(0.1f), kGlass, Rgb(1.0f)};
+    RoughDielectric m{Ggx::fromRoughness(0.1f), kGlassIor, Rgb(1.0f)};
     for (float cosO : {0.95f, 0.6f, 0.3f, -0.95f, -0.8f, -0.6f}) {
         bool inside = cosO < 0;
-        double n1 = inside ? kGlass : 1.0, n2 = inside ? 1.0 : kGlass;
-        double F = fresnelFromAngles(cosO, n1, n2);
+        double n1 = inside ? kGlassIor : 1.0, n2 = inside ? 1.0 : kGlassIor;
+        double F = fresnelFromCosine(cosO, n1, n2);
         Vec3 wo = dirOf(cosO, 1.3f);
         for (TransportMode mode : {TransportMode::Importance, TransportMode::Radiance}) {
             LobeMeans r = sampleMeans(m, wo, mode, 40000, 9);
@@ -136,7 +136,7 @@ TEST(RoughDielectric, NearlySmoothGlassSplitsEnergyByFresnelFromBothSides) {
 
 TEST(RoughDielectric, LobeEnergiesEqualTheQuadratureOfEvalFromBothSides) {
     for (float roughness : {0.3f, 0.6f}) {
-        RoughDielectric m{Ggx::fromRoughness(roughness), kGlass, Rgb(1.0f)};
+        RoughDielectric m{Ggx::fromRoughness(roughness), kGlassIor, Rgb(1.0f)};
         for (float cosO : {0.8f, 0.3f, -0.9f, -0.7f, -0.3f}) {
             Vec3 wo = dirOf(cosO, 2.2f);
             float sameSide = cosO > 0 ? 1.0f : -1.0f;
@@ -168,7 +168,7 @@ TEST(RoughDielectric, LobeEnergiesEqualTheQuadratureOfEvalFromBothSides) {
 
 TEST(RoughDielectric, ChiSquareOfSampledDirectionsFromInsideAndOutside) {
     for (float cosO : {0.8f, -0.85f, -0.5f}) {
-        RoughDielectric m{Ggx::fromRoughness(0.5f), kGlass, Rgb(1.0f)};
+        RoughDielectric m{Ggx::fromRoughness(0.5f), kGlassIor, Rgb(1.0f)};
         Vec3 wo = dirOf(cosO, 2.0f);
         std::string what = "rough glass, cos " + std::to_string(cosO);
         chiSquare(
@@ -186,7 +186,7 @@ TEST(RoughDielectric, TransmissionIsTheAdjointAcrossTheSurface) {
     // Radiance-mode f(wo, wi) = importance-mode f(wi, wo) for wo outside and wi inside and the
     // reverse, and the radiance-mode values of the two orders differ by eta^2 (Veach's thesis, 5.2:
     // f(in -> out) / n_out^2 = f(out -> in) / n_in^2 for radiance).
-    RoughDielectric m{Ggx::fromRoughness(0.3f), kGlass, Rgb(1.0f)};
+    RoughDielectric m{Ggx::fromRoughness(0.3f), kGlassIor, Rgb(1.0f)};
     std::mt19937 gen(17);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     int nonzero = 0;
@@ -195,7 +195,7 @@ TEST(RoughDielectric, TransmissionIsTheAdjointAcrossTheSurface) {
         float radOI = m.eval(out, in, TransportMode::Radiance).g, impIO = m.eval(in, out, TransportMode::Importance).g;
         float radIO = m.eval(in, out, TransportMode::Radiance).g;
         EXPECT_NEAR(radOI, impIO, 1e-3f * (1 + radOI));
-        EXPECT_NEAR(radIO, radOI * kGlass * kGlass, 1e-3f * (1 + radIO));
+        EXPECT_NEAR(radIO, radOI * kGlassIor * kGlassIor, 1e-3f * (1 + radIO));
         nonzero += radOI > 0;
     }
     EXPECT_GT(nonzero, 300);

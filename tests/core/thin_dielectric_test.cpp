@@ -69,10 +69,10 @@ TEST(ThinDielectric, SlabFormulaMatchesASlabTracedRayByRay) {
 }
 
 /// Numbers from a seeded generator.
-struct Draws {
+struct SeededDraws {
     std::mt19937 gen;
     std::uniform_real_distribution<float> u{0.0f, 1.0f};
-    explicit Draws(unsigned seed) : gen(seed) {}
+    explicit SeededDraws(unsigned seed) : gen(seed) {}
     float uniform() { return u(gen); }
 };
 
@@ -103,7 +103,7 @@ TEST(ThinDielectric, SheetReflectsTheSlabsShareAndTransmitsStraightThrough) {
             const float sinO = std::sqrt(1 - cosO * cosO);
             const Vec3 wo = frame.toWorld(Vec3(sinO * std::cos(0.7f), sinO * std::sin(0.7f), cosO));
             const MediumId arriving = cosO > 0 ? 0 : 1, beyond = cosO > 0 ? 1 : 0;
-            Draws draws(5);
+            SeededDraws draws(5);
             const Bsdf bsdf = Bsdf::at(scene, hit, sp, -wo, arriving, mode, draws);
             EXPECT_EQ(bsdf.lobes(), kLobeReflection | kLobeTransmission | kLobeSpecular);
             const int n = 200000;
@@ -258,7 +258,7 @@ TEST(ThinDielectric, RoughSheetThroughTheBsdfIsGlossyAndCrossesWithoutRefraction
     sp.baseColor = Rgb(1.0f);
     sp.roughness = 0.5f;
     const Vec3 wo = normalize(Vec3(0.3f, 0.1f, 0.9f));
-    Draws draws(9);
+    SeededDraws draws(9);
     const Bsdf bsdf = Bsdf::at(scene, hit, sp, -wo, 0, TransportMode::Radiance, draws);
     EXPECT_EQ(bsdf.lobes(), kLobeReflection | kLobeTransmission | kLobeGlossy);
     int crossed = 0;

@@ -12,10 +12,10 @@
 namespace tyndall {
 namespace {
 
-constexpr float kTheta = 40.0f * kPi / 180.0f;  // light's angle from the floor's normal
+constexpr float kLightTheta = 40.0f * kPi / 180.0f;  // light's angle from the floor's normal
 constexpr float kTilt = 20.0f * kPi / 180.0f;   // normal map tilt
-constexpr float kAlbedo = 0.8f;
-constexpr float kIrradiance = 3.0f;  // W/m^2 perpendicular to the light
+constexpr float kFloorAlbedo = 0.8f;
+constexpr float kLightIrradiance = 3.0f;  // W/m^2 perpendicular to the light
 
 enum class Map { None, Flat, Split, TowardLight };
 
@@ -28,7 +28,7 @@ Scene floorScene(Map map, bool wall) {
     s.source = "<test>";
     Material floor;
     floor.name = "floor";
-    floor.albedo = Rgb(kAlbedo);
+    floor.albedo = Rgb(kFloorAlbedo);
     if (map != Map::None) {
         s.textures = std::make_shared<TextureStore>();
         // 16 x 1 texels: left 8 tilted toward -x (the light) by kTilt, right 8 toward +x.
@@ -45,15 +45,15 @@ Scene floorScene(Map map, bool wall) {
     }
     Material white;
     white.name = "white";
-    white.albedo = Rgb(kAlbedo);
+    white.albedo = Rgb(kFloorAlbedo);
     s.materials = {floor, white};
     s.meshes.push_back(makeQuad("floor", {-1, 0, 1}, {2, 0, 0}, {0, 0, -2}, 0));
     if (wall) s.meshes.push_back(makeQuad("wall", {-1, 0, -1}, {2, 0, 0}, {0, 2, 0}, 1));
     Light sun;
     sun.name = "sun";
     sun.type = LightType::Directional;
-    sun.direction = Vec3(std::sin(kTheta), -std::cos(kTheta), 0.0f);
-    sun.intensity = Rgb(kIrradiance);
+    sun.direction = Vec3(std::sin(kLightTheta), -std::cos(kLightTheta), 0.0f);
+    sun.intensity = Rgb(kLightIrradiance);
     s.lights.push_back(sun);
     s.camera = wall ? Camera::lookAt({0, 1.0f, 3.2f}, {0, 0.7f, 0}, {0, 1, 0}, 50.0f * kPi / 180.0f)
                     : Camera::lookAt({0, 3.0f, 0.001f}, {0, 0, 0}, {0, 0, -1}, 45.0f * kPi / 180.0f);
@@ -62,20 +62,20 @@ Scene floorScene(Map map, bool wall) {
     return s;
 }
 
-constexpr int kSize = 32;
+constexpr int kImageSize = 32;
 
 /// Pixels whose centre ray hits `mesh` with world x in [x0, x1], away from the floor's front and
 /// back edges (where jittered samples fall off it and PPB's kernel loses half its support).
 std::vector<int> pixelsOn(const Scene& s, int mesh, float x0, float x1) {
     EmbreeScene rt(s);
     std::vector<int> out;
-    for (int y = 0; y < kSize; ++y)
-        for (int x = 0; x < kSize; ++x) {
+    for (int y = 0; y < kImageSize; ++y)
+        for (int x = 0; x < kImageSize; ++x) {
             SurfaceHit hit;
-            Ray r = s.camera.generateRay(x + 0.5f, y + 0.5f, kSize, kSize, {0.5f, 0.5f});
+            Ray r = s.camera.generateRay(x + 0.5f, y + 0.5f, kImageSize, kImageSize, {0.5f, 0.5f});
             if (rt.intersect(r, &hit) && hit.mesh == mesh && hit.p.x >= x0 && hit.p.x <= x1 &&
                 (mesh != 0 || std::abs(hit.p.z) < 0.85f))
-                out.push_back(y * kSize + x);
+                out.push_back(y * kImageSize + x);
         }
     return out;
 }
@@ -88,7 +88,7 @@ double mean(const Image& img, const std::vector<int>& px) {
 
 ReferenceImage reference(const Scene& s, uint32_t spp) {
     ReferenceSettings rs;
-    rs.width = rs.height = kSize;
+    rs.width = rs.height = kImageSize;
     rs.samplesPerPixel = spp;
     rs.seed = 7;
     EmbreeScene rt(s);
@@ -97,7 +97,7 @@ ReferenceImage reference(const Scene& s, uint32_t spp) {
 
 Image ppb(const Scene& s, uint64_t passes, uint32_t photons) {
     RenderSettings ps;
-    ps.width = ps.height = kSize;
+    ps.width = ps.height = kImageSize;
     ps.photonsPerPass = photons;
     ps.seed = 3;
     // The default radii: with their surface radius capped at 2% of the scene's diagonal they
@@ -111,9 +111,9 @@ TEST(NormalMapRender, TheSideTiltedTowardTheLightIsBrighterByTheCosineRatio) {
     const std::vector<int> lit = pixelsOn(s, 0, -0.85f, -0.3f), unlit = pixelsOn(s, 0, 0.3f, 0.85f);
     ASSERT_GT(lit.size(), 50u);
     ASSERT_GT(unlit.size(), 50u);
-    const double expectLit = kAlbedo / kPi * kIrradiance * std::cos(kTheta - kTilt);
-    const double expectUnlit = kAlbedo / kPi * kIrradiance * std::cos(kTheta + kTilt);
-    const double ratio = std::cos(kTheta - kTilt) / std::cos(kTheta + kTilt);  // 1.88
+    const double expectLit = kFloorAlbedo / kPi * kLightIrradiance * std::cos(kLightTheta - kTilt);
+    const double expectUnlit = kFloorAlbedo / kPi * kLightIrradiance * std::cos(kLightTheta + kTilt);
+    const double ratio = std::cos(kLightTheta - kTilt) / std::cos(kLightTheta + kTilt);  // 1.88
 
     Image ref = reference(s, 16).mean;
     std::printf("reference: lit %.4f (expected %.4f), unlit %.4f (expected %.4f)\n", mean(ref, lit), expectLit,

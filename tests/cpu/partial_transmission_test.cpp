@@ -12,10 +12,10 @@
 namespace tyndall {
 namespace {
 
-constexpr float kTheta = 30.0f * kPi / 180.0f;
-constexpr float kAlbedo = 0.7f;
-constexpr float kIrradiance = 2.0f;
-constexpr int kSize = 32;
+constexpr float kPaneTheta = 30.0f * kPi / 180.0f;
+constexpr float kPaneAlbedo = 0.7f;
+constexpr float kPaneIrradiance = 2.0f;
+constexpr int kPaneImageSize = 32;
 
 /// Pane [-1, 1]^2 at y = 0 facing +y. `textured`: transmissionTexture 16 x 1, R = 0 on the left
 /// half (x < 0), 1 on the right; else a uniform transmission `factor`.
@@ -26,7 +26,7 @@ Scene paneScene(bool textured, float factor) {
     Material pane;
     pane.name = "pane";
     pane.type = MaterialType::Dielectric;
-    pane.albedo = Rgb(kAlbedo);
+    pane.albedo = Rgb(kPaneAlbedo);
     pane.transmission = factor;
     if (textured) {
         s.textures = std::make_shared<TextureStore>();
@@ -40,8 +40,8 @@ Scene paneScene(bool textured, float factor) {
     Light sun;
     sun.name = "sun";
     sun.type = LightType::Directional;
-    sun.direction = Vec3(std::sin(kTheta), -std::cos(kTheta), 0.0f);
-    sun.intensity = Rgb(kIrradiance);
+    sun.direction = Vec3(std::sin(kPaneTheta), -std::cos(kPaneTheta), 0.0f);
+    sun.intensity = Rgb(kPaneIrradiance);
     s.lights.push_back(sun);
     s.camera = Camera::lookAt({0, 3.0f, 0.001f}, {0, 0, 0}, {0, 0, -1}, 45.0f * kPi / 180.0f);
     s.finalize();
@@ -55,10 +55,10 @@ double regionMean(const Scene& s, const Image& img, float x0, float x1) {
     EmbreeScene rt(s);
     double sum = 0;
     int n = 0;
-    for (int y = 0; y < kSize; ++y)
-        for (int x = 0; x < kSize; ++x) {
+    for (int y = 0; y < kPaneImageSize; ++y)
+        for (int x = 0; x < kPaneImageSize; ++x) {
             SurfaceHit hit;
-            Ray r = s.camera.generateRay(x + 0.5f, y + 0.5f, kSize, kSize, {0.5f, 0.5f});
+            Ray r = s.camera.generateRay(x + 0.5f, y + 0.5f, kPaneImageSize, kPaneImageSize, {0.5f, 0.5f});
             if (rt.intersect(r, &hit) && hit.p.x >= x0 && hit.p.x <= x1 && std::abs(hit.p.z) < 0.85f) {
                 sum += img.at(x, y).g;
                 ++n;
@@ -73,14 +73,14 @@ struct Renders {
 };
 Renders render(const Scene& s) {
     ReferenceSettings rs;
-    rs.width = rs.height = kSize;
+    rs.width = rs.height = kPaneImageSize;
     rs.samplesPerPixel = 64;
     rs.seed = 11;
     EmbreeScene rt(s);
     Renders out;
     out.ref = ReferenceTracer(rt, rs).render().mean;
     RenderSettings ps;
-    ps.width = ps.height = kSize;
+    ps.width = ps.height = kPaneImageSize;
     ps.photonsPerPass = 40000;
     ps.seed = 12;
     // The default radii: with their surface radius capped at 2% of the scene's diagonal they
@@ -93,7 +93,7 @@ Renders render(const Scene& s) {
 TEST(PartialTransmission, TheTextureChoosesBetweenTheDiffuseBaseAndTheGlass) {
     Scene s = paneScene(true, 1.0f);
     Renders r = render(s);
-    const double diffuse = kAlbedo / kPi * kIrradiance * std::cos(kTheta);
+    const double diffuse = kPaneAlbedo / kPi * kPaneIrradiance * std::cos(kPaneTheta);
     double refL = regionMean(s, r.ref, -0.85f, -0.3f), refR = regionMean(s, r.ref, 0.3f, 0.85f);
     double ppbL = regionMean(s, r.ppb, -0.85f, -0.3f), ppbR = regionMean(s, r.ppb, 0.3f, 0.85f);
     std::printf("R = 0: reference %.4f PPB %.4f (expected %.4f); R = 1: reference %.4f PPB %.4f (expected 0)\n", refL,
@@ -108,7 +108,7 @@ TEST(PartialTransmission, TheTextureChoosesBetweenTheDiffuseBaseAndTheGlass) {
 TEST(PartialTransmission, AFactorOfOneHalfIsHalfDiffuse) {
     Scene s = paneScene(false, 0.5f);
     Renders r = render(s);
-    const double half = 0.5 * kAlbedo / kPi * kIrradiance * std::cos(kTheta);
+    const double half = 0.5 * kPaneAlbedo / kPi * kPaneIrradiance * std::cos(kPaneTheta);
     double ref = regionMean(s, r.ref, -0.85f, 0.85f), ppb = regionMean(s, r.ppb, -0.85f, 0.85f);
     std::printf("t = 0.5: reference %.4f PPB %.4f (expected %.4f)\n", ref, ppb, half);
     EXPECT_NEAR(ref / half, 1.0, 0.03);

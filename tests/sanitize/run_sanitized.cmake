@@ -13,10 +13,18 @@ foreach(v SOURCE_DIR BUILD_DIR TARGETS)
 endforeach()
 
 # -O1 and line tables only (-g1): enough for file:line in every report, and the cheapest build.
+# Unity batches of 8 sources: each batch parses the heavy headers (OpenVDB, Embree, nlohmann/json,
+# GoogleTest) and instantiates their templates once instead of once per file, which more than
+# halves the compile (docs/performance.md, "CI and build time"). Names at file scope in a .cpp
+# (anonymous namespace, static) must therefore be unique within its library or test executable.
 set(flags "-O1 -g1 -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all")
-if(NOT EXISTS ${BUILD_DIR}/CMakeCache.txt)
+set(unity "")
+if(EXISTS ${BUILD_DIR}/CMakeCache.txt)
+  file(STRINGS ${BUILD_DIR}/CMakeCache.txt unity REGEX "^CMAKE_UNITY_BUILD:BOOL=ON$")
+endif()
+if(NOT unity)  # a new build directory, or one configured before the unity batches
   execute_process(COMMAND ${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${BUILD_DIR}
-                          -DCMAKE_BUILD_TYPE=Sanitize
+                          -DCMAKE_BUILD_TYPE=Sanitize -DCMAKE_UNITY_BUILD:BOOL=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=8
                           "-DCMAKE_CXX_FLAGS_SANITIZE=${flags}"
                           "-DCMAKE_EXE_LINKER_FLAGS=-fsanitize=address,undefined"
                           -DTYNDALL_BUILD_BENCH=OFF -DTYNDALL_BUILD_FUZZ=OFF -DTYNDALL_BUILD_SANITIZE=OFF

@@ -78,7 +78,7 @@ TEST(EnvironmentScene, ConstantRadiance) {
     EXPECT_FLOAT_EQ(grey.environment->eval(Vec3(1, 0, 0)).g, 1.5f);
 }
 
-void expectError(const std::string& name, const json& j, const std::string& place, const std::string& what) {
+void expectSceneError(const std::string& name, const json& j, const std::string& place, const std::string& what) {
     const std::string path = test::outputDir() + "/" + name;
     std::string err = errorOf([&] { loadJson(name, j); });
     SCOPED_TRACE(name + ": " + err);
@@ -91,21 +91,22 @@ void expectError(const std::string& name, const json& j, const std::string& plac
 
 TEST(EnvironmentScene, BadInputNamesTheFileAndPlace) {
     writeSky("env_scene_sky.exr", 16, 8);
-    expectError("env_both.json", sceneWith({{"file", "env_scene_sky.exr"}, {"radiance", 1}}), "/environment",
+    expectSceneError("env_both.json", sceneWith({{"file", "env_scene_sky.exr"}, {"radiance", 1}}), "/environment",
                 "not both");
-    expectError("env_neither.json", sceneWith({{"scale", 1}}), "/environment", "\"radiance\"");
-    expectError("env_missing.json", sceneWith({{"file", "no-such-sky.exr"}}), "/environment/file", "no-such-sky.exr");
+    expectSceneError("env_neither.json", sceneWith({{"scale", 1}}), "/environment", "\"radiance\"");
+    expectSceneError("env_missing.json", sceneWith({{"file", "no-such-sky.exr"}}), "/environment/file",
+                     "no-such-sky.exr");
     writeTestFile("env_not_an_image.exr", "this is not an image");
-    expectError("env_unreadable.json", sceneWith({{"file", "env_not_an_image.exr"}}), "/environment/file",
+    expectSceneError("env_unreadable.json", sceneWith({{"file", "env_not_an_image.exr"}}), "/environment/file",
                 "env_not_an_image.exr");
-    expectError("env_scale.json", sceneWith({{"radiance", 1}, {"scale", -1}}), "/environment/scale", "");
-    expectError("env_negative.json", sceneWith({{"radiance", {1, -1, 1}}}), "/environment/radiance", "");
-    expectError("env_key.json", sceneWith({{"radiance", 1}, {"rotation", 10}}), "/environment", "rotation");
-    expectError("env_type.json", sceneWith("sky.exr"), "/environment", "expected an object");
+    expectSceneError("env_scale.json", sceneWith({{"radiance", 1}, {"scale", -1}}), "/environment/scale", "");
+    expectSceneError("env_negative.json", sceneWith({{"radiance", {1, -1, 1}}}), "/environment/radiance", "");
+    expectSceneError("env_key.json", sceneWith({{"radiance", 1}, {"rotation", 10}}), "/environment", "rotation");
+    expectSceneError("env_type.json", sceneWith("sky.exr"), "/environment", "expected an object");
     Image nan(8, 4);
     nan.at(1, 2).r = std::nanf("");
     writeImage(test::outputDir() + "/env_nan.exr", nan);
-    expectError("env_nan.json", sceneWith({{"file", "env_nan.exr"}}), "/environment/file", "(1, 2)");
+    expectSceneError("env_nan.json", sceneWith({{"file", "env_nan.exr"}}), "/environment/file", "(1, 2)");
 }
 
 TEST(EnvironmentScene, NonTwoToOneImageIsWarnedAbout) {
