@@ -212,7 +212,7 @@ Containment classify(const TriangleMesh& innerMesh, const MeshGeometry& inner, c
     return in ? Containment::Inside : Containment::Outside;
 }
 
-std::string where(const Scene& s) { return "scene '" + s.name + "' (" + s.source + ")"; }
+std::string sceneLabel(const Scene& s) { return "scene '" + s.name + "' (" + s.source + ")"; }
 std::string meshName(const Scene& s, size_t i) {
     return "mesh '" + s.meshes[i].name + "' (index " + std::to_string(i) + ")";
 }
@@ -301,7 +301,7 @@ void resolveNestedMedia(Scene& scene) {
         int innermost = -1;
         for (size_t a : inside[b]) {
             if (innermost >= 0 && inside[a].size() == inside[size_t(innermost)].size())
-                throw Error(where(scene) + ": " + meshName(scene, b) + " lies inside both " +
+                throw Error(sceneLabel(scene) + ": " + meshName(scene, b) + " lies inside both " +
                             meshName(scene, size_t(innermost)) + " and " + meshName(scene, a) +
                             ", and neither contains the other: closed meshes that bound media must not overlap");
             if (innermost < 0 || inside[a].size() > inside[size_t(innermost)].size()) innermost = int(a);
@@ -325,7 +325,7 @@ void resolveNestedMedia(Scene& scene) {
     for (const auto& [b, a] : straddles) {
         const TriangleMesh& c = scene.meshes[a];
         if (c.interiorMedium == c.exteriorMedium) continue;
-        throw Error(where(scene) + ": " + meshName(scene, b) + " lies partly inside and partly outside " +
+        throw Error(sceneLabel(scene) + ": " + meshName(scene, b) + " lies partly inside and partly outside " +
                     meshName(scene, a) +
                     ", which bounds a medium: a mesh that bounds a medium, lets light through or emits it must lie "
                     "wholly inside or wholly outside every medium-bounding mesh (move it, or split it at the boundary)");
