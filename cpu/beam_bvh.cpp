@@ -7,10 +7,6 @@ namespace tyndall {
 
 namespace {
 
-// Splitting beyond this gains little on queries but makes the per-pass build dominate once the
-// radius (and so the default piece length) has shrunk by orders of magnitude.
-constexpr float kMaxPieces = 8.0f;
-
 // The margin the ribbons are widened by, in largest beam radii (BeamQueryCache).
 constexpr float kReach = 1.0f;
 
@@ -77,15 +73,24 @@ float distance2ToSegment(const Vec3& p, const Vec3& a, const Vec3& b) {
 
 }  // namespace
 
-BeamBvh::BeamBvh(const EmbreeDevice& device, const std::vector<PhotonBeam>& beams, Kind kind, float pieceLength)
+int BeamBvh::piecesFor(uint64_t queries, size_t beams) {
+    if (beams == 0) return 1;
+    return int(std::clamp(2.5 * double(queries) / double(beams), 1.0, double(kMaxPieces)));
+}
+
+BeamBvh::BeamBvh(const EmbreeDevice& device, const std::vector<PhotonBeam>& beams, Kind kind, float pieceLength,
+                 int maxPieces)
     : m_beams(beams), m_kind(kind) {
+    // Splitting beyond kMaxPieces gains little on queries but makes the per-pass build dominate
+    // once the radius (and so the default piece length) has shrunk by orders of magnitude.
+    const float cap = float(std::clamp(maxPieces, 1, kMaxPieces));
     for (const PhotonBeam& b : beams) m_maxRadius = std::max(m_maxRadius, b.radius);
     if (kind == Kind::FlatCurves) m_reach = kReach * m_maxRadius;
     if (pieceLength <= 0) pieceLength = 16.0f * m_maxRadius;
     for (uint32_t i = 0; i < beams.size(); ++i) {
         const PhotonBeam& b = beams[i];
         uint32_t n = std::isfinite(pieceLength) && pieceLength > 0
-                         ? uint32_t(std::min(kMaxPieces, std::max(1.0f, std::ceil(b.tMax / pieceLength))))
+                         ? uint32_t(std::min(cap, std::max(1.0f, std::ceil(b.tMax / pieceLength))))
                          : 1u;
         for (uint32_t k = 0; k < n; ++k)
             m_pieces.push_back({i, b.tMax * float(k) / float(n), k + 1 == n ? b.tMax : b.tMax * float(k + 1) / float(n)});

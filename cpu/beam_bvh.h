@@ -8,8 +8,9 @@
 //                 applies the exact test and rejects the hit so traversal continues. The default:
 //                 1.3x the user geometry's queries/s on the default scene (docs/performance.md).
 // Long beams have huge, mostly empty bounding boxes, so each beam is split along its axis into
-// at most 8 pieces no shorter than `pieceLength` (one BVH primitive each); a piece reports a beam
-// only when the closest point t_v falls inside the piece, so every beam is found once.
+// at most `maxPieces` (1-8) pieces no shorter than `pieceLength` (one BVH primitive each); a piece
+// reports a beam only when the closest point t_v falls inside the piece, so every beam is found
+// once. Pieces make queries cheaper and the build dearer: piecesFor() weighs the two per pass.
 // Thread-safe queries after construction.
 //
 // Neighbouring camera paths' secondary segments (a tile's pixels through a mirror) are nearly the
@@ -61,9 +62,20 @@ public:
     enum class Kind { UserGeometry, FlatCurves };
 
     /// Keeps a reference to `beams`: they must outlive the BVH. `pieceLength` <= 0 picks 16x the
-    /// largest beam radius.
+    /// largest beam radius; `maxPieces` (clamped to 1..kMaxPieces) caps the pieces of one beam.
     BeamBvh(const EmbreeDevice& device, const std::vector<PhotonBeam>& beams, Kind kind = Kind::FlatCurves,
-            float pieceLength = 0.0f);
+            float pieceLength = 0.0f, int maxPieces = kMaxPieces);
+
+    static constexpr int kMaxPieces = 8;
+    /// The piece cap for a pass expected to make `queries` queries (its secondary segments: about
+    /// one per pixel whose camera ray first meets a non-diffuse surface) among `beams` beams:
+    /// 2.5 queries / beams, within 1..kMaxPieces. Measured with callgrind (docs/performance.md,
+    /// "The environment light"): a piece costs about 3 k instructions to build, and cutting the
+    /// beams of the fog-balls scene into 8 pieces instead of 1 saves about 14 k a query, so
+    /// splitting pays only where a pass makes a good share as many queries as it has beams
+    /// (1080p through glass: 3.4 a beam, 8 pieces; the fog-balls at 128x128: 0.4, 1 piece). The
+    /// pieces change what a query costs, never what it finds.
+    static int piecesFor(uint64_t queries, size_t beams);
     ~BeamBvh();
     BeamBvh(const BeamBvh&) = delete;
     BeamBvh& operator=(const BeamBvh&) = delete;

@@ -72,6 +72,36 @@ TEST(BeamBvh, BothKindsFindExactlyTheBruteForceSet) {
     }
 }
 
+// The piece cap (BeamBvh::piecesFor, per pass) bounds the pieces and changes nothing a query finds.
+TEST(BeamBvh, PieceCapBoundsThePiecesAndFindsTheSameBeams) {
+    EmbreeDevice device;
+    const std::vector<PhotonBeam> beams = randomBeams(2000, 9);
+    std::vector<std::vector<uint32_t>> found[3];
+    const int caps[3] = {1, 3, 8};
+    for (int c = 0; c < 3; ++c) {
+        BeamBvh bvh(device, beams, BeamBvh::Kind::FlatCurves, 0.05f, caps[c]);
+        EXPECT_LE(bvh.pieces().size(), beams.size() * size_t(caps[c]));
+        EXPECT_GT(bvh.pieces().size(), beams.size() * size_t(caps[c]) / 2) << "long beams use the cap";
+        Rng rng(5, 3);
+        std::vector<BeamHitRecord> hits;
+        for (int q = 0; q < 300; ++q) {
+            const Vec3 o = Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 4.0f - Vec3(2.0f);
+            const Vec3 d = sampleUniformSphere(rng.uniform(), rng.uniform());
+            bvh.query(o, d, rng.uniform() * 3.0f, hits);
+            found[c].emplace_back();
+            for (const BeamHitRecord& h : hits) found[c].back().push_back(h.beam);
+        }
+    }
+    EXPECT_EQ(found[0], found[2]);
+    EXPECT_EQ(found[1], found[2]);
+    // The cap per pass: 2.5 queries a beam, within 1..8.
+    EXPECT_EQ(BeamBvh::piecesFor(1100, 2650), 1);   // the fog-balls at 128x128
+    EXPECT_EQ(BeamBvh::piecesFor(35500, 10455), 8);  // the default scene at 960x540
+    EXPECT_EQ(BeamBvh::piecesFor(2000, 1000), 5);
+    EXPECT_EQ(BeamBvh::piecesFor(0, 1000), 1);
+    EXPECT_EQ(BeamBvh::piecesFor(10, 0), 1);
+}
+
 // Neighbouring segments (a tile's paths through a mirror) share cached candidate lists: every
 // query, answered from the cache or not, must still be exactly the brute-force set.
 TEST(BeamBvh, CachedQueriesOfNeighbouringSegmentsFindExactlyTheBruteForceSet) {
