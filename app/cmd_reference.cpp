@@ -18,6 +18,7 @@ struct ReferenceOptions {
     CommonOptions common;
     ReferenceSettings reference;
     bool noNee = false;
+    bool transparent = false;
 };
 
 ImageMetadata referenceMetadata(const Scene& scene, const ReferenceSettings& s) {
@@ -44,6 +45,9 @@ void addReferenceCommand(CLI::App& app, int& exitCode) {
         ->capture_default_str();
     addPathLengthOption(cmd, o->common);
     cmd->add_flag("--no-nee", o->noNee, "Disable light sampling (only emissive surfaces hit by paths contribute)");
+    cmd->add_flag("--transparent", o->transparent,
+                  "Transparent film, as tyndall render's: the environment is not seen as the background and the output "
+                  "(.exr, .png, .tif) gets an alpha channel; the render block's \"transparent\"");
     cmd->callback([o, &exitCode]() {
         finishOptions(o->common);
         checkOutputWritable(o->common.output);
@@ -54,6 +58,10 @@ void addReferenceCommand(CLI::App& app, int& exitCode) {
         s.seed = o->common.settings.seed;
         s.maxPathLength = o->common.settings.maxPathLength;
         s.nextEventEstimation = !o->noNee;
+        s.transparentFilm = o->transparent || o->common.settings.transparentFilm;
+        if (s.transparentFilm && !formatHasAlpha(o->common.output))
+            throw Error("output '" + o->common.output +
+                        "': a transparent film writes an alpha channel, which needs .exr, .png or .tif");
         s.validate();
         ThreadLimit threads(o->common.settings.threads);
         auto start = std::chrono::steady_clock::now();
@@ -65,7 +73,8 @@ void addReferenceCommand(CLI::App& app, int& exitCode) {
         });
         double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         if (tty) std::fprintf(stderr, "\n");
-        writeImage(o->common.output, image.mean, referenceMetadata(scene, s), o->common.exposure);
+        writeImageLayers(o->common.output, image.mean, {}, referenceMetadata(scene, s), o->common.exposure,
+                         s.transparentFilm ? &image.alpha : nullptr);
         double paths = double(s.width) * s.height * s.samplesPerPixel;
         std::printf("reference %s: %u spp, %dx%d, %.0f camera paths, %.2f s (%.3f M paths/s) -> %s\n",
                     scene.name.c_str(), s.samplesPerPixel, s.width, s.height, paths, seconds,

@@ -42,7 +42,8 @@ nlohmann::json ReferenceSettings::toJson() const {
             {"max_path_length", maxPathLength},
             {"roulette_depth", rouletteDepth},
             {"nee", nextEventEstimation},
-            {"equiangular", equiangular}};
+            {"equiangular", equiangular},
+            {"transparent", transparentFilm}};
 }
 
 ReferenceTracer::ReferenceTracer(const EmbreeScene& rt, const ReferenceSettings& settings)
@@ -60,15 +61,17 @@ ReferenceTracer::ReferenceTracer(const EmbreeScene& rt, const ReferenceSettings&
 ReferenceImage ReferenceTracer::render(const std::function<void(int)>& onRow) const {
     const int w = m_settings.width, h = m_settings.height;
     const uint32_t spp = m_settings.samplesPerPixel;
-    ReferenceImage out{Image(w, h), Image(w, h)};
+    ReferenceImage out{Image(w, h), Image(w, h), m_settings.transparentFilm ? Image(w, h) : Image()};
     std::mutex progressMutex;
     int rowsDone = 0;
     tbb::parallel_for(tbb::blocked_range<int>(0, h, 1), [&](const tbb::blocked_range<int>& rows) {
         for (int y = rows.begin(); y < rows.end(); ++y) {
             for (int x = 0; x < w; ++x) {
-                double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
+                double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0}, clearSum = 0;
                 for (uint32_t s = 0; s < spp; ++s) {
-                    Rgb L = sample(x, y, s);
+                    float clear = 0;
+                    Rgb L = sample(x, y, s, m_settings.transparentFilm ? &clear : nullptr);
+                    clearSum += clear;
                     for (int c = 0; c < 3; ++c) {
                         sum[c] += L[c];
                         sum2[c] += double(L[c]) * L[c];
@@ -80,6 +83,7 @@ ReferenceImage ReferenceTracer::render(const std::function<void(int)>& onRow) co
                     out.mean.at(x, y)[c] = float(mean);
                     out.varianceOfMean.at(x, y)[c] = float(var / spp);
                 }
+                if (m_settings.transparentFilm) out.alpha.at(x, y) = Rgb(float(1.0 - clearSum / spp));
             }
             if (onRow) {
                 std::lock_guard<std::mutex> lock(progressMutex);
@@ -90,17 +94,17 @@ ReferenceImage ReferenceTracer::render(const std::function<void(int)>& onRow) co
     return out;
 }
 
-Rgb ReferenceTracer::sample(int x, int y, uint32_t s) const {
+Rgb ReferenceTracer::sample(int x, int y, uint32_t s, float* clear) const {
     const int w = m_settings.width, h = m_settings.height;
     Rng rng = Rng::forKey(m_settings.seed, s, uint64_t(y) * w + x, StreamPurpose::ReferencePath);
     // Same jitter convention as CameraTracer: film offset inside the pixel, then the lens sample.
     float jx = rng.uniform(), jy = rng.uniform();
     Vec2 lens{rng.uniform(), rng.uniform()};
     Ray ray = m_scene.camera.generateRay(float(x) + jx, float(y) + jy, w, h, lens);
-    return radiance(ray, m_cameraMedium, rng);
+    return radiance(ray, m_cameraMedium, rng, clear);
 }
 
-Rgb ReferenceTracer::radiance(Ray ray, MediumId medium, Rng& rng) const {
+Rgb ReferenceTracer::radiance(Ray ray, MediumId medium, Rng& rng, float* clear) const {
     const bool nee = m_settings.nextEventEstimation;
     const bool equiangular = nee && m_settings.equiangular;
     Rgb L, beta(1.0f);
@@ -170,7 +174,8 @@ Rgb ReferenceTracer::radiance(Ray ray, MediumId medium, Rng& rng) const {
             // The environment: hidden from paths straight from the camera when not visible; MIS
             // against next-event estimation where the last vertex could have sampled it.
             const EnvironmentLight* env = m_scene.environment ? &*m_scene.environment : nullptr;
-            if (env && (vertices > 0 || env->visible())) {
+            if (vertices == 0 && clear) *clear = beta.average();
+            if (env && (vertices > 0 || (env->visible() && !m_settings.transparentFilm))) {
                 float mis = 1.0f;
                 if (nee && !afterSpecular) mis = powerHeuristic(lastPdf, m_lights.environmentPdf(lastVertex, ray.d));
                 L += beta * env->eval(ray.d) * mis;

@@ -80,6 +80,12 @@ struct ReferenceSettings {
     /// Equiangular sampling of point/spot in-scattering along medium segments (see above); off:
     /// those lights are sampled from free-flight vertices like the others. Needs NEE.
     bool equiangular = true;
+    /// The transparent film (RenderSettings::transparentFilm, as PPB's camera paths define it):
+    /// paths that reach the environment straight (no scattering vertex, through Interface
+    /// crossings alone) do not see it, and ReferenceImage::alpha gets each pixel's coverage, 1
+    /// minus the mean over its paths of that share (the channels' mean of their throughput, an
+    /// unbiased estimate of the fog's transmittance along them).
+    bool transparentFilm = false;
 
     /// Throws Error naming the option when a value is out of range.
     void validate() const;
@@ -91,6 +97,7 @@ struct ReferenceSettings {
 struct ReferenceImage {
     Image mean;
     Image varianceOfMean;
+    Image alpha;  ///< ReferenceSettings::transparentFilm only: the coverage (in every channel)
 };
 
 class ReferenceTracer {
@@ -102,11 +109,13 @@ public:
     ReferenceImage render(const std::function<void(int rowsDone)>& onRow = {}) const;
 
     /// One radiance sample of pixel (x, y): sample `s` of the pixel's deterministic sequence.
-    Rgb sample(int x, int y, uint32_t s) const;
+    /// `clear` (optional): the share of the path that reached the environment straight (its
+    /// throughput's channel mean then, else 0), the transparent film's complement of coverage.
+    Rgb sample(int x, int y, uint32_t s, float* clear = nullptr) const;
 
     /// One estimate of the radiance arriving at `ray.o` from direction -ray.d (ray.d unit), the
     /// ray starting inside `medium`. For tests that probe single rays.
-    Rgb radiance(Ray ray, MediumId medium, Rng& rng) const;
+    Rgb radiance(Ray ray, MediumId medium, Rng& rng, float* clear = nullptr) const;
 
     MediumId cameraMedium() const { return m_cameraMedium; }
     const ReferenceSettings& settings() const { return m_settings; }

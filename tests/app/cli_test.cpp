@@ -124,7 +124,7 @@ TEST(Cli, HelpListsEveryOptionWithDefaults) {
         {"render", join({scene, output, ppb,
                          {"--gpu", "--checkpoint", "--checkpoint-every", "--resume", "--quiet", "--progress-every", "--aov",
                           "--reference", "--convergence", "--max-path-length", "--region", "--transparent"}})},
-        {"reference", join({scene, output, {"--spp", "--max-depth", "--max-path-length", "--no-nee"}})},
+        {"reference", join({scene, output, {"--spp", "--max-depth", "--max-path-length", "--no-nee", "--transparent"}})},
         {"bench", join({scene, {"--passes", "--photons", "--no-hybrid", "--radius", "--radius-offset", "--simd",
                             "--direct-light", "--surface-boundary", "--equiangular"}})},
         {"compare", join({scene, output, ppb, {"--gpu", "--density", "--twin"}})}};
@@ -498,7 +498,7 @@ TEST(Cli, TimeBudgetRecordsItsPlanAndReplaysFromIt) {
 
 // The transparent film through the binary: --transparent (EXR) and the render block's
 // "transparent" (PNG) write an alpha channel: 0 where the environment is the background (no
-// radiance there), 1 on a surface.
+// radiance there), 1 on a surface; tyndall reference --transparent alike.
 TEST(Cli, TransparentFilmWritesAlpha) {
     const std::string dir = tyndall::test::outputDir();
     const std::string scene = dir + "/transparent_film.json";
@@ -526,7 +526,10 @@ TEST(Cli, TransparentFilmWritesAlpha) {
     writeScene(R"("render": {"transparent": "on"},)");
     CliRun p = runTyndall("render " + scene + " --size 16x16 --passes 2 --photons 100 --gpu off -o " + png);
     ASSERT_EQ(p.exitCode, 0) << p.output;
-    for (const std::string& path : {exr, png}) {
+    const std::string ref = dir + "/transparent_film_reference.exr";
+    CliRun q = runTyndall("reference " + scene + " --transparent --size 16x16 --spp 2 -o " + ref);
+    ASSERT_EQ(q.exitCode, 0) << q.output;
+    for (const std::string& path : {exr, png, ref}) {
         std::vector<float> px;
         int w = 0;
         ASSERT_EQ(readRgba(path, &px, &w), 4) << path << ": not RGBA";
@@ -537,7 +540,9 @@ TEST(Cli, TransparentFilmWritesAlpha) {
         EXPECT_EQ(empty[3], 0.0f) << path;
         EXPECT_EQ(empty[0], 0.0f) << path << ": the background is left out";
     }
-    CliRun bad = runTyndall("render " + scene + " --transparent --size 16x16 --passes 1 -o " + dir + "/film.jpg");
-    EXPECT_NE(bad.exitCode, 0);
-    EXPECT_NE(bad.output.find("needs .exr, .png or .tif"), std::string::npos) << bad.output;
+    for (const std::string command : {"render --passes 1", "reference --spp 1"}) {
+        CliRun bad = runTyndall(command + " " + scene + " --transparent --size 16x16 -o " + dir + "/film.jpg");
+        EXPECT_NE(bad.exitCode, 0) << command;
+        EXPECT_NE(bad.output.find("needs .exr, .png or .tif"), std::string::npos) << command << ": " << bad.output;
+    }
 }

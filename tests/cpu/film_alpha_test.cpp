@@ -12,6 +12,7 @@
 
 #include "core/environment_light.h"
 #include "cpu/pass_renderer.h"
+#include "cpu/reference_tracer.h"
 #include "loading/mesh_builders.h"
 #include "tests/test_scenes.h"
 
@@ -42,11 +43,10 @@ Scene filmScene() {
 
 enum class Pixel { Mixed, Empty, Card, Fog };
 
-TEST(FilmAlpha, EmptySurfaceAndFogPixelsReadTheirCoverage) {
-    const Scene s = filmScene();
-    // Each pixel's class and, for fog pixels, the closed form from 8 x 8 pinhole rays.
-    std::vector<Pixel> cls(kSize * kSize, Pixel::Mixed);
-    std::vector<double> expect(kSize * kSize, 0.0);
+/// Each pixel's class and, for fog pixels, the closed form from 8 x 8 pinhole rays.
+void classify(const Scene& s, std::vector<Pixel>& cls, std::vector<double>& expect) {
+    cls.assign(kSize * kSize, Pixel::Mixed);
+    expect.assign(kSize * kSize, 0.0);
     const int sub = 8;
     for (int y = 0; y < kSize; ++y)
         for (int x = 0; x < kSize; ++x) {
@@ -74,6 +74,14 @@ TEST(FilmAlpha, EmptySurfaceAndFogPixelsReadTheirCoverage) {
             if (counts[1] == n) c = Pixel::Card;
             if (counts[2] == n) c = Pixel::Fog, expect[size_t(y) * kSize + x] = a / n;
         }
+
+}
+
+TEST(FilmAlpha, EmptySurfaceAndFogPixelsReadTheirCoverage) {
+    const Scene s = filmScene();
+    std::vector<Pixel> cls;
+    std::vector<double> expect;
+    classify(s, cls, expect);
 
     RenderSettings ps;
     ps.width = ps.height = kSize;
@@ -128,6 +136,63 @@ TEST(FilmAlpha, EmptySurfaceAndFogPixelsReadTheirCoverage) {
     EXPECT_GT(counted[int(Pixel::Empty)], 20);
     EXPECT_GT(counted[int(Pixel::Card)], 20);
     EXPECT_GT(counted[int(Pixel::Fog)], 20);
+}
+
+TEST(FilmAlpha, ThePathTracerWritesTheCoverageRenderDoes) {
+    // tyndall reference --transparent: the same coverage as PPB's transparent film, pixel by pixel
+    // within the path tracer's noise (a fog path leaves unscattered with probability
+    // exp(-sigma_t d): binomial), exact where it must be (empty 0, card 1), no background.
+    const Scene s = filmScene();
+    std::vector<Pixel> cls;
+    std::vector<double> expect;
+    classify(s, cls, expect);
+    ReferenceSettings rs;
+    rs.width = rs.height = kSize;
+    rs.samplesPerPixel = 64;
+    rs.seed = 4;
+    rs.transparentFilm = true;
+    EmbreeScene rt(s);
+    const ReferenceImage ref = ReferenceTracer(rt, rs).render();
+    ASSERT_EQ(ref.alpha.width, kSize);
+    RenderSettings ps;
+    ps.width = ps.height = kSize;
+    ps.photonsPerPass = 200;
+    ps.seed = 9;
+    ps.transparentFilm = true;
+    PassRenderer renderer(s, ps);
+    std::vector<double> ppb(kSize * kSize, 0.0);
+    const int passes = 8;
+    for (int p = 0; p < passes; ++p) {
+        Image a;
+        renderer.traceSecondary(renderer.tracePrimary(uint64_t(p)), renderer.tracePhotons(uint64_t(p)), nullptr, true,
+                                nullptr, &a);
+        for (size_t i = 0; i < ppb.size(); ++i) ppb[i] += a.pixels[i].r / double(passes);
+    }
+    double sumRef = 0, sumPpb = 0, sumVar = 0, worstZ = 0;
+    int fog = 0;
+    for (size_t i = 0; i < cls.size(); ++i) {
+        const double a = ref.alpha.pixels[i].r;
+        EXPECT_GE(a, 0.0);
+        EXPECT_LE(a, 1.0);
+        if (cls[i] == Pixel::Empty) {
+            EXPECT_EQ(a, 0.0) << "pixel " << i;
+            EXPECT_EQ(ref.mean.pixels[i].average(), 0.0f) << "pixel " << i << ": the background is left out";
+        }
+        if (cls[i] == Pixel::Card) EXPECT_EQ(a, 1.0) << "pixel " << i;
+        if (cls[i] != Pixel::Fog) continue;
+        // Binomial over the paths (the path tracer), against PPB's coverage (its own error 2e-3).
+        const double var = std::max(expect[i] * (1 - expect[i]), 0.01) / rs.samplesPerPixel;
+        worstZ = std::max(worstZ, std::abs(a - ppb[i]) / std::sqrt(var));
+        sumRef += a;
+        sumPpb += ppb[i];
+        sumVar += var;
+        ++fog;
+    }
+    std::printf("fog pixels %d: mean coverage path tracer %.4f, PPB %.4f (+- %.4f); worst pixel %.1f sigma\n", fog,
+                sumRef / fog, sumPpb / fog, std::sqrt(sumVar) / fog, worstZ);
+    ASSERT_GT(fog, 20);
+    EXPECT_NEAR(sumRef / fog, sumPpb / fog, 4 * std::sqrt(sumVar) / fog + 2e-3);
+    EXPECT_LT(worstZ, 4.5);
 }
 
 }  // namespace
