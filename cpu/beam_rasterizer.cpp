@@ -99,7 +99,38 @@ BeamFootprint beamFootprint(const Camera& cam, int width, int height, const Phot
     return fp;
 }
 
-bool footprintRowSpan(const BeamFootprint& fp, float y, float* x0, float* x1) {
+namespace {
+/// The straight sides of a footprint's hull (the tangents common to its two discs), which every
+/// row's span needs: computed once per beam.
+struct FootprintSides {
+    bool present = false;  ///< false when one disc holds the other (no straight sides)
+    float quad[4][2] = {};
+};
+
+FootprintSides footprintSides(const BeamFootprint& fp) {
+    FootprintSides sides;
+    if (fp.fullScreen) return sides;
+    float dx = fp.bx - fp.ax, dy = fp.by - fp.ay;
+    float len = std::sqrt(dx * dx + dy * dy);
+    if (!(len > std::abs(fp.ra - fp.rb))) return sides;
+    // The hull's straight sides touch the discs where the outward normal is
+    // n cos(phi) + u sin(phi), sin(phi) = (ra - rb) / len.
+    sides.present = true;
+    float ux = dx / len, uy = dy / len, nx = -uy, ny = ux;
+    float sinPhi = (fp.ra - fp.rb) / len, cosPhi = std::sqrt(std::max(0.0f, 1.0f - sinPhi * sinPhi));
+    for (int side = 0; side < 2; ++side) {
+        float s = side == 0 ? 1.0f : -1.0f;
+        float ox = s * nx * cosPhi + ux * sinPhi, oy = s * ny * cosPhi + uy * sinPhi;
+        sides.quad[side == 0 ? 0 : 3][0] = fp.ax + fp.ra * ox;
+        sides.quad[side == 0 ? 0 : 3][1] = fp.ay + fp.ra * oy;
+        sides.quad[side == 0 ? 1 : 2][0] = fp.bx + fp.rb * ox;
+        sides.quad[side == 0 ? 1 : 2][1] = fp.by + fp.rb * oy;
+    }
+    return sides;
+}
+
+/// footprintRowSpan with the footprint's sides already found (footprintSides).
+bool rowSpan(const BeamFootprint& fp, const FootprintSides& sides, float y, float* x0, float* x1) {
     if (fp.fullScreen) {
         *x0 = -kInfinity;
         *x1 = kInfinity;
@@ -116,25 +147,10 @@ bool footprintRowSpan(const BeamFootprint& fp, float y, float* x0, float* x1) {
     };
     disc(fp.ax, fp.ay, fp.ra);
     disc(fp.bx, fp.by, fp.rb);
-    float dx = fp.bx - fp.ax, dy = fp.by - fp.ay;
-    float len = std::sqrt(dx * dx + dy * dy);
-    if (len > std::abs(fp.ra - fp.rb)) {
-        // The hull's straight sides touch the discs where the outward normal is
-        // n cos(phi) + u sin(phi), sin(phi) = (ra - rb) / len.
-        float ux = dx / len, uy = dy / len, nx = -uy, ny = ux;
-        float sinPhi = (fp.ra - fp.rb) / len, cosPhi = std::sqrt(std::max(0.0f, 1.0f - sinPhi * sinPhi));
-        float quad[4][2];
-        for (int side = 0; side < 2; ++side) {
-            float s = side == 0 ? 1.0f : -1.0f;
-            float ox = s * nx * cosPhi + ux * sinPhi, oy = s * ny * cosPhi + uy * sinPhi;
-            quad[side == 0 ? 0 : 3][0] = fp.ax + fp.ra * ox;
-            quad[side == 0 ? 0 : 3][1] = fp.ay + fp.ra * oy;
-            quad[side == 0 ? 1 : 2][0] = fp.bx + fp.rb * ox;
-            quad[side == 0 ? 1 : 2][1] = fp.by + fp.rb * oy;
-        }
+    if (sides.present) {
         for (int e = 0; e < 4; ++e) {
-            const float* p = quad[e];
-            const float* q = quad[(e + 1) % 4];
+            const float* p = sides.quad[e];
+            const float* q = sides.quad[(e + 1) % 4];
             if ((p[1] - y) * (q[1] - y) > 0) continue;
             float x = p[1] == q[1] ? p[0] : p[0] + (q[0] - p[0]) * (y - p[1]) / (q[1] - p[1]);
             lo = std::min(lo, x);
@@ -148,6 +164,11 @@ bool footprintRowSpan(const BeamFootprint& fp, float y, float* x0, float* x1) {
     *x0 = lo;
     *x1 = hi;
     return lo <= hi;
+}
+}  // namespace
+
+bool footprintRowSpan(const BeamFootprint& fp, float y, float* x0, float* x1) {
+    return rowSpan(fp, footprintSides(fp), y, x0, x1);
 }
 
 namespace {
@@ -281,8 +302,10 @@ Image BeamRasterizer::rasterize(const PrimarySegments& primary, const PhotonMap&
     const std::vector<PhotonBeam>& beams = photons.beams;
 
     std::vector<BeamFootprint> fps(beams.size());
+    std::vector<FootprintSides> sides(beams.size());
     tbb::parallel_for(size_t(0), beams.size(), [&](size_t i) {
         fps[i] = beams[i].medium == kVacuum ? BeamFootprint{} : beamFootprint(m_scene.camera, w, h, beams[i]);
+        if (fps[i].visible) sides[i] = footprintSides(fps[i]);
     });
 
     // Bin in beam order: a band takes a beam when the footprint's bounding box reaches it.
@@ -329,7 +352,7 @@ Image BeamRasterizer::rasterize(const PrimarySegments& primary, const PhotonMap&
             if (simd) sb = splatBeam(m_scene, photons, b);
             for (int y = rowBegin; y < rowEnd; ++y) {
                 float sx0, sx1;
-                if (!footprintRowSpan(fps[b], float(y) + 0.5f, &sx0, &sx1)) continue;
+                if (!rowSpan(fps[b], sides[b], float(y) + 0.5f, &sx0, &sx1)) continue;
                 // Pixels whose centre x + 0.5 lies in [sx0, sx1], inside the region.
                 int x0 = int(std::max(0.0f, std::ceil(std::max(sx0, -1.0f) - 0.5f)));
                 int x1 = int(std::min(float(w - 1), std::floor(std::min(sx1, float(w) + 1.0f) - 0.5f)));
