@@ -82,7 +82,9 @@ public:
 
     /// coverage() for the photons of one gather at x, each at its own radius quantised to 1/32
     /// octave (the float's exponent and top 5 mantissa bits, the bucket's middle): one query per
-    /// distinct value, and a pass's photons share one or two. Dividing each photon's term by the
+    /// distinct value. A late pass's photons share two or three; an early pass's span more (the
+    /// first pass after a radius offset of 1000 paths, 4000 paths, about 19), so kSlots values are
+    /// kept, in the order first met, and the last one found is tried first. Dividing each photon's term by the
     /// coverage at its own radius keeps the estimate a sum of per-photon terms, so a pass traced
     /// in photon batches sums to the whole pass (a coverage from the gathered photons' mean radius
     /// would depend on which photons a batch holds).
@@ -96,22 +98,23 @@ public:
             uint32_t bits;
             std::memcpy(&bits, &r, sizeof bits);
             const uint32_t key = bits >> 18;
+            if (m_count > 0 && m_key[m_last] == key) return m_value[m_last];
             for (int i = 0; i < m_count; ++i)
-                if (m_key[i] == key) return m_value[i];
+                if (m_key[i] == key) return m_value[m_last = i];
             const uint32_t mid = (key << 18) | (1u << 17);
             float rq;
             std::memcpy(&rq, &mid, sizeof rq);
             const float c = m_b.coverage(m_x, m_ng, rq);
-            if (m_count < kSlots) m_key[m_count] = key, m_value[m_count++] = c;
+            if (m_count < kSlots) m_last = m_count, m_key[m_count] = key, m_value[m_count++] = c;
             return c;
         }
 
     private:
-        static constexpr int kSlots = 4;
+        static constexpr int kSlots = 32;
         const SurfaceBoundary& m_b;
         Vec3 m_x, m_ng;
         float m_clear;  ///< no feature half-edge is nearer x than this
-        int m_count = 0;
+        int m_count = 0, m_last = 0;
         uint32_t m_key[kSlots];
         float m_value[kSlots];
     };
