@@ -14,9 +14,9 @@ endforeach()
 
 # -O1 and line tables only (-g1): enough for file:line in every report, and the cheapest build.
 # Unity batches of 8 sources: each batch parses the heavy headers (OpenVDB, Embree, nlohmann/json,
-# GoogleTest) and instantiates their templates once instead of once per file, which more than
-# halves the compile (docs/performance.md, "CI and build time"). Names at file scope in a .cpp
-# (anonymous namespace, static) must therefore be unique within its library or test executable.
+# GoogleTest) and instantiates their templates once instead of once per file, a third less compiling
+# (docs/performance.md, "CI and build time"). Names at file scope in a .cpp (anonymous namespace,
+# static) must therefore be unique within its library or test executable.
 set(flags "-O1 -g1 -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all")
 set(unity "")
 if(EXISTS ${BUILD_DIR}/CMakeCache.txt)
