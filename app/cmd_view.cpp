@@ -22,6 +22,7 @@ struct ViewCommandOptions {
     int previewScale = 4, previewPhotons = 16;
     uint64_t finalPasses = 0;
     float uiScale = 0;
+    bool transparent = false;
 };
 }  // namespace
 
@@ -58,6 +59,9 @@ void addViewCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--preview-photons", o->previewPhotons, "Preview passes trace 1/N of the photon paths")
         ->check(CLI::Range(1, 1024))
         ->capture_default_str();
+    cmd->add_flag("--transparent", o->transparent,
+                  "Transparent film, as tyndall render's: the image is shown over a checkerboard where it is not covered "
+                  "and saved with its alpha channel; the render block's \"transparent\"");
     cmd->callback([o, cmd, density, &exitCode]() {
         CommonOptions& c = o->common;
         for (const char* opt : {"--passes", "--time"})
@@ -85,6 +89,7 @@ void addViewCommand(CLI::App& app, int& exitCode) {
             v.twin.validate();
         }
         v.settings = c.settings;
+        if (o->transparent) v.settings.transparentFilm = true;
         v.gpu = c.settings.gpu;
         v.exposure = o->exposure;
         v.script = o->script;

@@ -5,6 +5,7 @@
 
 #include "core/accumulator.h"
 #include "core/error.h"
+#include "core/layer_accumulator.h"
 #include "loading/scene_edits.h"
 
 namespace tyndall {
@@ -114,10 +115,11 @@ std::string RenderLoop::notice() const {
 }
 
 void RenderLoop::publish(const Accumulator& acc, const RenderProgress& progress, const PreviewRefine::Job& job,
-                         const PassRenderer& renderer, double jobStart) {
+                         const PassRenderer& renderer, double jobStart, const LayerAccumulator* layers) {
     ViewFrame f;
     f.setupSeconds = m_jobSetupSeconds;
     f.mean = acc.mean();
+    if (layers && layers->transparent()) f.alpha = layers->alpha();
     f.passes = acc.passCount();
     f.mode = job.mode;
     f.version = job.version;
@@ -163,10 +165,13 @@ void RenderLoop::run() {
             PassRenderer& renderer = job.mode == RenderMode::Refine ? *m_full : *m_cheap;
             renderer.sceneChanged();
             m_jobEdits = edits;
+            // A transparent film accumulates its coverage beside the image (LayerAccumulator).
+            const bool transparent = renderer.settings().transparentFilm;
             Accumulator acc(renderer.settings().width, renderer.settings().height);
+            LayerAccumulator layers(renderer.settings().width, renderer.settings().height, false, transparent);
             double jobStart = setupStart;
             CallbackDisplay display([&](const Accumulator& a, const RenderProgress& progress) {
-                publish(a, progress, job, renderer, jobStart);
+                publish(a, progress, job, renderer, jobStart, transparent ? &layers : nullptr);
                 if (m_quit || m_control.stale(job)) return DisplayCommand::Exit;
                 if (m_paused) {
                     std::unique_lock<std::mutex> lock(m_mutex);
@@ -182,7 +187,10 @@ void RenderLoop::run() {
                 m_notice = m_scheduler->notice();
             }
             m_jobSetupSeconds = now() - setupStart;
-            m_scheduler->run(renderer, acc, 0, display);
+            if (transparent)
+                m_scheduler->run(renderer, layers, 0, display);
+            else
+                m_scheduler->run(renderer, acc, 0, display);
         }
     } catch (const std::exception& e) {
         {

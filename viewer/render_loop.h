@@ -40,6 +40,7 @@ RenderSettings previewSettings(const RenderSettings& full, const PreviewOptions&
 struct ViewFrame {
     uint64_t serial = 0;  ///< increases with every publication (0: nothing yet)
     Image mean;           ///< linear running mean (preview frames are smaller)
+    Image alpha;          ///< RenderSettings::transparentFilm: the coverage's running mean (r), else empty
     uint64_t passes = 0;
     RenderMode mode = RenderMode::Refine;
     uint64_t version = 0;      ///< the PreviewRefine version it shows
@@ -97,7 +98,7 @@ private:
     void run();
     void changed();
     void publish(const Accumulator& acc, const RenderProgress& progress, const PreviewRefine::Job& job,
-                 const PassRenderer& renderer, double jobStart);
+                 const PassRenderer& renderer, double jobStart, const LayerAccumulator* layers);
 
     Scene m_base;
     Scene m_scene;  // the render thread's edited copy

@@ -42,8 +42,9 @@ SavedView saveView(const ViewFrame& frame, const std::string& stem, const std::s
                               {"tyndall:passes", std::to_string(frame.passes)},
                               {"tyndall:photon_paths", std::to_string(frame.passes * s.photonsPerPass)},
                               {"tyndall:viewer", frame.mode == RenderMode::Refine ? "refined" : "preview"}};
-    writeImage(out.exr, frame.mean, metadata);
-    writeImage(out.png, frame.mean, {}, exposure);
+    const Image* alpha = frame.alpha.width > 0 ? &frame.alpha : nullptr;
+    writeImageLayers(out.exr, frame.mean, {}, metadata, 1.0f, alpha);
+    writeImageLayers(out.png, frame.mean, {}, {}, exposure, alpha);
     return out;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // Saving what the viewer shows (the S key, a script's `save`): STEM.exr (linear, with the metadata
-// `tyndall render` writes), STEM.png (tone-mapped at the window's exposure) and STEM.json, a view
+// `tyndall render` writes), STEM.png (tone-mapped at the window's exposure), both with the alpha
+// channel of a transparent film (as `tyndall render --transparent` writes it), and STEM.json, a view
 // file (loading/scene_edits.h) holding the base scene, the frame's edits and its resolved render
 // settings (passes = the passes in the image, the radii resolved to scene units), so that
 // `tyndall render STEM.json` renders the same image bit for bit (CPU mode).

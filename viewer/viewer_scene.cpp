@@ -1,6 +1,7 @@
 // The viewer's edited scene: its panel state, its render loops, reloading the scene file, saving.
 #include "viewer/viewer_window.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "core/error.h"
@@ -144,6 +145,19 @@ void Viewer::setRegion(const PixelRegion& region) {
 }
 
 const Image& Viewer::displayImage(size_t i) {
+    const Image& image = regionImage(i);
+    const ViewFrame& f = m_frames[i];
+    if (!f.settings.region.whole() || f.alpha.width != image.width || f.alpha.height != image.height) return image;
+    m_checkered = Image(image.width, image.height);
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            const float grey = ((x / 16 + y / 16) & 1) ? 0.36f : 0.18f;
+            m_checkered.at(x, y) = image.at(x, y) + Rgb(grey * std::max(0.0f, 1.0f - f.alpha.at(x, y).r));
+        }
+    return m_checkered;
+}
+
+const Image& Viewer::regionImage(size_t i) {
     const ViewFrame& f = m_frames[i];
     m_backdrops.resize(m_frames.size());
     const PixelRegion& region = f.settings.region;

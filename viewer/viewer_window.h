@@ -125,8 +125,11 @@ private:
     PixelRegion dragRegion() const;
     /// The region's outline (and the one being drawn) over the image.
     void drawRegionOutline();
-    /// What loop i's newest frame shows: a region frame over the last whole image (viewer_scene.cpp).
+    /// What loop i's newest frame shows: a region frame over the last whole image (viewer_scene.cpp);
+    /// a transparent film's whole frame over a checkerboard (16-pixel squares, linear grey 0.18 and
+    /// 0.36, added where the coverage is below 1: the colour is premultiplied).
     const Image& displayImage(size_t i);
+    const Image& regionImage(size_t i);
     bool stepScript(bool* acted);
     void inputArrived() { m_redraw = std::max(m_redraw, kSettleFrames); }
     bool refinedAtRest(uint64_t passes) const;
@@ -174,6 +177,7 @@ private:
     float m_regionStartX = 0, m_regionStartY = 0;
     std::vector<Image> m_backdrops;  // per loop: the last whole image shown, under a region's frames
     Image m_composite;
+    Image m_checkered;
     float m_lastX = 0, m_lastY = 0;
     double m_lastPressTime = -1;
     float m_lastPressX = -1e9, m_lastPressY = -1e9;
