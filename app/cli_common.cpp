@@ -196,7 +196,7 @@ void addDirectLightOption(CLI::App* cmd, CommonOptions& o) {
                    "on|off: divide the surface photon kernel by the part of its disc that lies on the "
                    "surface, so edges and corners are not darkened; off = the plain kernel (docs/algorithm.md)");
     addOnOffOption(cmd, "--equiangular", o.settings.equiangular,
-                   "on|off: single scattering from point and spot lights along camera rays in media by "
+                   "on|off: single scattering from point, spot and area lights along camera rays in media by "
                    "equiangular sampling; off = those lights' first photon beams (docs/algorithm.md)");
 }
 

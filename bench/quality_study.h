@@ -18,7 +18,7 @@
 // function of the pass count: the budget only decides where the render stops, so a row is
 // reproduced by rendering its printed pass count. The settings: legacy, today's defaults as
 // `tyndall render --time` resolves them (the open-ended plan), the same with --equiangular switched
-// (single scattering from point and spot lights by equiangular sampling or by their first beams:
+// (single scattering from point, spot and area lights by equiangular sampling or by their first beams:
 // cpu/equiangular.h) and, given FILE:PASSES, the automatic radii planned for that pass count. The
 // plot: error against CPU seconds.
 // With a library folder its scenes are added, made valid for the path tracer (withoutSpecularSurfaces).

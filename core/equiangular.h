@@ -42,6 +42,22 @@ inline EquiangularSample sampleEquiangular(const Vec3& o, const Vec3& d, float a
     return s;
 }
 
+/// The ray o + t d (d unit) seen from a point p as an angle: theta(t) = atan((t - t0) / D), with
+/// the foot t0 and the distance D as above. Equiangular sampling is uniform in theta; a
+/// piecewise-constant weight w(t) times the inverse square is sampled by choosing a piece by
+/// w (theta(t1) - theta(t0)) and then theta uniformly inside it (cpu/equiangular.cpp, grid media).
+struct EquiangularLine {
+    EquiangularLine(const Vec3& o, const Vec3& d, float a, float b, const Vec3& p) {
+        t0 = dot(p - o, d);
+        const float scale = std::max({std::abs(a), std::abs(b), std::abs(t0), 1e-30f});
+        D = std::max(length(o + d * t0 - p), kEquiangularMinDistance * scale);
+    }
+    double angle(float t) const { return std::atan2(double(t) - t0, double(D)); }
+    float at(double theta) const { return float(t0 + D * std::tan(theta)); }
+    float t0 = 0;  ///< the foot of p on the line
+    float D = 0;   ///< p's distance from the line (at least kEquiangularMinDistance of the scale)
+};
+
 /// Clips [*a, *b] to the part of the ray o + t d inside the solid cone of apex `apex`, unit axis
 /// `axis` and half-angle acos(cosAngle) (at most 90 degrees: a convex set, so the part is one
 /// interval). Returns false when nothing is left.

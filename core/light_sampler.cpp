@@ -302,6 +302,24 @@ EmittedPhoton LightSampler::sample(Rng& rng) const {
     return ph;
 }
 
+LightSampler::EmitterPoint LightSampler::sampleEmitterPoint(Rng& rng) const {
+    EmitterPoint p;
+    const double u = rng.uniform();
+    const float u1 = rng.uniform(), u2 = rng.uniform();
+    if (!(m_emitterPower > 0)) return p;
+    const size_t i = chooseEmitter(u);
+    const EmissiveTriangle& e = m_scene.emitters[i];
+    const TriangleMesh& mesh = m_scene.meshes[size_t(e.mesh)];
+    const Vec2 b = sampleUniformTriangle(u1, u2);
+    p.point = mesh.vertex(e.triangle, 0) * (1.0f - b.x - b.y) + mesh.vertex(e.triangle, 1) * b.x +
+              mesh.vertex(e.triangle, 2) * b.y;
+    p.normal = normalize(mesh.geometricNormal(e.triangle));
+    p.radiance = emittedRadiance(e, b);
+    p.pdfArea = float(emitterShare(i) / double(e.area));
+    p.source = int(m_scene.lights.size() + i);
+    return p;
+}
+
 Rgb LightSampler::emittedRadiance(const EmissiveTriangle& e, Vec2 b) const {
     const TriangleMesh& mesh = m_scene.meshes[size_t(e.mesh)];
     if (!m_scene.materials[size_t(mesh.material)].emissiveTexture.present()) return e.radiance;

@@ -104,6 +104,21 @@ public:
     /// choice included); 0 without an environment. For MIS when a scattered path escapes.
     float environmentPdf(const Vec3& x, const Vec3& wi) const;
 
+    /// A point on the area lights (the emissive triangles), for estimators that aim at the light
+    /// first (the equiangular estimator's, cpu/equiangular.h): a triangle chosen by power among
+    /// them, then a uniform point on it. pdfArea is the density over the union of their areas
+    /// (0, and nothing else set, when no emitter has power). Draws three uniforms from `rng`.
+    struct EmitterPoint {
+        Vec3 point;
+        Vec3 normal;   ///< the triangle's unit front (emitting) normal
+        Rgb radiance;  ///< Le there
+        float pdfArea = 0;
+        int source = -1;  ///< its source index (lights first, then Scene::emitters)
+    };
+    EmitterPoint sampleEmitterPoint(Rng& rng) const;
+    /// The emitters' summed power, luminance (0: none emits).
+    double emitterPower() const { return m_emitterPower; }
+
 private:
     /// Le at barycentrics b of an emitter: the material's emission times its emissiveTexture there
     /// (the source pmf follows the untextured power; the texture weights the sample, unbiased).

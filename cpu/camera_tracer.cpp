@@ -268,8 +268,7 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
             if (m_equiangular && emission && (maxLength == 0 || maxLength >= 2)) {
                 const PrimaryRay& pr = primary.segments.rays[pixel];
                 if (pr.medium != kVacuum && pr.tMax > 0) {
-                    const float* ff = nff > 0 ? &primary.segments.freeFlights[pixel * size_t(nff)] : nullptr;
-                    const Rgb single = m_equiangular->estimate(pr.medium, pr.origin, pr.dir, pr.tMax, ff, nff, equiangularRng);
+                    const Rgb single = m_equiangular->estimate(pr.medium, pr.origin, pr.dir, pr.tMax, equiangularRng);
                     L += single;
                     Lmedia += single;
                 }
@@ -449,7 +448,7 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                         tls.stats.beamHits += tls.hits.size();
                         emitted += gatherBeams(m_scene, photons, tls.hits, medium, seg.o, seg.d, ff, nff, maxBeamSegment);
                         if (m_equiangular && emission)
-                            emitted += m_equiangular->estimate(medium, seg.o, seg.d, seg.tMax, ff, nff, equiangularRng);
+                            emitted += m_equiangular->estimate(medium, seg.o, seg.d, seg.tMax, equiangularRng);
                     }
                     Rgb media = throughput * emitted;
                     L += media;

@@ -7,6 +7,7 @@
 #include "core/phase.h"
 #include "core/transmittance.h"
 #include "cpu/direct_light.h"
+#include "cpu/free_flight.h"
 
 namespace tyndall {
 
@@ -22,54 +23,197 @@ EquiangularScattering::EquiangularScattering(const EmbreeScene& rt) : m_rt(rt) {
         total += power;
         m_cdf.push_back(total);
     }
+    if (!scene.emitters.empty()) {
+        auto sampler = std::make_unique<LightSampler>(scene);
+        if (const double power = sampler->emitterPower(); power > 0) {
+            m_areaLights = std::move(sampler);
+            m_lights.push_back(kAreaLights);
+            total += power;
+            m_cdf.push_back(total);
+        }
+    }
     for (double& c : m_cdf) c /= total;
 }
 
-Rgb EquiangularScattering::estimate(MediumId medium, const Vec3& o, const Vec3& d, float sMax,
-                                    const float* freeFlights, int n, Rng& rng) const {
+bool EquiangularScattering::handles(const Scene& scene, const EmittedPhoton& photon) {
+    if (photon.light >= 0) return handles(scene.lights[size_t(photon.light)]);
+    return photon.emitterMesh >= 0;
+}
+
+Rgb EquiangularScattering::estimate(MediumId medium, const Vec3& o, const Vec3& d, float sMax, Rng& rng) const {
     if (m_lights.empty() || medium == kVacuum || !(sMax > 0)) return Rgb(0.0f);
     const Scene& scene = m_rt.scene();
     const Medium& med = scene.media[medium];
-    if (!estimatesIn(med) || med.sigmaS.isBlack()) return Rgb(0.0f);
+    if (med.sigmaS.isBlack()) return Rgb(0.0f);
+    // kSamples stratified distances per source: (k + xi) / kSamples mapped through the sampler.
+    const int n = kSamples;
     Rgb sum;
-    if (m_lights.size() <= kEveryLightUpTo) {
-        for (int i : m_lights) sum += fromLight(scene.lights[size_t(i)], med, medium, o, d, sMax, freeFlights, n, rng);
-        return sum;
+    for (int k = 0; k < n; ++k) {
+        if (m_lights.size() <= kEveryLightUpTo) {
+            for (int i : m_lights) sum += fromSource(i, med, medium, o, d, sMax, (float(k) + rng.uniform()) / float(n), rng);
+            continue;
+        }
+        const double u = rng.uniform();
+        const size_t c =
+            std::min(size_t(std::upper_bound(m_cdf.begin(), m_cdf.end(), u) - m_cdf.begin()), m_cdf.size() - 1);
+        const double p = m_cdf[c] - (c > 0 ? m_cdf[c - 1] : 0.0);
+        sum += fromSource(m_lights[c], med, medium, o, d, sMax, (float(k) + rng.uniform()) / float(n), rng) *
+               float(1.0 / p);
     }
-    const double u = rng.uniform();
-    const size_t k = std::min(size_t(std::upper_bound(m_cdf.begin(), m_cdf.end(), u) - m_cdf.begin()), m_cdf.size() - 1);
-    const double p = m_cdf[k] - (k > 0 ? m_cdf[k - 1] : 0.0);
-    return fromLight(scene.lights[size_t(m_lights[k])], med, medium, o, d, sMax, freeFlights, n, rng) * float(1.0 / p);
+    return sum / float(n);
 }
 
-Rgb EquiangularScattering::fromLight(const Light& light, const Medium& med, MediumId medium, const Vec3& o,
-                                     const Vec3& d, float sMax, const float* freeFlights, int n, Rng& rng) const {
+namespace {
+
+/// The pieces of [a, b] along a ray through a grid medium on which the distance is sampled, each
+/// with its weight: the majorant, times a guess of the camera's transmittance to the piece,
+/// exp(-sigma_t x the majorant's optical depth from a), kept above kMinAttenuation. The guess only
+/// shapes the pdf (the estimate divides by it): it steers samples off the far side of a thick
+/// layer; its floor bounds the weight where the majorant overstates the density.
+class WeightedPieces {
+public:
+    static constexpr double kMinAttenuation = 1.0 / 16;
+    WeightedPieces(const DensityGrid& grid, const Ray& ray, float a, float b, float sigmaT)
+        : m_pieces(grid, ray, b, a), m_sigmaT(sigmaT) {}
+    bool next(float* t0, float* t1, double* weight) {
+        float maj;
+        while (m_pieces.next(t0, t1, &maj)) {
+            if (!(maj > 0 && *t1 > *t0)) continue;
+            *weight = double(maj) * std::max(std::exp(-double(m_sigmaT) * m_depth), kMinAttenuation);
+            m_depth += double(maj) * (*t1 - *t0);
+            return true;
+        }
+        return false;
+    }
+
+private:
+    MajorantPieces m_pieces;
+    float m_sigmaT;
+    double m_depth = 0;  ///< the majorant's optical depth (at unit extinction) from a
+};
+
+/// A distance along [a, b] of the ray o + t d in a grid medium (extinction sigmaT at density 1)
+/// with pdf proportional to w(t) / |x(t) - p|^2, w WeightedPieces' weight: a piece chosen by its
+/// weight times its angle, then equiangular inside it. Returns false when every piece is empty.
+/// *pieceWeight receives w at t and *inverseSquareOverPdf 1 / (|x(t) - p|^2 pdf(t)) times it, so
+/// that density(x) / w(t) (at most 1 / kMinAttenuation) times that is the geometric factor.
+bool sampleWeightedEquiangular(const DensityGrid& grid, const Vec3& o, const Vec3& d, float a, float b, const Vec3& p,
+                               float sigmaT, float u, float* t, double* pieceWeight, double* inverseSquareOverPdf) {
+    const EquiangularLine line(o, d, a, b, p);
+    const Ray ray{o, d, 0.0f, b};
+    double total = 0;
+    {
+        WeightedPieces pieces(grid, ray, a, b, sigmaT);
+        float t0, t1;
+        double w;
+        while (pieces.next(&t0, &t1, &w)) total += w * (line.angle(t1) - line.angle(t0));
+    }
+    if (!(total > 0)) return false;
+    // The second walk stops in the piece where the running sum passes u * total.
+    const double target = double(u) * total;
+    double sum = 0;
+    WeightedPieces pieces(grid, ray, a, b, sigmaT);
+    float t0, t1, last0 = 0, last1 = 0;
+    double w, lastW = 0, lastTheta0 = 0, lastSpan = 0;
+    bool chosen = false;
+    while (pieces.next(&t0, &t1, &w)) {
+        const double theta0 = line.angle(t0), span = line.angle(t1) - theta0;
+        if (!(span > 0)) continue;
+        last0 = t0, last1 = t1, lastW = w, lastTheta0 = theta0, lastSpan = span;
+        if (sum + w * span > target) {
+            chosen = true;
+            break;
+        }
+        sum += w * span;
+    }
+    if (!(lastW > 0)) return false;
+    // Rounding can leave the target past the last piece: then its end.
+    const double theta = chosen ? lastTheta0 + (target - sum) / lastW : lastTheta0 + lastSpan;
+    *t = std::clamp(line.at(theta), last0, last1);
+    *pieceWeight = lastW;
+    *inverseSquareOverPdf = total / double(line.D);
+    return true;
+}
+
+}  // namespace
+
+Rgb EquiangularScattering::fromSource(int source, const Medium& med, MediumId medium, const Vec3& o, const Vec3& d,
+                                      float sMax, float u, Rng& rng) const {
     float a = 0, b = sMax;
-    if (light.type == LightType::Spot &&
-        !clipToCone(o, d, light.position, light.direction, light.cosOuterAngle, &a, &b))
-        return Rgb(0.0f);
-    const EquiangularSample s = sampleEquiangular(o, d, a, b, light.position, rng.uniform());
-    if (!(s.inverseSquareOverPdf > 0)) return Rgb(0.0f);
-    const Vec3 x = o + d * s.t;
-    const Vec3 toLight = light.position - x;
+    DirectLightSample target;  // the light point and what the shadow ray needs of it
+    if (source == kAreaLights) {
+        // A point on the area lights first; then only the part of the segment in front of its
+        // triangle (one-sided emitters) can receive its light.
+        const LightSampler::EmitterPoint y = m_areaLights->sampleEmitterPoint(rng);
+        if (!(y.pdfArea > 0)) return Rgb(0.0f);
+        const float c0 = dot(o - y.point, y.normal), c1 = dot(d, y.normal);
+        if (c1 == 0.0f) {
+            if (!(c0 > 0)) return Rgb(0.0f);
+        } else if (c1 > 0) {
+            a = std::max(a, -c0 / c1);
+        } else {
+            b = std::min(b, -c0 / c1);
+        }
+        if (!(b > a)) return Rgb(0.0f);
+        target.point = y.point;
+        target.normal = y.normal;
+        target.source = y.source;
+        target.incident = y.radiance / y.pdfArea;
+        target.delta = false;
+    } else {
+        const Light& light = m_rt.scene().lights[size_t(source)];
+        if (light.type == LightType::Spot &&
+            !clipToCone(o, d, light.position, light.direction, light.cosOuterAngle, &a, &b))
+            return Rgb(0.0f);
+        target.point = light.position;
+        target.source = source;
+        target.incident = light.intensity;
+        target.delta = true;
+    }
+    const Vec3 p = target.point;
+    // The distance and 1 / (|x - p|^2 pdf) times the medium's scattering at x: equiangular in a
+    // homogeneous medium; in a grid, equiangular times WeightedPieces' weight (the majorant and a
+    // guess of the camera's transmittance), and the density at x over that weight.
+    float t = 0;
+    Rgb scattering;
+    if (med.homogeneous()) {
+        const EquiangularSample s = sampleEquiangular(o, d, a, b, p, u);
+        if (!(s.inverseSquareOverPdf > 0)) return Rgb(0.0f);
+        t = s.t;
+        scattering = med.sigmaS * s.inverseSquareOverPdf;
+    } else {
+        double pieceWeight = 0, weighted = 0;
+        if (!sampleWeightedEquiangular(*med.density, o, d, a, b, p, med.sigmaT().r, u, &t, &pieceWeight, &weighted))
+            return Rgb(0.0f);
+        const float density = med.density->density(o + d * t);
+        if (!(density > 0)) return Rgb(0.0f);
+        scattering = med.sigmaS * float(double(density) / pieceWeight * weighted);
+    }
+    if (scattering.isBlack()) return Rgb(0.0f);
+    const Vec3 x = o + d * t;
+    const Vec3 toLight = p - x;
     const float dist = length(toLight);
     if (!(dist > 0)) return Rgb(0.0f);
     const Vec3 wi = toLight / dist;  // from x toward the light; the light travels along -wi
-    const float falloff = light.type == LightType::Spot ? light.spotFalloff(dot(-wi, light.direction)) : 1.0f;
-    if (!(falloff > 0)) return Rgb(0.0f);
-    const Rgb trCam = med.homogeneous() ? med.transmittance(s.t) : Rgb(storedTransmittance(freeFlights, n, s.t));
-    if (trCam.isBlack()) return Rgb(0.0f);
-    const Rgb sigmaS = med.sigmaSAt(x);
-    if (sigmaS.isBlack()) return Rgb(0.0f);
-    DirectLightSample ls;
-    ls.wi = wi;
-    ls.distance = dist;
-    ls.point = light.position;
-    ls.delta = true;
-    const Rgb trLight = shadowTransmittance(m_rt, x, ls, medium, rng);
+    // What leaves the light toward x, times |x - p|^2 (the inverse square is in `scattering`): a
+    // spot's falloff; an area light's cosine, over the point's density.
+    float emitted = 1.0f;
+    if (!target.delta) {
+        emitted = -dot(wi, target.normal);
+    } else if (m_rt.scene().lights[size_t(source)].type == LightType::Spot) {
+        const Light& light = m_rt.scene().lights[size_t(source)];
+        emitted = light.spotFalloff(dot(-wi, light.direction));
+    }
+    if (!(emitted > 0)) return Rgb(0.0f);
+    target.wi = wi;
+    target.distance = dist;
+    const Rgb trLight = shadowTransmittance(m_rt, x, target, medium, rng);
     if (trLight.isBlack()) return Rgb(0.0f);
+    // The camera's transmittance to x: analytic, or ratio tracking in a grid.
+    const Rgb trCam = estimateTransmittance(med, Ray{o, d, 0.0f, t}, t, rng);
+    if (trCam.isBlack()) return Rgb(0.0f);
     const float phase = hgPhase(dot(-wi, -d), med.g);
-    return sigmaS * light.intensity * trCam * trLight * (phase * falloff * s.inverseSquareOverPdf);
+    return scattering * target.incident * trCam * trLight * (phase * emitted);
 }
 
 }  // namespace tyndall

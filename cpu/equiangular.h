@@ -1,22 +1,32 @@
 #pragma once
-// Single scattering from point and spot lights along a camera segment inside a homogeneous
-// medium, by equiangular sampling (core/equiangular.h; docs/algorithm.md "Single scattering by
-// equiangular sampling"). For the segment o + s d, s in [0, sMax], and each such light (position
-// p, intensity I, spot falloff F), one point x = o + s d is drawn and
-//   L = sigma_s p_HG(w_l . -d) I F / |x - p|^2 Tr_light(p -> x) Tr_cam(0 -> s) / pdf(s)
-// with w_l the light's travel direction (p -> x), Tr_light a shadow ray's transmittance
-// (cpu/direct_light.h: analytic, or ratio tracking through grid media on the way, through
-// Interfaces, blocked by every other surface) and Tr_cam the segment's own, analytic. For a spot
-// the segment is first clipped to the spot's outer cone. Unbiased for the light that reaches the
-// segment from these lights with no scattering vertex on the way: the light the photon tracer's
-// unscattered first beams in homogeneous media carry, which it then leaves out
-// (RenderSettings::equiangular), so nothing counts twice. Directional lights, area lights, the
-// environment and every light's beams in density-grid media are kept.
+// Single scattering from point, spot and area lights along a camera segment inside a medium, by
+// equiangular sampling (core/equiangular.h; docs/algorithm.md "Single scattering by equiangular
+// sampling"). For the segment o + s d, s in [0, sMax], and each such source, a light point p is
+// taken (a point or spot light's position; for the area lights, a point on an emissive triangle
+// chosen by power, uniform on it, with area density pdf_A) and one point x = o + s d drawn:
+//   L = sigma_s(x) p_HG(w_l . -d) E / |x - p|^2 Tr_light(p -> x) Tr_cam(0 -> s) / pdf(s)
+// with E = I F for a point or spot light (intensity, spot falloff) and Le cos_l / pdf_A for an
+// area light (cos_l the emitter's cosine toward x; one-sided: the segment is first clipped to the
+// half-space in front of the triangle), w_l the light's travel direction (p -> x), Tr_light a shadow
+// ray's transmittance (cpu/direct_light.h: analytic, or ratio tracking through grid media on the
+// way, through Interfaces, blocked by every other surface) and Tr_cam the segment's own (analytic,
+// or ratio tracking in a grid). In a homogeneous medium pdf(s) is equiangular, proportional to
+// 1 / |x - p|^2; in a grid it is that times the majorant along the segment (the majorant grid's
+// pieces, cpu/free_flight.h MajorantPieces), so no sample lands where the grid is empty and
+// sigma_s(x) / pdf(s) stays bounded. For a spot the segment is first clipped to the spot's outer
+// cone. Unbiased for the light that reaches the segment from these lights with no scattering
+// vertex on the way: the light the photon tracer's unscattered first beams carry, which it then
+// leaves out (RenderSettings::equiangular), so nothing counts twice. Directional lights and the
+// environment keep their beams.
 //
-// Up to kEveryLightUpTo such lights each get a sample; beyond, one light is chosen per segment in
-// proportion to its power. Randomness only from the caller's stream.
+// Sources: each point and spot light of non-zero power, and all area lights together as one.
+// Each gets kSamples stratified distances per segment (up to kEveryLightUpTo sources; beyond, each
+// of the kSamples picks one source in proportion to its power). Randomness only from the caller's
+// stream.
+#include <memory>
 #include <vector>
 
+#include "core/light_sampler.h"
 #include "core/rng.h"
 #include "cpu/embree_scene.h"
 
@@ -27,33 +37,38 @@ public:
     /// Keeps a reference to `rt` (it must outlive this); reads the scene's lights now.
     explicit EquiangularScattering(const EmbreeScene& rt);
 
-    /// True for the lights this estimator stands for (point and spot): their unscattered beams
-    /// must not be stored when it is used.
+    /// True for the lights this estimator stands for (point and spot; area lights too, below):
+    /// their unscattered beams must not be stored when it is used.
     static bool handles(const Light& light) { return light.type == LightType::Point || light.type == LightType::Spot; }
-    /// The media it estimates in: homogeneous ones. In a density grid the step estimate of the
-    /// camera's transmittance and the density's own variation (sampled by nothing here) made it
-    /// noisier than the beams at equal time (docs/performance.md), so grid media keep their beams.
-    static bool estimatesIn(const Medium& medium) { return medium.homogeneous(); }
-    /// False when the scene has no such light of non-zero intensity (nothing to estimate).
+    /// True for photons from the lights it stands for: point, spot and area lights.
+    static bool handles(const Scene& scene, const EmittedPhoton& photon);
+    /// False when the scene has no such light of non-zero power (nothing to estimate).
     bool any() const { return !m_lights.empty(); }
 
     /// The single-scattered radiance arriving at `o` along -d from the segment o + s d, s in
-    /// [0, sMax], inside `medium`, before the camera path's throughput. `freeFlights` (n distances
-    /// from `o`) would be the segment's stored transmittance samples in a grid medium (0 there:
-    /// estimatesIn). Draws from `rng`: one uniform per light sampled (two with more than
-    /// kEveryLightUpTo lights), then the shadow ray's.
-    Rgb estimate(MediumId medium, const Vec3& o, const Vec3& d, float sMax, const float* freeFlights, int n,
-                 Rng& rng) const;
+    /// [0, sMax], inside `medium`, before the camera path's throughput. Draws from `rng`: per
+    /// sample, one uniform (two with more than kEveryLightUpTo sources; three more for an area
+    /// light's point), then the transmittance estimates' (grid media only).
+    Rgb estimate(MediumId medium, const Vec3& o, const Vec3& d, float sMax, Rng& rng) const;
 
     static constexpr size_t kEveryLightUpTo = 8;
+    /// Distances per source and segment, stratified: one per pixel and pass was the noisier
+    /// estimator where the light changes along the ray (shadows, a cone, a grid's density), and a
+    /// sample costs little next to a pass (docs/performance.md).
+    static constexpr int kSamples = 4;
 
 private:
-    Rgb fromLight(const Light& light, const Medium& med, MediumId medium, const Vec3& o, const Vec3& d, float sMax,
-                  const float* freeFlights, int n, Rng& rng) const;
+    /// One sample of the source `source` (an index into Scene::lights, or kAreaLights), its
+    /// distance drawn from the uniform `u`.
+    Rgb fromSource(int source, const Medium& med, MediumId medium, const Vec3& o, const Vec3& d, float sMax, float u,
+                   Rng& rng) const;
+
+    static constexpr int kAreaLights = -1;  ///< all emissive triangles together, as one source
 
     const EmbreeScene& m_rt;
-    std::vector<int> m_lights;     ///< indices into Scene::lights
-    std::vector<double> m_cdf;     ///< over the luminance of their powers, normalised
+    std::vector<int> m_lights;  ///< indices into Scene::lights, and kAreaLights when they emit
+    std::vector<double> m_cdf;  ///< over the luminance of their powers, normalised
+    std::unique_ptr<LightSampler> m_areaLights;  ///< the emitters' choice by power, when they emit
 };
 
 }  // namespace tyndall

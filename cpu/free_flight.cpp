@@ -9,36 +9,6 @@ float expSample(float sigma, float u) {
     return sigma > 0 ? -std::log(1.0f - u) / sigma : kInfinity;
 }  // u < 1
 
-/// The majorant along [0, tEnd] of a ray through a density grid, as constant pieces: the grid's
-/// majorant grid walked cell by cell when it has one, else one piece with majorant(ray).
-class MajorantPieces {
-public:
-    MajorantPieces(const DensityGrid& grid, const Ray& ray, float tEnd) {
-        if (const MajorantGrid* mg = grid.majorantGrid()) {
-            m_walk = mg->walk(ray, 0.0f, tEnd);
-            m_useWalk = true;
-        } else {
-            m_single = grid.majorant(Ray{ray.o, ray.d, 0.0f, tEnd});
-            m_tEnd = tEnd;
-        }
-    }
-    bool next(float* t0, float* t1, float* majorant) {
-        if (m_useWalk) return m_walk.next(t0, t1, majorant);
-        if (m_done) return false;
-        m_done = true;
-        *t0 = 0.0f;
-        *t1 = m_tEnd;
-        *majorant = m_single;
-        return true;
-    }
-
-private:
-    MajorantGrid::Walk m_walk;
-    bool m_useWalk = false;
-    bool m_done = false;
-    float m_single = 0, m_tEnd = 0;
-};
-
 /// Delta tracking: tentative collisions of a Poisson process at rate majorant * sigma_t, each real
 /// with probability density / majorant. One exponential optical-depth target carries across
 /// piece boundaries (memorylessness), so a ray costs one log per tentative collision.

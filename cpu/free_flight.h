@@ -12,6 +12,40 @@
 
 namespace tyndall {
 
+/// The majorant along [tMin, tEnd] of a ray through a density grid, as constant pieces in
+/// increasing t: the grid's majorant grid walked cell by cell when it has one (parts outside it
+/// skipped: density 0 there), else one piece with majorant(ray). Tracking and the equiangular
+/// estimator's distance sampling (cpu/equiangular.h) walk it.
+class MajorantPieces {
+public:
+    MajorantPieces(const DensityGrid& grid, const Ray& ray, float tEnd, float tMin = 0.0f) {
+        if (const MajorantGrid* mg = grid.majorantGrid()) {
+            m_walk = mg->walk(ray, tMin, tEnd);
+            m_useWalk = true;
+        } else {
+            m_single = grid.majorant(Ray{ray.o, ray.d, tMin, tEnd});
+            m_tMin = tMin;
+            m_tEnd = tEnd;
+        }
+    }
+    /// The next piece [*t0, *t1] and its majorant; false after the last.
+    bool next(float* t0, float* t1, float* majorant) {
+        if (m_useWalk) return m_walk.next(t0, t1, majorant);
+        if (m_done) return false;
+        m_done = true;
+        *t0 = m_tMin;
+        *t1 = m_tEnd;
+        *majorant = m_single;
+        return true;
+    }
+
+private:
+    MajorantGrid::Walk m_walk;
+    bool m_useWalk = false;
+    bool m_done = false;
+    float m_single = 0, m_tMin = 0, m_tEnd = 0;
+};
+
 /// Outcome of sampling a free flight along [0, tEnd] of `ray`.
 struct FreeFlight {
     bool scattered = false;  ///< a real scattering event at distance t < tEnd

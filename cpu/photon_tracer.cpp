@@ -154,11 +154,10 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
     // A photon from a medium is neither: no shadow ray carries a medium's light.
     bool deltaPath = !fromMedium && e.light >= 0;
     bool direct = !fromMedium;
-    // --equiangular on: the camera paths estimate the single scattering of point and spot lights
-    // in homogeneous media (cpu/equiangular.h), so such a path's beams there are not stored while
-    // it is still direct.
+    // --equiangular on: the camera paths estimate the single scattering of point, spot and area
+    // lights (cpu/equiangular.h), so such a path's beams are not stored while it is still direct.
     const bool equiangularLight =
-        m_settings.equiangular && !fromMedium && e.light >= 0 && EquiangularScattering::handles(m_scene.lights[e.light]);
+        m_settings.equiangular && !fromMedium && EquiangularScattering::handles(m_scene, e);
     // Path distance from the light at o (the photon cone, cpu/beam_cone.h).
     // Parallel light (directional, the environment) has no cone: it starts infinitely far away.
     double travelled = fromMedium || e.environment                                ? kInfinity
@@ -183,7 +182,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
         if (medium != kVacuum && m_rt.globalMediumInterval(Ray{o, d, 0.0f, tHit}, &t0, &t1) && t1 > t0) {
             const Medium& med = m_scene.media[medium];
             const Ray seg{o + d * t0, d, 0.0f, t1 - t0};
-            if (!(direct && equiangularLight && EquiangularScattering::estimatesIn(med))) {
+            if (!(direct && equiangularLight)) {
                 // The beam is written in place: a stack copy pushed back stalls on store forwarding.
                 PhotonBeam& beam = out.beams.emplace_back();
                 beam.origin = seg.o;
