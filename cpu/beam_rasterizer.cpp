@@ -298,6 +298,7 @@ Image BeamRasterizer::rasterize(const PrimarySegments& primary, const PhotonMap&
     // pixels get exactly what they get in the whole image (each sums its beams in index order).
     const PixelRegion region = primary.region.whole() ? PixelRegion{0, 0, w, h} : primary.region;
     const int firstBand = region.y / kBand, endBand = (region.y + region.height + kBand - 1) / kBand;
+    const float regionX0 = float(region.x), regionX1 = float(region.x + region.width - 1);  // pixel columns
     Image out(w, h);
     const std::vector<PhotonBeam>& beams = photons.beams;
 
@@ -354,9 +355,8 @@ Image BeamRasterizer::rasterize(const PrimarySegments& primary, const PhotonMap&
                 float sx0, sx1;
                 if (!rowSpan(fps[b], sides[b], float(y) + 0.5f, &sx0, &sx1)) continue;
                 // Pixels whose centre x + 0.5 lies in [sx0, sx1], inside the region.
-                int x0 = int(std::max(0.0f, std::ceil(std::max(sx0, -1.0f) - 0.5f)));
-                int x1 = int(std::min(float(w - 1), std::floor(std::min(sx1, float(w) + 1.0f) - 0.5f)));
-                x0 = std::max(x0, region.x), x1 = std::min(x1, region.x + region.width - 1);
+                const int x0 = int(std::max(regionX0, std::ceil(std::max(sx0, -1.0f) - 0.5f)));
+                const int x1 = int(std::min(regionX1, std::floor(std::min(sx1, float(w) + 1.0f) - 0.5f)));
                 if (x1 < x0) continue;
                 localTests += uint64_t(x1 - x0 + 1);
                 size_t row = size_t(y) * w;
