@@ -71,7 +71,8 @@ public:
     /// `dIn` in `medium`, `sp` the material there (core/material_eval.h). Draws from `rng` only
     /// for the mixes (see the file comment). Uniforms: Rng, or anything with float uniform().
     /// Every path vertex builds one: the common part and the diffuse and delta components are
-    /// built inline, the components with a frame of their own out of line (buildFramed).
+    /// built inline, the components with a frame of their own out of line (buildFramed, by value:
+    /// no out-of-line call takes the Bsdf's address; docs/performance.md, the photon stage).
     template <class Uniforms>
     [[gnu::always_inline]] static Bsdf at(const Scene& scene, const SurfaceHit& hit, const SurfacePoint& sp,
                                           const Vec3& dIn, MediumId medium, TransportMode mode, Uniforms& rng);
@@ -85,7 +86,7 @@ public:
     MediumId mediumBeyond() const { return m_beyond; }
     /// +z of the coat's and the glossy lobes' frame: the shading normal on the arriving side, a
     /// dielectric's toward the exterior.
-    const Vec3& normal() const { return m_parts.local.frame.n; }
+    const Vec3& normal() const { return local().frame.n; }
 
     /// f(wo, wi) restricted to the lobe kinds in `lobes` (diffuse, glossy, specular; delta lobes
     /// are 0 here). In the mode's convention: f_radiance(wo, wi) = f_importance(wi, wo).
@@ -106,11 +107,33 @@ public:
 
 private:
     enum class Kind : uint8_t { Diffuse, Coated, Conductor, RoughDielectric, Delta };
+    struct Local {
+        Frame frame;  ///< +z: normal()
+        Vec3 wo;      ///< m_wo in frame
+    };
+    /// The chosen component's parts, for the kinds that have them (the others cost nothing to
+    /// build: every vertex of every path builds a Bsdf).
+    struct Framed {
+        Kind kind;
+        BsdfLobes lobes;
+        union Parts {
+            Parts() {}
+            Local local;
+        } parts;
+        union Component {
+            Component() {}
+            CoatedDiffuse coat;
+            RoughConductor metal;
+            RoughDielectric glass;
+        } component;
+    };
 
-    bool sampleDelta(float u, BsdfSample* s, Rgb* w) const;
-    /// at()'s coat (Plastic without its metal part), GGX conductor or rough dielectric: the kind,
-    /// lobes, frame and component, from the fields at() set. `metal`: the metal part was chosen.
-    void buildFramed(const Material& mat, const SurfacePoint& sp, bool metal);
+    [[gnu::always_inline]] bool sampleDelta(float u, BsdfSample* s, Rgb* w) const;
+    /// at()'s coat (Plastic without its metal part), GGX conductor or rough dielectric at a hit
+    /// seen from `side`, shading normal `ns`, `wo` = -dIn: the kind, lobes, frame and component.
+    /// `metal`: the metal part was chosen. Everything by value (see at()).
+    static Framed buildFramed(const Material& mat, float roughness, Rgb baseColor, bool metal, HitSide side, Vec3 ns,
+                              Vec3 wo);
 
     Kind m_kind = Kind::Diffuse;
     MaterialType m_type = MaterialType::Diffuse;
@@ -124,23 +147,9 @@ private:
     float m_ior = 1.5f;
     bool m_thin = false;  ///< Material::thin
     MediumId m_medium = kVacuum, m_beyond = kVacuum;
-    // The chosen component's parts, set by at() for the kinds that have them (the others cost
-    // nothing to build: every vertex of every path builds a Bsdf).
-    struct Local {
-        Frame frame;  ///< +z: normal()
-        Vec3 wo;      ///< m_wo in frame
-    };
-    union Parts {
-        Parts() {}
-        Local local;
-    } m_parts;
-    union Component {
-        Component() {}
-        CoatedDiffuse coat;
-        RoughConductor metal;
-        RoughDielectric glass;
-    } m_component;
-    const Local& local() const { return m_parts.local; }
+    Framed m_framed;  ///< set by at() for the kinds that have a frame
+    const Local& local() const { return m_framed.parts.local; }
+    const Framed::Component& component() const { return m_framed.component; }
 };
 
 template <class Uniforms>
@@ -169,7 +178,10 @@ inline Bsdf Bsdf::at(const Scene& scene, const SurfaceHit& hit, const SurfacePoi
     }
     const bool metal = mat.hasMetalMix() && rng.uniform() < sp.metallic;
     if ((mat.type == MaterialType::Plastic && !metal) || mat.isGlossy() || (metal && mat.isRough())) {
-        b.buildFramed(mat, sp, metal);
+        const Framed framed = buildFramed(mat, sp.roughness, sp.baseColor, metal, b.m_side, b.m_ns, b.m_wo);
+        b.m_framed = framed;
+        b.m_kind = framed.kind;
+        b.m_lobes = framed.lobes;
         return b;
     }
     b.m_kind = Kind::Delta;
@@ -189,14 +201,14 @@ inline Rgb Bsdf::f(const Vec3& wi, BsdfLobes lobes) const {
         }
         case Kind::Coated: {
             const Vec3 wiLocal = local().frame.toLocal(wi);
-            Rgb f = (lobes & kLobeDiffuse) ? m_component.coat.evalDiffuse(local().wo, wiLocal) : Rgb(0.0f);
-            if (lobes & (kLobeGlossy | kLobeSpecular)) f += Rgb(m_component.coat.evalSpecular(local().wo, wiLocal));
+            Rgb f = (lobes & kLobeDiffuse) ? component().coat.evalDiffuse(local().wo, wiLocal) : Rgb(0.0f);
+            if (lobes & (kLobeGlossy | kLobeSpecular)) f += Rgb(component().coat.evalSpecular(local().wo, wiLocal));
             return f;
         }
         case Kind::Conductor:
-            return (lobes & kLobeGlossy) ? m_component.metal.eval(local().wo, local().frame.toLocal(wi)) : Rgb(0.0f);
+            return (lobes & kLobeGlossy) ? component().metal.eval(local().wo, local().frame.toLocal(wi)) : Rgb(0.0f);
         case Kind::RoughDielectric:
-            return (lobes & kLobeGlossy) ? m_component.glass.eval(local().wo, local().frame.toLocal(wi), m_mode) : Rgb(0.0f);
+            return (lobes & kLobeGlossy) ? component().glass.eval(local().wo, local().frame.toLocal(wi), m_mode) : Rgb(0.0f);
         case Kind::Delta:
             break;
     }
@@ -211,11 +223,11 @@ inline float Bsdf::pdf(const Vec3& wi) const {
             return std::max(dot(wi, m_shading ? m_side.nsf : m_side.nf), 0.0f) * kInvPi;
         }
         case Kind::Coated:
-            return m_component.coat.pdf(local().wo, local().frame.toLocal(wi));
+            return component().coat.pdf(local().wo, local().frame.toLocal(wi));
         case Kind::Conductor:
-            return m_component.metal.pdf(local().wo, local().frame.toLocal(wi));
+            return component().metal.pdf(local().wo, local().frame.toLocal(wi));
         case Kind::RoughDielectric:
-            return m_component.glass.pdf(local().wo, local().frame.toLocal(wi));
+            return component().glass.pdf(local().wo, local().frame.toLocal(wi));
         case Kind::Delta:
             break;
     }
@@ -311,14 +323,17 @@ inline bool Bsdf::sample(Uniforms& rng, Rgb* beta, BsdfSample* s, BsdfLobes allo
             break;
         }
         case Kind::Coated: {
+            // The components' samplers may stay out of line: they get copies, not the Bsdf.
+            const CoatedDiffuse coat = component().coat;
+            const Vec3 wo = local().wo;
             CoatedSample c;
             if (allowed & kLobeDiffuse) {
                 const float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
-                c = m_component.coat.sample(local().wo, u0, u1, u2);
+                c = coat.sample(wo, u0, u1, u2);
             } else {
                 if (!(allowed & (kLobeGlossy | kLobeSpecular))) return false;
                 const float u1 = rng.uniform(), u2 = rng.uniform();
-                c = m_component.coat.sampleSpecular(local().wo, u1, u2);
+                c = coat.sampleSpecular(wo, u1, u2);
             }
             if (!c.valid) return false;
             s->wi = normalize(local().frame.toWorld(c.wi));
@@ -332,8 +347,10 @@ inline bool Bsdf::sample(Uniforms& rng, Rgb* beta, BsdfSample* s, BsdfLobes allo
         case Kind::RoughDielectric: {
             if (!(allowed & kLobeGlossy)) return false;
             const float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
-            const MicrofacetSample m = m_kind == Kind::Conductor ? m_component.metal.sample(local().wo, u1, u2)
-                                                                 : m_component.glass.sample(local().wo, u0, u1, u2, m_mode);
+            const Vec3 wo = local().wo;
+            const MicrofacetSample m = m_kind == Kind::Conductor
+                                           ? RoughConductor(component().metal).sample(wo, u1, u2)
+                                           : RoughDielectric(component().glass).sample(wo, u0, u1, u2, m_mode);
             if (!m.valid) return false;
             s->wi = normalize(local().frame.toWorld(m.wi));
             s->pdf = m.pdf;
