@@ -36,7 +36,7 @@ TEST(GlossyConsistency, RoughMetalAndRoughGlassInFogConvergeToReference) {
     ASSERT_TRUE(scene.materials[4].isGlossy());
     // Measured here: relMSE 0.093, 0.047, 0.025 after 4, 16, 64 passes. The glossy reference is
     // noisier at 4096 spp (variance 0.0046, already subtracted from the relMSE): it may be up to
-    // half of what it judges. Regions after 256 passes (issue 14's check): rough metal 0.984 +-
+    // half of what it judges. Regions after 256 passes (the regional check): rough metal 0.984 +-
     // 0.007, floor 0.993 +- 0.012, rough glass 0.996 +- 0.022 (PPB 0.020, reference 0.010). The
     // rough glass region needs the 256 passes: at 64 its standard error was 0.040, a tolerance of
     // 4 se + 0.03 = 0.19 that would pass a sphere 15% too dark.
