@@ -8,7 +8,7 @@ namespace tyndall {
 namespace {
 
 // The margin the ribbons are widened by, in largest beam radii (BeamQueryCache).
-constexpr float kReach = 1.0f;
+constexpr float kReach = 2.0f;
 
 // Extends Embree's context (first member) with what the callbacks need.
 struct GatherContext {
