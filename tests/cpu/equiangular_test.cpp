@@ -112,23 +112,32 @@ Scene openFog(const std::vector<Light>& lights, float g) {
 }
 
 /// Single-scattered radiance reaching o along -d from the segment o + s d, s in [0, sMax], lit by
-/// `light` in homogeneous fog, by composite Simpson quadrature.
-double quadrature(const Light& light, Vec3 o, Vec3 d, float sMax, float g) {
-    const double sigmaT = kSigmaS + kSigmaA;
+/// `light`, by composite Simpson quadrature over n intervals: `density(x)` scales sigma_s at x and
+/// `opticalDepth(a, b)` is the optical depth between two points.
+template <class Density, class OpticalDepth>
+double singleScatteringQuadrature(const Light& light, Vec3 o, Vec3 d, float sMax, float g, int n,
+                                  Density density, OpticalDepth opticalDepth) {
     auto f = [&](double s) {
         const Vec3 x = o + d * float(s);
         const Vec3 fromLight = x - light.position;
         const double dist = length(fromLight);
         const Vec3 wl = fromLight / float(dist);
         const double falloff = light.type == LightType::Spot ? light.spotFalloff(dot(wl, light.direction)) : 1.0;
-        return kSigmaS * hgPhase(dot(wl, -d), g) * light.intensity.g * falloff * std::exp(-sigmaT * dist) /
-               (dist * dist) * std::exp(-sigmaT * s);
+        return kSigmaS * density(x) * hgPhase(dot(wl, -d), g) * light.intensity.g * falloff *
+               std::exp(-(opticalDepth(light.position, x) + opticalDepth(o, x))) / (dist * dist);
     };
-    const int n = 400000;
     const double h = sMax / n;
     double sum = f(0) + f(sMax);
     for (int i = 1; i < n; ++i) sum += f(i * h) * (i % 2 ? 4 : 2);
     return sum * h / 3;
+}
+
+/// The same in homogeneous fog.
+double quadrature(const Light& light, Vec3 o, Vec3 d, float sMax, float g) {
+    const double sigmaT = kSigmaS + kSigmaA;
+    return singleScatteringQuadrature(
+        light, o, d, sMax, g, 400000, [](Vec3) { return 1.0; },
+        [&](Vec3 p, Vec3 q) { return sigmaT * double(length(q - p)); });
 }
 
 struct Estimate {
@@ -288,24 +297,12 @@ private:
     std::unique_ptr<MajorantGrid> m_majorants;
 };
 
-/// Single scattering along o + s d through the layer, by composite Simpson quadrature with exact
-/// optical depths.
+/// Single scattering along o + s d through the layer, with exact optical depths.
 double layerQuadrature(const Light& light, Vec3 o, Vec3 d, float sMax, float g) {
     const double sigmaT = kSigmaS + kSigmaA;
-    auto f = [&](double s) {
-        const Vec3 x = o + d * float(s);
-        const Vec3 fromLight = x - light.position;
-        const double dist = length(fromLight);
-        const Vec3 wl = fromLight / float(dist);
-        const double falloff = light.type == LightType::Spot ? light.spotFalloff(dot(wl, light.direction)) : 1.0;
-        return kSigmaS * FogLayer::profile(x.y) * hgPhase(dot(wl, -d), g) * light.intensity.g * falloff *
-               std::exp(-sigmaT * (FogLayer::depth(light.position, x) + FogLayer::depth(o, x))) / (dist * dist);
-    };
-    const int n = 200000;
-    const double h = sMax / n;
-    double sum = f(0) + f(sMax);
-    for (int i = 1; i < n; ++i) sum += f(i * h) * (i % 2 ? 4 : 2);
-    return sum * h / 3;
+    return singleScatteringQuadrature(
+        light, o, d, sMax, g, 200000, [](Vec3 x) { return double(FogLayer::profile(x.y)); },
+        [&](Vec3 p, Vec3 q) { return sigmaT * double(FogLayer::depth(p, q)); });
 }
 
 TEST(Equiangular, PointAndSpotLightAboveAFogLayerAgainstQuadrature) {
@@ -334,7 +331,9 @@ TEST(Equiangular, PointAndSpotLightAboveAFogLayerAgainstQuadrature) {
         }
         // The majorant grid steers the point light's samples into the fog: at least half the
         // variance goes (the spot's cone already keeps most of its samples there).
-        if (light.type == LightType::Point) EXPECT_LT(standardError[0], 0.7 * standardError[1]);
+        if (light.type == LightType::Point) {
+            EXPECT_LT(standardError[0], 0.7 * standardError[1]);
+        }
     }
 }
 
