@@ -76,9 +76,8 @@ struct SeededDraws {
     float uniform() { return u(gen); }
 };
 
-TEST(ThinDielectric, SheetReflectsTheSlabsShareAndTransmitsStraightThrough) {
-    const Vec3 ng = normalize(Vec3(0.3f, 0.2f, 0.93f));
-    const Rgb tint(0.9f, 0.7f, 0.5f);
+/// One mesh between medium 0 (outside) and 1 (inside) with a thin-walled glass of IOR 1.5.
+Scene thinSheetScene(float roughness, Rgb tint) {
     Scene scene;
     TriangleMesh mesh;
     mesh.exteriorMedium = 0;
@@ -87,9 +86,17 @@ TEST(ThinDielectric, SheetReflectsTheSlabsShareAndTransmitsStraightThrough) {
     Material m;
     m.type = MaterialType::Dielectric;
     m.thin = true;
+    m.roughness = roughness;
     m.ior = 1.5f;
     m.albedo = tint;
     scene.materials.push_back(m);
+    return scene;
+}
+
+TEST(ThinDielectric, SheetReflectsTheSlabsShareAndTransmitsStraightThrough) {
+    const Vec3 ng = normalize(Vec3(0.3f, 0.2f, 0.93f));
+    const Rgb tint(0.9f, 0.7f, 0.5f);
+    const Scene scene = thinSheetScene(0.0f, tint);
     SurfaceHit hit;
     hit.mesh = 0;
     hit.ng = hit.ns = ng;
@@ -240,17 +247,7 @@ TEST(ThinDielectric, RoughSheetIsReciprocalAndBecomesTheSmoothSheet) {
 }
 
 TEST(ThinDielectric, RoughSheetThroughTheBsdfIsGlossyAndCrossesWithoutRefraction) {
-    Scene scene;
-    TriangleMesh mesh;
-    mesh.exteriorMedium = 0;
-    mesh.interiorMedium = 1;
-    scene.meshes.push_back(mesh);
-    Material m;
-    m.type = MaterialType::Dielectric;
-    m.thin = true;
-    m.roughness = 0.5f;
-    m.ior = 1.5f;
-    scene.materials.push_back(m);
+    const Scene scene = thinSheetScene(0.5f, Material{}.albedo);
     SurfaceHit hit;
     hit.mesh = 0;
     hit.ng = hit.ns = Vec3(0, 0, 1);
