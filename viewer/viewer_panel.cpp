@@ -60,8 +60,24 @@ void Viewer::drawPanel() {
     ImGui::SetNextWindowSize(ImVec2(float(panelWidth()), io.DisplaySize.y), ImGuiCond_Always);
     ImGui::Begin("Tyndall", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
     ImGui::PushItemWidth(-110.0f * m_uiScale);  // room for the labels
+    const bool paused = m_loops[0]->paused();   // one state for the whole panel
+    drawPanelStatus(paused);
+    ImGui::Separator();
+    drawPanelRenderControls(paused);
+    drawPanelRegion();
+    drawPanelLights();
+    drawPanelEnvironment();
+    drawPanelMedia();
+    drawPanelCameras();
+    if (ImGui::CollapsingHeader("Keys and mouse")) {
+        for (const auto& b : kBindings) ImGui::TextWrapped("%s: %s", b[0], b[1]);
+    }
+    ImGui::PopItemWidth();
+    ImGui::End();
+}
+
+void Viewer::drawPanelStatus(bool paused) {
     const ViewFrame& f = m_frames[0];
-    bool paused = m_loops[0]->paused();
     ImGui::Text("%s", m_o.scene.name.c_str());
     ImGui::Text("%s", paused ? "paused" : f.mode == RenderMode::Preview ? "preview (drag)" : "refining");
     double rate = f.elapsedSeconds > 0 ? double(f.passes) / f.elapsedSeconds : 0;
@@ -75,7 +91,9 @@ void Viewer::drawPanel() {
     ImGui::TextWrapped("splat: %s", gl.empty() ? "CPU" : ("GL, " + gl).c_str());
     if (m_o.compare) ImGui::TextWrapped("left: density grid, right: homogeneous twin");
     if (!m_status.empty()) ImGui::TextWrapped("%s", m_status.c_str());
-    ImGui::Separator();
+}
+
+void Viewer::drawPanelRenderControls(bool paused) {
     ImGui::SliderFloat("exposure", &m_exposure, 0.01f, 100.0f, "%.3f", ImGuiSliderFlags_Logarithmic);
     int photons = int(m_settings.photonsPerPass);
     if (ImGui::SliderInt("photons/pass", &photons, 100, 200000, "%d", ImGuiSliderFlags_Logarithmic))
@@ -96,6 +114,9 @@ void Viewer::drawPanel() {
     m_finalPasses = std::clamp(m_finalPasses, 1, 1 << 30);
     if (m_final.state() == FinalRender::State::Running)
         ImGui::TextWrapped("final render (nice +10): %s", m_finalLine.empty() ? "starting" : m_finalLine.c_str());
+}
+
+void Viewer::drawPanelRegion() {
     const PixelRegion& region = m_settings.region;
     if (region.whole()) {
         if (ImGui::Button(m_regionArmed ? "Drag on the image..." : "Draw region (B)")) key("B");
@@ -106,71 +127,73 @@ void Viewer::drawPanel() {
         ImGui::SameLine();
         ImGui::Text("%d %d %d x %d", region.x, region.y, region.width, region.height);
     }
+}
 
-    // A slider held is an interaction (preview passes); its release refines.
-    auto interactive = [&](bool edited) {
-        if (ImGui::IsItemActivated())
-            for (auto& loop : m_loops) loop->beginInteraction();
-        if (edited) pushEdits();
-        if (ImGui::IsItemDeactivated()) {
-            for (auto& loop : m_loops) loop->endInteraction();
-        }
-    };
-    if (!m_edited.lights.empty() && ImGui::CollapsingHeader("Lights", ImGuiTreeNodeFlags_DefaultOpen)) {
-        for (size_t i = 0; i < m_edited.lights.size(); ++i) {
-            ImGui::PushID(int(i));
-            ImGui::RadioButton(m_edited.lights[i].name.c_str(), &m_selectedLight, int(i));
-            ImGui::SameLine();
-            interactive(ImGui::ColorEdit3("##colour", m_lightUi[i].colour, ImGuiColorEditFlags_NoInputs));
-            interactive(ImGui::DragFloat("power", &m_lightUi[i].power, 0.01f * std::max(m_lightUi[i].power, 0.1f),
-                                         0.0f, 1e9f, "%.3g"));
-            ImGui::PopID();
-        }
+void Viewer::panelEdit(bool edited) {
+    if (ImGui::IsItemActivated())
+        for (auto& loop : m_loops) loop->beginInteraction();
+    if (edited) pushEdits();
+    if (ImGui::IsItemDeactivated()) {
+        for (auto& loop : m_loops) loop->endInteraction();
     }
-    if (m_edited.environment && ImGui::CollapsingHeader("Environment", ImGuiTreeNodeFlags_DefaultOpen)) {
-        interactive(ImGui::DragFloat("intensity", &m_environmentScale, 0.01f * std::max(m_environmentScale, 0.1f), 0.0f,
-                                     1e9f, "%.3g"));
-        interactive(ImGui::SliderFloat("rotation", &m_environmentRotation, -180.0f, 180.0f, "%.0f deg"));
+}
+
+void Viewer::drawPanelLights() {
+    if (m_edited.lights.empty() || !ImGui::CollapsingHeader("Lights", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    for (size_t i = 0; i < m_edited.lights.size(); ++i) {
+        ImGui::PushID(int(i));
+        ImGui::RadioButton(m_edited.lights[i].name.c_str(), &m_selectedLight, int(i));
+        ImGui::SameLine();
+        panelEdit(ImGui::ColorEdit3("##colour", m_lightUi[i].colour, ImGuiColorEditFlags_NoInputs));
+        panelEdit(ImGui::DragFloat("power", &m_lightUi[i].power, 0.01f * std::max(m_lightUi[i].power, 0.1f), 0.0f, 1e9f,
+                                   "%.3g"));
+        ImGui::PopID();
     }
+}
+
+void Viewer::drawPanelEnvironment() {
+    if (!m_edited.environment || !ImGui::CollapsingHeader("Environment", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    panelEdit(ImGui::DragFloat("intensity", &m_environmentScale, 0.01f * std::max(m_environmentScale, 0.1f), 0.0f, 1e9f,
+                               "%.3g"));
+    panelEdit(ImGui::SliderFloat("rotation", &m_environmentRotation, -180.0f, 180.0f, "%.0f deg"));
+}
+
+void Viewer::drawPanelMedia() {
     // With --compare only the emission sliders show (the twin's coefficients differ from the grid's;
     // one emission scale drives both halves: twinSceneEdits).
     bool anyEmits = false;
     for (const MediumUi& u : m_mediumUi) anyEmits |= u.emits;
-    if (!m_edited.media.empty() && (!m_o.compare || anyEmits) &&
-        ImGui::CollapsingHeader("Media", ImGuiTreeNodeFlags_DefaultOpen)) {
-        if (m_o.compare) ImGui::TextWrapped("emission: both halves");
-        for (size_t i = 0; i < m_edited.media.size(); ++i) {
-            MediumUi& u = m_mediumUi[i];
-            if (m_o.compare && !u.emits) continue;
-            ImGui::PushID(1000 + int(i));
-            ImGui::Text("%s%s", m_edited.media[i].name.c_str(), u.heterogeneous ? " (grid)" : "");
-            if (!m_o.compare) {
-                if (!u.heterogeneous) {
-                    // A grid medium's extinction must stay grey (docs/scene-format.md): only scale and g.
-                    interactive(ImGui::DragFloat3("sigma_s", u.sigmaS, 0.001f, 0.0f, 1e4f, "%.4g"));
-                    interactive(ImGui::DragFloat3("sigma_a", u.sigmaA, 0.001f, 0.0f, 1e4f, "%.4g"));
-                }
-                interactive(ImGui::SliderFloat("g", &u.g, -0.95f, 0.95f, "%.2f"));
-                interactive(ImGui::DragFloat("density scale", &u.densityScale, 0.01f, 0.001f, 1e3f, "%.3f"));
+    if (m_edited.media.empty() || (m_o.compare && !anyEmits) ||
+        !ImGui::CollapsingHeader("Media", ImGuiTreeNodeFlags_DefaultOpen))
+        return;
+    if (m_o.compare) ImGui::TextWrapped("emission: both halves");
+    for (size_t i = 0; i < m_edited.media.size(); ++i) {
+        MediumUi& u = m_mediumUi[i];
+        if (m_o.compare && !u.emits) continue;
+        ImGui::PushID(1000 + int(i));
+        ImGui::Text("%s%s", m_edited.media[i].name.c_str(), u.heterogeneous ? " (grid)" : "");
+        if (!m_o.compare) {
+            if (!u.heterogeneous) {
+                // A grid medium's extinction must stay grey (docs/scene-format.md): only scale and g.
+                panelEdit(ImGui::DragFloat3("sigma_s", u.sigmaS, 0.001f, 0.0f, 1e4f, "%.4g"));
+                panelEdit(ImGui::DragFloat3("sigma_a", u.sigmaA, 0.001f, 0.0f, 1e4f, "%.4g"));
             }
-            if (u.emits)  // fire, glowing gas: Le times this
-                interactive(ImGui::SliderFloat("emission", &u.emissionScale, 0.0f, 100.0f, "%.3g",
-                                               ImGuiSliderFlags_Logarithmic));
-            ImGui::PopID();
+            panelEdit(ImGui::SliderFloat("g", &u.g, -0.95f, 0.95f, "%.2f"));
+            panelEdit(ImGui::DragFloat("density scale", &u.densityScale, 0.01f, 0.001f, 1e3f, "%.3f"));
         }
+        if (u.emits)  // fire, glowing gas: Le times this
+            panelEdit(
+                ImGui::SliderFloat("emission", &u.emissionScale, 0.0f, 100.0f, "%.3g", ImGuiSliderFlags_Logarithmic));
+        ImGui::PopID();
     }
-    if (ImGui::CollapsingHeader("Cameras", ImGuiTreeNodeFlags_DefaultOpen)) {
-        for (size_t i = 0; i < m_o.cameraNames.size(); ++i) {
-            std::string label = std::to_string(i + 1) + "  " + m_o.cameraNames[i];
-            if (ImGui::Selectable(label.c_str(), m_cameraIndex == int(i)) && i < 9)
-                key(std::string(1, char('1' + i)));
-        }
+}
+
+void Viewer::drawPanelCameras() {
+    if (!ImGui::CollapsingHeader("Cameras", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    for (size_t i = 0; i < m_o.cameraNames.size(); ++i) {
+        std::string label = std::to_string(i + 1) + "  " + m_o.cameraNames[i];
+        if (ImGui::Selectable(label.c_str(), m_cameraIndex == int(i)) && i < 9) key(std::string(1, char('1' + i)));
     }
-    if (ImGui::CollapsingHeader("Keys and mouse")) {
-        for (const auto& b : kBindings) ImGui::TextWrapped("%s: %s", b[0], b[1]);
-    }
-    ImGui::PopItemWidth();
-    ImGui::End();
 }
 
 }  // namespace tyndall

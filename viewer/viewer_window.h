@@ -116,7 +116,18 @@ private:
     /// Reaps a finished final render and keeps the panel's line current.
     void pollFinalRender();
     void screenshot(const std::string& path);
+    /// The panel (viewer_panel.cpp): its sections top to bottom, one function each.
     void drawPanel();
+    void drawPanelStatus(bool paused);          ///< scene, mode, passes, beam radius, splat, status
+    void drawPanelRenderControls(bool paused);  ///< exposure, photons/pass, alpha, buttons, final render
+    void drawPanelRegion();                     ///< the render region's button and extent
+    void drawPanelLights();
+    void drawPanelEnvironment();
+    void drawPanelMedia();
+    void drawPanelCameras();
+    /// After a scene-editing widget: its press starts an interaction (preview passes), an edit
+    /// pushes the edits, its release ends the interaction (refinement).
+    void panelEdit(bool edited);
     void drawHelp();
     /// The render region (RenderSettings::region): set (a new refinement of those pixels only) or
     /// cleared (PixelRegion{}); the status line says which.
