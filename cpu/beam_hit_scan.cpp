@@ -3,13 +3,13 @@
 // mirrors intersectBeamRay (core/beam_estimator.h) operation by operation: keep the two in step.
 #include "cpu/beam_hit_scan.h"
 
-#include <cstring>
-
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "cpu/beam_hit_scan.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 
 #include <hwy/highway.h>
+
+#include "cpu/simd_mask_bits-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace tyndall {
@@ -51,10 +51,7 @@ void ScanBeamHits(const BeamCandidates& c, const Vec3& o, const Vec3& wc, float 
         reject = hn::Or(reject, hn::Or(hn::Lt(t, zero), hn::Gt(t, hn::LoadU(d, c.tMax.data() + i))));
         reject = hn::Or(reject, hn::Ge(u2, hn::LoadU(d, c.r2.data() + i)));
         const auto keep = hn::AndNot(reject, hn::FirstN(d, count - i));
-        uint8_t bytes[8] = {};
-        hn::StoreMaskBits(d, keep, bytes);
-        uint64_t bits;
-        std::memcpy(&bits, bytes, sizeof bits);
+        uint64_t bits = MaskBits(d, keep);
         if (!bits) continue;
         // std::max(sqrt(sin2), kMinSinTheta): sqrt(sin2) unless it is below the bound.
         const V sinTheta = hn::Sqrt(sin2);

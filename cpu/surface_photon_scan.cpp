@@ -3,13 +3,13 @@
 // mirror SurfacePhotonGrid::forEachNearUncached's operation by operation: keep the two in step.
 #include "cpu/surface_photon_scan.h"
 
-#include <cstring>
-
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "cpu/surface_photon_scan.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 
 #include <hwy/highway.h>
+
+#include "cpu/simd_mask_bits-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace tyndall {
@@ -37,10 +37,7 @@ size_t ScanPhotonCandidates(const float* x, const float* y, const float* z, cons
         const auto keep = hn::AndNot(reject, hn::FirstN(d, count - i));
         // Few lanes pass (~a quarter): walk the mask's bits rather than compress (which AVX2
         // emulates with table lookups).
-        uint8_t bytes[8] = {};
-        hn::StoreMaskBits(d, keep, bytes);
-        uint64_t bits;
-        std::memcpy(&bits, bytes, sizeof bits);
+        uint64_t bits = MaskBits(d, keep);
         if (!bits) continue;
         hn::Store(dd, d, lane);
         do {
