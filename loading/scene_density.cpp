@@ -11,6 +11,8 @@
 // map), the path relative to the scene file. Procedural grids take their parameters in world
 // units, plus "scale"; see loading/procedural_media.h for what each builds.
 #include <filesystem>
+#include <initializer_list>
+#include <utility>
 
 #include "core/error.h"
 #include "loading/procedural_media.h"
@@ -55,6 +57,11 @@ std::shared_ptr<const DensityGrid> readProcedural(JsonObject& obj, const JsonVal
     auto positive = [&](const char* key, float value, double min = 1e-3) {
         return float(obj.number(key, value, min, 1e4));
     };
+    // The "base" point a smoke column or a fire stands on, then its lengths, read in this order.
+    auto baseAndLengths = [&](Vec3* base, std::initializer_list<std::pair<const char*, float*>> lengths) {
+        *base = obj.vec3("base", *base);
+        for (const auto& [name, value] : lengths) *value = positive(name, *value);
+    };
     // The keys every procedural grid ends with (`noise`: its noise frequency, where it has one),
     // then its voxels against the budget.
     auto finish = [&](auto& p, float* noise) {
@@ -67,10 +74,7 @@ std::shared_ptr<const DensityGrid> readProcedural(JsonObject& obj, const JsonVal
     };
     if (type == "smoke") {
         ProceduralSmoke p;
-        p.base = obj.vec3("base", p.base);
-        p.height = positive("height", p.height);
-        p.baseRadius = positive("base_radius", p.baseRadius);
-        p.topRadius = positive("top_radius", p.topRadius);
+        baseAndLengths(&p.base, {{"height", &p.height}, {"base_radius", &p.baseRadius}, {"top_radius", &p.topRadius}});
         finish(p, &p.noiseFrequency);
         return makeProceduralSmoke(p);
     }
@@ -87,10 +91,7 @@ std::shared_ptr<const DensityGrid> readProcedural(JsonObject& obj, const JsonVal
     }
     if (type == "fire") {
         ProceduralFire f;
-        f.base = obj.vec3("base", f.base);
-        f.radius = positive("radius", f.radius);
-        f.flameHeight = positive("flame_height", f.flameHeight);
-        f.height = positive("height", f.height);
+        baseAndLengths(&f.base, {{"radius", &f.radius}, {"flame_height", &f.flameHeight}, {"height", &f.height}});
         if (f.flameHeight > f.height) obj.get("flame_height")->fail("'flame_height' must not exceed 'height'");
         f.temperature = float(obj.number("temperature", f.temperature, 1.0, 1e6));
         finish(f, &f.noiseFrequency);

@@ -74,22 +74,32 @@ void classify(const Scene& s, std::vector<Pixel>& cls, std::vector<double>& expe
             if (counts[1] == n) c = Pixel::Card;
             if (counts[2] == n) c = Pixel::Fog, expect[size_t(y) * kSize + x] = a / n;
         }
+}
 
+/// The scene with its pixels' classes and closed forms (classify).
+struct FilmCase {
+    Scene scene = filmScene();
+    std::vector<Pixel> cls;
+    std::vector<double> expect;
+    FilmCase() { classify(scene, cls, expect); }
+};
+
+/// PPB's settings for the film scene: kSize x kSize, seed 9.
+RenderSettings filmSettings(uint32_t photonsPerPass, bool transparent) {
+    RenderSettings ps;
+    ps.width = ps.height = kSize;
+    ps.photonsPerPass = photonsPerPass;
+    ps.seed = 9;
+    ps.transparentFilm = transparent;
+    return ps;
 }
 
 TEST(FilmAlpha, EmptySurfaceAndFogPixelsReadTheirCoverage) {
-    const Scene s = filmScene();
-    std::vector<Pixel> cls;
-    std::vector<double> expect;
-    classify(s, cls, expect);
-
-    RenderSettings ps;
-    ps.width = ps.height = kSize;
-    ps.photonsPerPass = 500;
-    ps.seed = 9;
-    PassRenderer opaqueRenderer(s, ps);
-    ps.transparentFilm = true;
-    PassRenderer renderer(s, ps);
+    const FilmCase film;
+    const std::vector<Pixel>& cls = film.cls;
+    const std::vector<double>& expect = film.expect;
+    PassRenderer opaqueRenderer(film.scene, filmSettings(500, false));
+    PassRenderer renderer(film.scene, filmSettings(500, true));
     const int passes = 16;
     std::vector<double> alpha(kSize * kSize, 0.0), radiance(kSize * kSize, 0.0), opaque(kSize * kSize, 0.0);
     for (int p = 0; p < passes; ++p) {
@@ -142,24 +152,18 @@ TEST(FilmAlpha, ThePathTracerWritesTheCoverageRenderDoes) {
     // tyndall reference --transparent: the same coverage as PPB's transparent film, pixel by pixel
     // within the path tracer's noise (a fog path leaves unscattered with probability
     // exp(-sigma_t d): binomial), exact where it must be (empty 0, card 1), no background.
-    const Scene s = filmScene();
-    std::vector<Pixel> cls;
-    std::vector<double> expect;
-    classify(s, cls, expect);
+    const FilmCase film;
+    const std::vector<Pixel>& cls = film.cls;
+    const std::vector<double>& expect = film.expect;
     ReferenceSettings rs;
     rs.width = rs.height = kSize;
     rs.samplesPerPixel = 64;
     rs.seed = 4;
     rs.transparentFilm = true;
-    EmbreeScene rt(s);
+    EmbreeScene rt(film.scene);
     const ReferenceImage ref = ReferenceTracer(rt, rs).render();
     ASSERT_EQ(ref.alpha.width, kSize);
-    RenderSettings ps;
-    ps.width = ps.height = kSize;
-    ps.photonsPerPass = 200;
-    ps.seed = 9;
-    ps.transparentFilm = true;
-    PassRenderer renderer(s, ps);
+    PassRenderer renderer(film.scene, filmSettings(200, true));
     std::vector<double> ppb(kSize * kSize, 0.0);
     const int passes = 8;
     for (int p = 0; p < passes; ++p) {
@@ -178,7 +182,9 @@ TEST(FilmAlpha, ThePathTracerWritesTheCoverageRenderDoes) {
             EXPECT_EQ(a, 0.0) << "pixel " << i;
             EXPECT_EQ(ref.mean.pixels[i].average(), 0.0f) << "pixel " << i << ": the background is left out";
         }
-        if (cls[i] == Pixel::Card) EXPECT_EQ(a, 1.0) << "pixel " << i;
+        if (cls[i] == Pixel::Card) {
+            EXPECT_EQ(a, 1.0) << "pixel " << i;
+        }
         if (cls[i] != Pixel::Fog) continue;
         // Binomial over the paths (the path tracer), against PPB's coverage (its own error 2e-3).
         const double var = std::max(expect[i] * (1 - expect[i]), 0.01) / rs.samplesPerPixel;
