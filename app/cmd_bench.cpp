@@ -50,6 +50,8 @@ void printPhotonStage(const PassRenderer& renderer, int passes) {
     printRate("photon paths", ph.pathsPerSecond / 1e3, "k paths/s");
     printRate("photon beams stored", ph.beamsPerSecond / 1e3, "k beams/s");
     printRate("photon rays", ph.raysPerSecond / 1e6, "M rays/s");
+    printRate("beams per photon path", ph.beamsPerPath, "beams");
+    printRate("mean beam length", ph.meanBeamLength, "scene units");
 }
 
 void printPasses(const PassRenderer& renderer, int passes) {

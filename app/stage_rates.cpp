@@ -1,5 +1,6 @@
 #include "app/stage_rates.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <ctime>
 
@@ -15,7 +16,9 @@ PassRate measurePasses(const PassRenderer& renderer, int passes) {
     PassRate r;
     renderer.renderPass(0);  // warm-up: page in, build caches
     auto t0 = Clock::now();
+    const double c0 = processCpuSeconds();
     for (int i = 1; i <= passes; ++i) renderer.renderPass(uint64_t(i), &r.totals);
+    r.cpuSeconds = processCpuSeconds() - c0;
     double s = secondsSince(t0);
     r.passes = passes;
     r.passesPerSecond = passes / s;
@@ -47,6 +50,8 @@ void printPassRate(const PassRate& pr, const RenderSettings& settings, const std
               ratio(t.cameraSeconds / pr.passes, perPass, "of a pass"));
     printRate("  primary splat stage", t.splatSeconds / pr.passes * 1e3, "ms/pass",
               ratio(t.splatSeconds / pr.passes, perPass, "of a pass"));
+    if (pr.cpuSeconds > 0)
+        printRate("CPU time per pass", pr.cpuSeconds / pr.passes * 1e3, "ms/pass", "(the process, every thread)");
     printRate("beams per pass", double(t.beams) / pr.passes, "beams");
 }
 
@@ -54,15 +59,19 @@ PhotonRate measurePhotonTracing(const PassRenderer& renderer, int passes, int ro
     PhotonRate best;
     for (int round = 0; round < rounds; ++round) {
         uint64_t paths = 0, beams = 0, traced = 0;
+        double length = 0;
         auto t0 = Clock::now();
         for (int i = 0; i < passes; ++i) {
             PhotonMap m = renderer.tracePhotons(uint64_t(i));
             paths += m.pathCount;
             beams += m.beams.size();
             traced += m.raysTraced;
+            for (const PhotonBeam& b : m.beams) length += double(b.tMax);
         }
         double s = secondsSince(t0);
-        if (traced / s > best.raysPerSecond) best = {paths / s, beams / s, traced / s};
+        if (traced / s > best.raysPerSecond)
+            best = {paths / s, beams / s, traced / s, double(beams) / double(std::max<uint64_t>(paths, 1)),
+                    beams > 0 ? length / double(beams) : 0.0};
     }
     return best;
 }

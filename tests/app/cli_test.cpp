@@ -158,8 +158,8 @@ TEST(Cli, HelpListsEveryOptionWithDefaults) {
 TEST(Cli, BenchReportsStagesAndTheHybridSplit) {
     CliRun r = runTyndall("bench --size 32x32 --passes 2 --photons 200 --threads 2");
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    for (const char* line : {"photon tracing", "photon paths", "full passes", "camera paths", "  photon stage",
-                             "  camera stage", "  primary splat stage", "hybrid"})
+    for (const char* line : {"photon tracing", "photon paths", "beams per photon path", "mean beam length", "full passes", "camera paths", "  photon stage",
+                             "  camera stage", "  primary splat stage", "  CPU time per pass", "hybrid"})
         EXPECT_NE(r.output.find(line), std::string::npos) << line << " missing from:\n" << r.output;
     const bool hybridRan = r.output.find("hybrid loop") != std::string::npos;
     EXPECT_TRUE(hybridRan || r.output.find("hybrid: skipped (") != std::string::npos) << r.output;
