@@ -139,6 +139,10 @@ std::vector<ScriptEvent> parseViewScript(const std::string& text, const std::str
         } else if (cmd == "emission") {
             e.op = ScriptOp::Emission, e.medium = int(r.number("medium index", 0, 1e6));
             e.value = r.number("emission scale", 0, 1e6);
+        } else if (cmd == "transparent") {
+            const std::string w = r.word("on or off");
+            if (w != "on" && w != "off") r.fail("transparent: expected on or off, got '" + w + "'");
+            e.op = ScriptOp::Transparent, e.value = w == "on" ? 1 : 0;
         } else if (cmd == "save" || cmd == "screenshot") {
             e.op = cmd == "save" ? ScriptOp::Save : ScriptOp::Screenshot;
             e.text = r.word(cmd == "save" ? "file stem" : "file name");
@@ -147,7 +151,7 @@ std::vector<ScriptEvent> parseViewScript(const std::string& text, const std::str
         } else {
             r.fail("unknown command '" + cmd +
                    "' (expected sleep, wait-frames, wait-passes, wait-input, wait-reload, press, move, release, drag, double-click, scroll, "
-                   "key, exposure, emission, save, screenshot or quit)");
+                   "key, exposure, emission, transparent, save, screenshot or quit)");
         }
         r.done();
         events.push_back(e);

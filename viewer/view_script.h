@@ -23,6 +23,7 @@
 //   exposure VALUE                sets the display exposure
 //   emission MEDIUM SCALE         sets the emission slider of medium MEDIUM (from 0, in scene order;
 //                                 with --compare it drives the grid and its twin) to SCALE
+//   transparent on|off            the panel's "transparent film" checkbox
 //   save STEM                     writes STEM.exr, STEM.png and STEM.json (as the S key)
 //   screenshot FILE               the window's pixels as PNG
 //   quit                          closes the window, exit status 0
@@ -32,7 +33,7 @@
 
 namespace tyndall {
 
-enum class ScriptOp { Sleep, WaitFrames, WaitPasses, WaitInput, WaitReload, WaitFinal, WaitResize, Drop, Press, Move, Release, DoubleClick, Scroll, Key, Exposure, Emission, Save,
+enum class ScriptOp { Sleep, WaitFrames, WaitPasses, WaitInput, WaitReload, WaitFinal, WaitResize, Drop, Press, Move, Release, DoubleClick, Scroll, Key, Exposure, Emission, Transparent, Save,
                       Screenshot, Quit };
 
 enum ScriptModifier : int { kModShift = 1, kModCtrl = 2, kModAlt = 4 };
@@ -42,7 +43,7 @@ struct ScriptEvent {
     int button = 0;        ///< 0 left, 1 right, 2 middle
     int modifiers = 0;     ///< ScriptModifier bits
     float x = 0, y = 0;    ///< image-area pixels
-    double value = 0;      ///< ms, frames, passes, scroll steps, exposure, emission scale
+    double value = 0;      ///< ms, frames, passes, scroll steps, exposure, emission scale, transparent 1/0
     int medium = 0;        ///< emission: the medium's index
     double timeout = 600;  ///< wait-passes: seconds
     std::string text;      ///< key name, file stem or path

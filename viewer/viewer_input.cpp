@@ -226,6 +226,7 @@ bool Viewer::stepScript(bool* acted) {
                 m_mediumUi[size_t(e.medium)].emissionScale = float(e.value);
                 pushEdits();
                 break;
+            case ScriptOp::Transparent: setTransparent(e.value != 0); break;
             case ScriptOp::Save: save(e.text); break;
             case ScriptOp::Screenshot: screenshot(e.text); break;
             case ScriptOp::Quit: ++m_scriptNext; return false;

@@ -65,6 +65,7 @@ void Viewer::drawPanel() {
     ImGui::Separator();
     drawPanelRenderControls(paused);
     drawPanelRegion();
+    drawPanelFilm();
     drawPanelLights();
     drawPanelEnvironment();
     drawPanelMedia();
@@ -127,6 +128,11 @@ void Viewer::drawPanelRegion() {
         ImGui::SameLine();
         ImGui::Text("%d %d %d x %d", region.x, region.y, region.width, region.height);
     }
+}
+
+void Viewer::drawPanelFilm() {
+    bool transparent = m_settings.transparentFilm;
+    if (ImGui::Checkbox("transparent film", &transparent)) setTransparent(transparent);
 }
 
 void Viewer::panelEdit(bool edited) {

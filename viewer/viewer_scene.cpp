@@ -144,6 +144,14 @@ void Viewer::setRegion(const PixelRegion& region) {
                                     ": only it refines";
 }
 
+void Viewer::setTransparent(bool on) {
+    if (m_settings.transparentFilm == on) return;
+    m_settings.transparentFilm = on;
+    pushSettings();
+    inputArrived();
+    m_status = on ? "transparent film: the background left out, alpha saved" : "opaque film";
+}
+
 const Image& Viewer::displayImage(size_t i) {
     const Image& image = regionImage(i);
     const ViewFrame& f = m_frames[i];

@@ -121,6 +121,7 @@ private:
     void drawPanelStatus(bool paused);          ///< scene, mode, passes, beam radius, splat, status
     void drawPanelRenderControls(bool paused);  ///< exposure, photons/pass, alpha, buttons, final render
     void drawPanelRegion();                     ///< the render region's button and extent
+    void drawPanelFilm();                       ///< the transparent film's checkbox
     void drawPanelLights();
     void drawPanelEnvironment();
     void drawPanelMedia();
@@ -132,6 +133,9 @@ private:
     /// The render region (RenderSettings::region): set (a new refinement of those pixels only) or
     /// cleared (PixelRegion{}); the status line says which.
     void setRegion(const PixelRegion& region);
+    /// The transparent film (RenderSettings::transparentFilm) on or off: a new refinement, shown
+    /// over the checkerboard when on (displayImage); the status line says which.
+    void setTransparent(bool on);
     /// The rectangle of the region drag under way, in image pixels, inside the image.
     PixelRegion dragRegion() const;
     /// The region's outline (and the one being drawn) over the image.

@@ -48,6 +48,23 @@ TEST(ViewScript, ParsesEmission) {
     EXPECT_THROW(parseViewScript("emission 0\n", "t.txt"), Error);
 }
 
+TEST(ViewScript, ParsesTransparentOnAndOff) {
+    auto e = parseViewScript("transparent on\ntransparent off\n", "t.txt");
+    ASSERT_EQ(e.size(), 2u);
+    EXPECT_EQ(e[0].op, ScriptOp::Transparent);
+    EXPECT_EQ(e[0].value, 1);
+    EXPECT_EQ(e[1].op, ScriptOp::Transparent);
+    EXPECT_EQ(e[1].value, 0);
+    for (const char* bad : {"transparent\n", "transparent yes\n", "transparent on off\n"}) {
+        try {
+            parseViewScript(bad, "t.txt");
+            ADD_FAILURE() << "accepted: " << bad;
+        } catch (const Error& err) {
+            EXPECT_NE(std::string(err.what()).find("t.txt: line 1: transparent"), std::string::npos) << err.what();
+        }
+    }
+}
+
 TEST(ViewScript, ParsesWaitReloadAndTheF5Key) {
     auto e = parseViewScript("wait-reload 2 30\nkey F5\nwait-reload 3\n", "t.txt");
     ASSERT_EQ(e.size(), 3u);

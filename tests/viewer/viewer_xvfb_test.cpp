@@ -159,6 +159,42 @@ TEST(ViewerXvfb, ExposureChangesTheWindowNotTheExr) {
     EXPECT_GT(a, 0.005) << "the window shows no image";
 }
 
+TEST(ViewerXvfb, TheTransparentFilmTogglesAtRunTime) {
+    SKIP_WITHOUT_XVFB();
+    fs::path d = outDir("film");
+    // A card on the left half of the image, a constant environment behind it.
+    std::ofstream(d / "card.json") << R"({"name": "card", "materials": [{"name": "card", "albedo": 0.5}],
+  "shapes": [{"type": "quad", "name": "card", "material": "card", "corner": [-2, -2, -3], "edge1": [2, 0, 0],
+              "edge2": [0, 4, 0]}],
+  "environment": {"radiance": [1.5, 1.5, 1.5]},
+  "cameras": [{"position": [0, 0, 0], "target": [0, 0, -3], "fov": 40}]})";
+    auto stem = [&](const char* name) { return (d / name).string(); };
+    test::CliRun r = runView(d, (d / "card.json").string() + " " + kSmall,
+                             "wait-passes 1\nwait-frames 2\nscreenshot " + stem("opaque-window.png") + "\nsave " +
+                                 stem("opaque") + "\ntransparent on\nwait-passes 1\nwait-frames 2\nscreenshot " +
+                                 stem("film-window.png") + "\nsave " + stem("film") +
+                                 "\ntransparent off\nwait-passes 1\nsave " + stem("back") + "\nquit\n");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const std::vector<std::string> rgb = {"R", "G", "B"}, rgba = {"R", "G", "B", "A"};
+    EXPECT_EQ(readImageChannels(stem("opaque") + ".exr"), rgb);
+    EXPECT_EQ(readImageChannels(stem("film") + ".exr"), rgba);
+    EXPECT_EQ(readImageChannels(stem("back") + ".exr"), rgb);
+    auto film = [&](const char* name) {
+        return nlohmann::json::parse(std::ifstream(d / (std::string(name) + ".json")))["render"]["transparent"];
+    };
+    EXPECT_EQ(film("opaque"), "off");
+    EXPECT_EQ(film("film"), "on");
+    EXPECT_EQ(film("back"), "off");
+    // The background (the image's right half, right of the 330-pixel panel): one shade opaque,
+    // the checkerboard's 16-pixel squares (linear grey 0.18 and 0.36) with the film transparent.
+    auto squares = [&](const std::string& png) {
+        const Image shot = readImage(png);
+        return meanLuminance(shot, 330 + 82, 2, 330 + 94, 14) - meanLuminance(shot, 330 + 66, 2, 330 + 78, 14);
+    };
+    EXPECT_NEAR(squares(stem("opaque-window.png")), 0.0, 0.01) << "the opaque background is not uniform";
+    EXPECT_GT(squares(stem("film-window.png")), 0.1) << "no checkerboard behind the transparent film";
+}
+
 TEST(ViewerXvfb, AtRestItDrawsOnlyWhatIsNew) {
     SKIP_WITHOUT_XVFB();
     fs::path d = outDir("rest");
