@@ -159,6 +159,7 @@ const std::pair<const char*, const char*> kOptionKeys[] = {
     {"--direct-light", "direct_light"},
     {"--surface-boundary", "surface_boundary"},
     {"--equiangular", "equiangular"},
+    {"--photon-planes", "photon_planes"},
     {"--max-path-length", "max_path_length"},
     {"--region", "region"}};
 
@@ -198,6 +199,9 @@ void addDirectLightOption(CLI::App* cmd, CommonOptions& o) {
     addOnOffOption(cmd, "--equiangular", o.settings.equiangular,
                    "on|off: single scattering from point, spot and area lights along camera rays in media by "
                    "equiangular sampling; off = those lights' first photon beams (docs/algorithm.md)");
+    addOnOffOption(cmd, "--photon-planes", o.settings.photonPlanes,
+                   "on|off: photon planes in homogeneous media (a beam swept along its next direction, "
+                   "no kernel) instead of the beams after a scattering there; off = beams only (docs/algorithm.md)");
 }
 
 void addPathLengthOption(CLI::App* cmd, CommonOptions& o) {

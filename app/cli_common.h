@@ -48,7 +48,8 @@ void addPathLengthOption(CLI::App* cmd, CommonOptions& o);
 void addRegionOption(CLI::App* cmd, CommonOptions& o);
 /// Adds --simd on|off (RenderSettings::simd); part of addPpbOptions.
 void addSimdOption(CLI::App* cmd, CommonOptions& o);
-/// --direct-light on|off, --surface-boundary on|off and --equiangular on|off (part of addPpbOptions; bench adds them alone).
+/// --direct-light, --surface-boundary, --equiangular and --photon-planes, each on|off (part of
+/// addPpbOptions; bench and tyndall_quality add them alone).
 void addDirectLightOption(CLI::App* cmd, CommonOptions& o);
 
 /// Adds --twin support|domain: where the homogeneous twin's medium sits (loading/homogeneous_twin.h);

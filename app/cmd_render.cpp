@@ -72,7 +72,8 @@ void rejectWithResume(const CLI::App* cmd) {
                                    "--photons",       "--alpha",         "--radius",       "--surface-radius",
                                    "--radius-offset", "--free-flights",  "--exposure",     "--aov",
                                    "--photon-angle",  "--planned-paths", "--direct-light", "--surface-boundary",
-                                   "--environment",   "--max-path-length", "--equiangular", "--transparent"};
+                                   "--environment",   "--max-path-length", "--equiangular", "--photon-planes",
+                                   "--transparent"};
     for (const char* name : kFixed)
         if (given(cmd, name))
             throw Error(std::string("--resume: ") + (name[0] == '-' ? name : "the scene file") +

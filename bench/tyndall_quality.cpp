@@ -57,6 +57,9 @@ void addOptions(CLI::App& cli, Options& o) {
                    "Only the scenes (of --scene and --library) whose file name without .json is this, repeatable "
                    "(default: all)");
     cli.add_flag("!--no-legacy", o.study.legacy, "Leave out the LEGACY row (default: with it)");
+    // --direct-light, --surface-boundary, --equiangular, --photon-planes: the rows' settings (LEGACY
+    // sets its own).
+    app::addDirectLightOption(&cli, o.common);
     cli.add_option("--plot", o.study.plot,
                    "Write PREFIX.csv and the gnuplot script PREFIX.gp, and run gnuplot for PREFIX.png: error against "
                    "passes, or against CPU seconds with --cpu-seconds (default: none)");

@@ -6,6 +6,7 @@
 
 #include "core/math.h"
 #include "core/medium.h"
+#include "core/photon_plane.h"
 
 namespace tyndall {
 
@@ -69,6 +70,9 @@ struct PhotonMap {
     /// (1 = straight from the light; see SurfacePhoton::segments). Empty when uncapped.
     std::vector<uint16_t> beamSegments;
     std::vector<SurfacePhoton> surfacePhotons;
+    /// RenderSettings::photonPlanes: one plane per beam in a homogeneous medium (core/photon_plane.h),
+    /// in path order.
+    std::vector<PhotonPlane> planes;
 };
 
 }  // namespace tyndall

@@ -16,6 +16,7 @@ enum class StreamPurpose : uint32_t {
     DirectLight = 6,  ///< a camera path's shadow rays (--direct-light): drawn apart from its own stream
     PixelJitterRotation = 7,  ///< a pixel's offset of the film jitter's sequence (core/pixel_jitter.h)
     Equiangular = 8,  ///< a camera path's equiangular single scattering (cpu/equiangular.h)
+    PhotonPlane = 9,  ///< a photon path's plane directions and lengths (core/photon_plane.h)
     Test = 99,
 };
 

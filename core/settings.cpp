@@ -84,6 +84,7 @@ nlohmann::json RenderSettings::toJson() const {
             {"direct_light", onOffText(directLight)},
             {"surface_boundary", onOffText(surfaceBoundary)},
             {"equiangular", onOffText(equiangular)},
+            {"photon_planes", onOffText(photonPlanes)},
             {"transparent", onOffText(transparentFilm)}};
     if (!region.whole()) j["region"] = {region.x, region.y, region.width, region.height};
     return j;
@@ -153,7 +154,7 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
                                   "surface_radius", "radius_offset", "planned_paths", "photon_angle", "seed", "threads",
                                   "max_photon_bounces", "max_camera_bounces", "free_flights", "gpu", "memory", "simd",
                                   "direct_light", "surface_boundary", "max_path_length", "region", "equiangular",
-                                  "transparent"};
+                                  "photon_planes", "transparent"};
     for (auto it = j.begin(); it != j.end(); ++it) {
         bool known = false;
         for (const char* k : kKeys) known |= it.key() == k;
@@ -193,6 +194,7 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
     read(j, "direct_light", s.directLight, where);
     read(j, "surface_boundary", s.surfaceBoundary, where);
     read(j, "equiangular", s.equiangular, where);
+    read(j, "photon_planes", s.photonPlanes, where);
     read(j, "transparent", s.transparentFilm, where);
     return s;
 }

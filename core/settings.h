@@ -98,6 +98,11 @@ struct RenderSettings {
     /// which are then not stored (docs/algorithm.md, "Single scattering by equiangular sampling").
     /// false = beams only.
     bool equiangular = false;
+    /// Photon planes (core/photon_plane.h) in homogeneous media: every beam there is joined with a
+    /// sampled next direction into a plane that every camera segment in a medium gathers without a
+    /// kernel, and the beams that start at a scattering in a homogeneous medium (which the planes
+    /// stand for) are not stored (docs/algorithm.md, "Photon planes"). false = beams only.
+    bool photonPlanes = false;
     /// Transparent film (render block "transparent", `tyndall render --transparent`): camera paths
     /// that reach the environment straight, through index-matched Interfaces alone, do not see it
     /// (it still lights the scene), and the output gets an alpha channel, the pixel's coverage: 1

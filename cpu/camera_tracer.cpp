@@ -12,6 +12,7 @@
 #include "cpu/direct_light.h"
 #include "cpu/surface_boundary.h"
 #include "cpu/free_flight.h"
+#include "cpu/plane_bvh.h"
 #include "cpu/surface_scattering.h"
 
 namespace tyndall {
@@ -90,6 +91,7 @@ struct ThreadScratch {
     std::vector<BeamHitRecord> hits;
     BeamQueryCache beamCache;  // reset at every tile's start: results independent of the thread count
     std::vector<float> freeFlights;
+    std::vector<uint32_t> planes;  // a plane query's candidates
     CameraPassStats stats;
 };
 }  // namespace
@@ -223,6 +225,10 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
     Image radiance(w, h);
     if (layers) *layers = SecondaryLayers{Image(w, h), Image(w, h)};
     tbb::enumerable_thread_specific<ThreadScratch> scratch;
+    // --photon-planes on: this batch's planes, gathered along every camera segment in a
+    // homogeneous medium (cpu/plane_bvh.h).
+    std::optional<PlaneBvh> planeBvh;
+    if (!photons.planes.empty()) planeBvh.emplace(*m_rt.device(), photons.planes);
     // The environment, where paths that leave the scene arrive (with the emission: one batch).
     const EnvironmentLight* environment = emission && m_scene.environment ? &*m_scene.environment : nullptr;
     // Camera paths that reach it straight (through Interface crossings alone) see it as the
@@ -271,6 +277,17 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                     const Rgb single = m_equiangular->estimate(pr.medium, pr.origin, pr.dir, pr.tMax, equiangularRng);
                     L += single;
                     Lmedia += single;
+                }
+            }
+            // --photon-planes on: the planes of this batch along the primary segment (the splatters
+            // draw only beams), as along every later one.
+            if (planeBvh && (maxLength == 0 || maxLength >= 2)) {
+                const PrimaryRay& pr = primary.segments.rays[pixel];
+                if (pr.medium != kVacuum && pr.tMax > 0 && m_scene.media[pr.medium].homogeneous()) {
+                    const Rgb planes = gatherPlanes(m_rt, *planeBvh, pr.medium, pr.origin, pr.dir, pr.tMax,
+                                                    maxLength > 0 ? maxLength - 1 : 0, tls.planes);
+                    L += planes;
+                    Lmedia += planes;
                 }
             }
             if (!ph.surface) {
@@ -449,6 +466,9 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                         emitted += gatherBeams(m_scene, photons, tls.hits, medium, seg.o, seg.d, ff, nff, maxBeamSegment);
                         if (m_equiangular && emission)
                             emitted += m_equiangular->estimate(medium, seg.o, seg.d, seg.tMax, equiangularRng);
+                        if (planeBvh && med.homogeneous())
+                            emitted += gatherPlanes(m_rt, *planeBvh, medium, seg.o, seg.d, seg.tMax, maxBeamSegment,
+                                                    tls.planes);
                     }
                     Rgb media = throughput * emitted;
                     L += media;

@@ -18,7 +18,10 @@
 //                                           light that arrives there without scattering; with
 //                                           --equiangular on, every segment in a medium (the
 //                                           primary one too) adds the single scattering of point
-//                                           and spot lights (cpu/equiangular.h); a path
+//                                           and spot lights (cpu/equiangular.h); with
+//                                           --photon-planes on, every segment in a homogeneous
+//                                           medium (the primary one too) gathers the batch's
+//                                           photon planes (cpu/plane_bvh.h); a path
 //                                           that leaves the scene adds the environment's radiance
 //                                           (Scene::environment; one straight from the camera only
 //                                           when it is visible)

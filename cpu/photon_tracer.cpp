@@ -43,6 +43,8 @@ PhotonTracer::PhotonTracer(const EmbreeScene& rt, const RenderSettings& settings
     for (const Medium& m : m_scene.media) m_anyHeterogeneous |= !m.homogeneous();
     m_directLight = settings.directLight;
     m_maxSegments = settings.maxPathLength > 0 ? settings.maxPathLength - 1 : -1;
+    // No two points of the scene's media are farther apart than its diagonal.
+    m_planeLengthCap = 1.001f * (m_scene.bounds.empty() ? 1.0f : length(m_scene.bounds.diagonal()));
     // The photon cone of an area light starts at its equivalent radius sqrt(area / 4 pi).
     for (const TriangleMesh& mesh : m_scene.meshes) {
         double area = 0;
@@ -99,20 +101,23 @@ PhotonMap PhotonTracer::trace(uint64_t pass, uint64_t firstPath, uint32_t begin,
     out.firstPath = firstPath;
     out.pathCount = count;
     out.freeFlightsPerBeam = m_anyHeterogeneous ? m_settings.freeFlightSamples : 0;
-    size_t nb = 0, ns = 0;
+    size_t nb = 0, ns = 0, np = 0;
     for (const PhotonMap& p : parts) {
         nb += p.beams.size();
         ns += p.surfacePhotons.size();
+        np += p.planes.size();
         out.raysTraced += p.raysTraced;
     }
     out.beams.reserve(nb);
     out.surfacePhotons.reserve(ns);
     out.freeFlights.reserve(nb * size_t(out.freeFlightsPerBeam));
+    out.planes.reserve(np);
     for (const PhotonMap& p : parts) {
         out.beams.insert(out.beams.end(), p.beams.begin(), p.beams.end());
         out.surfacePhotons.insert(out.surfacePhotons.end(), p.surfacePhotons.begin(), p.surfacePhotons.end());
         out.freeFlights.insert(out.freeFlights.end(), p.freeFlights.begin(), p.freeFlights.end());
         out.beamSegments.insert(out.beamSegments.end(), p.beamSegments.begin(), p.beamSegments.end());
+        out.planes.insert(out.planes.end(), p.planes.begin(), p.planes.end());
     }
     return out;
 }
@@ -168,8 +173,16 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
     // The index of the segment about to be traced (RenderSettings::maxPathLength: a camera path
     // adds at least one, so a capped photon path ends after maxPathLength - 1).
     int segment = 1;
+    // --photon-planes on: each beam in a homogeneous medium makes a plane from its own stream, so
+    // the path's draws are those of --photon-planes off; the beam after a scattering on such a beam
+    // is the plane's, and is not stored (core/photon_plane.h).
+    Rng planeRng = m_settings.photonPlanes ? Rng::forKey(m_settings.seed, pass, pathInPass, StreamPurpose::PhotonPlane)
+                                           : Rng();
+    bool coveredByPlane = false;
     for (int bounce = 0; bounce < m_settings.maxPhotonBounces; ++bounce) {
         if (m_maxSegments >= 0 && segment > m_maxSegments) return;
+        const bool covered = coveredByPlane;
+        coveredByPlane = false;
         RTCRayHit rh;
         initRayHit(rh, o, d);
         if (rays) rays->push_back(Ray{o, d, 0.0f, kInfinity});
@@ -182,7 +195,22 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
         if (medium != kVacuum && m_rt.globalMediumInterval(Ray{o, d, 0.0f, tHit}, &t0, &t1) && t1 > t0) {
             const Medium& med = m_scene.media[medium];
             const Ray seg{o + d * t0, d, 0.0f, t1 - t0};
-            if (!(direct && equiangularLight)) {
+            // A plane from this beam when the path could go on in the medium after a scattering.
+            const bool plane = m_settings.photonPlanes && med.homogeneous() &&
+                               bounce + 1 < m_settings.maxPhotonBounces &&
+                               (m_maxSegments < 0 || segment + 1 <= m_maxSegments);
+            if (plane) {
+                PhotonPlane& p = out.planes.emplace_back();
+                p.origin = seg.o;
+                p.len1 = seg.tMax;
+                p.dir1 = seg.d;
+                p.dir2 = sampleHg(seg.d, med.g, planeRng.uniform(), planeRng.uniform());
+                p.len2 = samplePlaneLength(med, m_planeLengthCap, planeRng.uniform());
+                p.medium = medium;
+                p.power = power;
+                p.segment = uint16_t(std::min(segment + 1, 65535));
+            }
+            if (!(direct && equiangularLight) && !covered) {
                 // The beam is written in place: a stack copy pushed back stalls on store forwarding.
                 PhotonBeam& beam = out.beams.emplace_back();
                 beam.origin = seg.o;
@@ -224,6 +252,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
                 o = x;
                 ++segment;
                 deltaPath = direct = false;
+                coveredByPlane = plane;
                 continue;
             }
         }

@@ -6,7 +6,9 @@
 // medium segment (long beams: each reaches the next surface, with analytic or stored-distance
 // transmittance) and a surface photon at every diffuse hit (with --direct-light on, none for a path
 // that has not scattered since its light: shadow rays carry that light; every stored photon carries
-// the kPhotonDirect / kPhotonDeltaPath flags). Radii follow the per-path schedule.
+// the kPhotonDirect / kPhotonDeltaPath flags); with --photon-planes on, a photon plane for every
+// beam in a homogeneous medium, and no beam for the segments the planes stand for (core/photon_plane.h).
+// Radii follow the per-path schedule.
 //
 // Deterministic: path k of pass i draws from Rng::forKey(seed, i, k, PhotonPath) and the output
 // is in path order, whatever the thread count.
@@ -88,6 +90,8 @@ private:
     bool m_directLight = false;
     /// RenderSettings::maxPathLength - 1: the most segments a photon path may have; -1 = uncapped.
     int m_maxSegments = -1;
+    /// RenderSettings::photonPlanes: the cap on a plane's length along its second direction.
+    float m_planeLengthCap = 0;
 };
 
 }  // namespace tyndall

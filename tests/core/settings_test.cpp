@@ -17,6 +17,7 @@ TEST(Settings, TypedSwitchesRoundTripThroughTheirText) {
     s.directLight = true;
     s.surfaceBoundary = false;
     s.equiangular = true;
+    s.photonPlanes = true;
     s.transparentFilm = true;
     nlohmann::json j = s.toJson();
     EXPECT_EQ(j.at("gpu"), "off");
@@ -24,6 +25,7 @@ TEST(Settings, TypedSwitchesRoundTripThroughTheirText) {
     EXPECT_EQ(j.at("direct_light"), "on");
     EXPECT_EQ(j.at("surface_boundary"), "off");
     EXPECT_EQ(j.at("equiangular"), "on");
+    EXPECT_EQ(j.at("photon_planes"), "on");
     EXPECT_EQ(j.at("transparent"), "on");
     RenderSettings back = RenderSettings::fromJson(j, "test");
     EXPECT_EQ(back.gpu, GpuMode::Off);
@@ -31,6 +33,7 @@ TEST(Settings, TypedSwitchesRoundTripThroughTheirText) {
     EXPECT_TRUE(back.directLight);
     EXPECT_FALSE(back.surfaceBoundary);
     EXPECT_TRUE(back.equiangular);
+    EXPECT_TRUE(back.photonPlanes);
     EXPECT_TRUE(back.transparentFilm);
     EXPECT_FALSE(RenderSettings::fromJson(nlohmann::json{{"transparent", false}}, "test").transparentFilm);
     for (GpuMode m : {GpuMode::Auto, GpuMode::On, GpuMode::Off}) EXPECT_EQ(gpuModeFromText(gpuModeText(m)), m);
@@ -51,7 +54,7 @@ TEST(Settings, SwitchesReadOnOffTextAndJsonBooleans) {
 TEST(Settings, BadTextIsRefusedNamingTheKey) {
     for (const auto& [key, value] : std::vector<std::pair<std::string, nlohmann::json>>{
              {"gpu", "yes"}, {"gpu", true}, {"simd", "maybe"}, {"direct_light", 1}, {"surface_boundary", "ON"},
-             {"equiangular", "yes"}}) {
+             {"equiangular", "yes"}, {"photon_planes", "1"}}) {
         try {
             RenderSettings::fromJson(nlohmann::json{{key, value}}, "scene.json: /render");
             ADD_FAILURE() << key << " = " << value.dump() << " was accepted";

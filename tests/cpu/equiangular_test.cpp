@@ -382,28 +382,9 @@ TEST(EquiangularPpb, FogBoxWithTheLampInViewAndAPanelAgreesWithThePathTracer) {
     EmbreeScene rt(scene);
     ReferenceImage ref = ReferenceTracer(rt, rs).render();
 
-    // The whole image and its four quadrants (the lamp is in the upper right one).
-    const int h = size / 2;
-    const int regions[5][4] = {{0, 0, size, size}, {0, 0, h, h}, {h, 0, size, h}, {0, h, h, size}, {h, h, size, size}};
-    for (const auto& r : regions) {
-        std::vector<double> m;
-        double mean = 0;
-        for (const Image& img : means) m.push_back(test::regionMean(img, r[0], r[1], r[2], r[3])), mean += m.back() / batches;
-        double var = 0;
-        for (double v : m) var += (v - mean) * (v - mean) / (batches - 1);
-        const double se = std::sqrt(var / batches);
-        const double reference = test::regionMean(ref.mean, r[0], r[1], r[2], r[3]);
-        double refVar = 0;
-        for (int y = r[1]; y < r[3]; ++y)
-            for (int x = r[0]; x < r[2]; ++x) refVar += ref.varianceOfMean.at(x, y).g;
-        const double seRef = std::sqrt(refVar) / ((r[2] - r[0]) * (r[3] - r[1]));
-        const double seBoth = std::sqrt(se * se + seRef * seRef);
-        std::printf("region %d,%d-%d,%d: PPB %.5f +- %.5f, reference %.5f +- %.5f\n", r[0], r[1], r[2], r[3], mean, se,
-                    reference, seRef);
-        EXPECT_LT(seBoth, 0.03 * reference) << "too noisy to test";
-        // 4 standard errors plus 2% for the kernel bias of the scattered light's beams and photons.
-        EXPECT_NEAR(mean / reference, 1.0, 4 * seBoth / reference + 0.02) << r[0] << "," << r[1];
-    }
+    // The whole image and its four quadrants (the lamp is in the upper right one), within 4
+    // standard errors plus 2% for the kernel bias of the scattered light's beams and photons.
+    test::expectQuadrantsAgree(means, ref, 0.03, 0.02);
 }
 
 TEST(EquiangularPpb, LightsEditedInPlaceGiveTheImageOfAFreshRenderer) {
@@ -451,32 +432,9 @@ TEST(EquiangularPpb, SingleScatteringVarianceFallsAsOneOverPasses) {
     ps.surfaceRadius = 0.06f;
     ps.radiusOffset = 1000000000000ull;
     ps.photonAngle = 0;
-    const int counts[2] = {4, 16};
-    double variance[2] = {0, 0};
-    for (int c = 0; c < 2; ++c) {
-        std::vector<Image> runs;
-        for (int k = 0; k < seeds; ++k) {
-            RenderSettings sk = ps;
-            sk.seed = 100 + uint64_t(k);
-            PassRenderer renderer(scene, sk);
-            runs.push_back(test::renderPpbPasses(renderer, 0, uint64_t(counts[c])));
-        }
-        // Per pixel, variance over seeds relative to the pixel's mean squared; averaged over pixels.
-        double sum = 0;
-        for (int i = 0; i < size * size; ++i) {
-            double m = 0, m2 = 0;
-            for (const Image& r : runs) m += r.pixels[size_t(i)].g / seeds, m2 += double(r.pixels[size_t(i)].g) * r.pixels[size_t(i)].g / seeds;
-            sum += (m2 - m * m) * seeds / (seeds - 1) / (m * m) / (size * size);
-        }
-        variance[c] = sum;
-    }
-    const double slope = std::log(variance[1] / variance[0]) / std::log(double(counts[1]) / counts[0]);
-    std::printf("relative variance %.3e after %d passes, %.3e after %d: slope %.3f\n", variance[0], counts[0],
-                variance[1], counts[1], slope);
     // The estimate of a variance from 48 seeds is within ~20% (one standard deviation of each), so
     // the slope over a factor of 4 within ~0.2.
-    EXPECT_NEAR(slope, -1.0, 0.3);
-    EXPECT_GT(variance[0], 0.0);
+    EXPECT_NEAR(test::varianceSlopeOverPasses(scene, ps, seeds, 100), -1.0, 0.3);
 }
 
 }  // namespace

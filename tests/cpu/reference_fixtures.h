@@ -340,6 +340,62 @@ inline void expectRegionAgrees(const Scene& scene, const std::vector<int>& meshO
     EXPECT_NEAR(mean, 1.0, 4.0 * se + bias) << "region seeing '" << meshName << "'";
 }
 
+/// PPB against the reference over the whole image and its four quadrants: `means` are the mean
+/// images of independent batches of passes (their spread gives PPB's standard error), the
+/// reference's from its per-pixel variance of the mean (green channel). Each region's ratio must
+/// be within 4 combined standard errors plus `bias` of 1, and the combined standard error below
+/// `noise` of the reference (else the test could not tell).
+inline void expectQuadrantsAgree(const std::vector<Image>& means, const ReferenceImage& ref, double noise, double bias) {
+    const int w = ref.mean.width, hgt = ref.mean.height, hw = w / 2, hh = hgt / 2;
+    const int regions[5][4] = {{0, 0, w, hgt}, {0, 0, hw, hh}, {hw, 0, w, hh}, {0, hh, hw, hgt}, {hw, hh, w, hgt}};
+    for (const auto& r : regions) {
+        std::vector<double> m;
+        for (const Image& img : means) m.push_back(regionMean(img, r[0], r[1], r[2], r[3]));
+        const MeanVar mv = meanVar(m);
+        const double se = std::sqrt(mv.var / double(m.size()));
+        const double reference = regionMean(ref.mean, r[0], r[1], r[2], r[3]);
+        double refVar = 0;
+        for (int y = r[1]; y < r[3]; ++y)
+            for (int x = r[0]; x < r[2]; ++x) refVar += ref.varianceOfMean.at(x, y).g;
+        const double seRef = std::sqrt(refVar) / ((r[2] - r[0]) * (r[3] - r[1]));
+        const double seBoth = std::sqrt(se * se + seRef * seRef);
+        std::printf("region %d,%d-%d,%d: PPB %.5f +- %.5f, reference %.5f +- %.5f\n", r[0], r[1], r[2], r[3], mv.mean,
+                    se, reference, seRef);
+        EXPECT_LT(seBoth, noise * reference) << "too noisy to test";
+        EXPECT_NEAR(mv.mean / reference, 1.0, 4 * seBoth / reference + bias) << r[0] << "," << r[1];
+    }
+}
+
+/// The variance law of a renderer whose passes are independent and unbiased: renders `scene` with
+/// `ps` and `seeds` seeds (firstSeed, firstSeed + 1, ...) for 4 and for 16 passes; per pixel the
+/// variance over seeds relative to the pixel's mean squared, averaged over pixels; returns the slope
+/// of its logarithm against that of the pass count (-1 for a variance falling as 1/passes).
+inline double varianceSlopeOverPasses(const Scene& scene, const RenderSettings& ps, int seeds, uint64_t firstSeed) {
+    const int counts[2] = {4, 16};
+    double variance[2] = {0, 0};
+    const size_t pixels = size_t(ps.width) * size_t(ps.height);
+    for (int c = 0; c < 2; ++c) {
+        std::vector<Image> runs;
+        for (int k = 0; k < seeds; ++k) {
+            RenderSettings sk = ps;
+            sk.seed = firstSeed + uint64_t(k);
+            PassRenderer renderer(scene, sk);
+            runs.push_back(renderPpbPasses(renderer, 0, uint64_t(counts[c])));
+        }
+        for (size_t i = 0; i < pixels; ++i) {
+            std::vector<double> v;
+            for (const Image& r : runs) v.push_back(r.pixels[i].g);
+            const MeanVar mv = meanVar(v);
+            variance[c] += mv.var / (mv.mean * mv.mean) / double(pixels);
+        }
+    }
+    const double slope = std::log(variance[1] / variance[0]) / std::log(double(counts[1]) / counts[0]);
+    std::printf("relative variance %.3e after %d passes, %.3e after %d: slope %.3f\n", variance[0], counts[0],
+                variance[1], counts[1], slope);
+    EXPECT_GT(variance[0], 0.0);
+    return slope;
+}
+
 /// The consistency check shared by the homogeneous and the VDB tests: at 32 x 32, a 4096-spp
 /// reference against PPB with 2000 photon paths per pass. relMSE must fall by at least a quarter
 /// from 4 to 16 and from 16 to 64 passes (for alpha = 0.5 the variance alone halves per 4x
