@@ -1,8 +1,9 @@
-// Bounded memory, as a user meets it: one pass of 3e7 photon paths under a 4 GB
-// address-space limit (ulimit -v, CPU only) renders to a finite image, the photon batches keeping
-// the pass's beams bounded; before batching it ended in std::bad_alloc. A --memory above the limit
-// is refused up front with both figures. Slow: 3e7 photon paths take ~2 CPU minutes here; the
-// image is 16x16 so that the photons, not the pixels, are the work.
+// Bounded memory, as a user meets it: one pass of 4e6 photon paths (about 13 million beams,
+// some 1.5 GB of beams and their structures if traced at once) under a 1 GiB address-space limit
+// (ulimit -v, CPU only, 2 threads: the program and its threads take about 0.75 GiB of it) renders
+// to a finite image, the photon batches keeping the pass's beams bounded; a pass whose batches
+// do not bound it (traced at once) ends out of memory. A --memory above the limit is refused up
+// front with both figures. The image is 16x16 so that the photons, not the pixels, are the work.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -38,16 +39,19 @@ std::string writeOpenFogScene() {
     return path;
 }
 
+constexpr uint64_t kOneGiB = 1ull << 20;   // KiB
 constexpr uint64_t kFourGiB = 4ull << 20;  // KiB
 
-TEST(MemoryLimit, ThirtyMillionPhotonPathsInOnePassUnderFourGigabytes) {
+TEST(MemoryLimit, FourMillionPhotonPathsInOnePassUnderOneGigabyte) {
     const std::string scene = writeOpenFogScene();
-    const std::string out = tyndall::test::outputDir() + "/memory_limit_3e7.exr";
+    const std::string out = tyndall::test::outputDir() + "/memory_limit_4e6.exr";
     std::remove(out.c_str());
-    CliRun r = runLimited(kFourGiB, "render " + scene + " --size 16x16 --passes 1 --photons 30000000 --gpu off --seed 3 -o " + out);
+    CliRun r = runLimited(kOneGiB, "render " + scene +
+                                       " --size 16x16 --passes 1 --photons 4000000 --memory 1000 --threads 2 "
+                                       "--gpu off --seed 3 -o " + out);
     std::printf("%s", r.output.c_str());
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    EXPECT_NE(r.output.find("30000000 photon paths"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("4000000 photon paths"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("batches of up to"), std::string::npos) << r.output;
     tyndall::Image image = tyndall::readImage(out);
     ASSERT_EQ(image.width, 16);
