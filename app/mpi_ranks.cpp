@@ -36,24 +36,28 @@ void Ranks::broadcast(std::vector<uint64_t>& values) const {
     if (m_mpi) MPI_Bcast(values.data(), int(values.size()), MPI_UINT64_T, 0, MPI_COMM_WORLD);
 }
 
-void Ranks::gather(const std::vector<float>& mine, std::vector<float>* all) const {
-    if (!m_mpi) {
+namespace {
+/// Rank 0's `all` receives every rank's `mine` in rank order (each rank's the same length); without
+/// MPI, `mine` itself.
+template <class T>
+void gatherToRankZero(bool mpi, int rank, int size, const std::vector<T>& mine, std::vector<T>* all,
+                      MPI_Datatype type) {
+    if (!mpi) {
         *all = mine;
         return;
     }
-    if (m_rank == 0) all->resize(mine.size() * size_t(m_size));
-    MPI_Gather(mine.data(), int(mine.size()), MPI_FLOAT, m_rank == 0 ? all->data() : nullptr, int(mine.size()),
-               MPI_FLOAT, 0, MPI_COMM_WORLD);
+    if (rank == 0) all->resize(mine.size() * size_t(size));
+    MPI_Gather(mine.data(), int(mine.size()), type, rank == 0 ? all->data() : nullptr, int(mine.size()), type, 0,
+               MPI_COMM_WORLD);
+}
+}  // namespace
+
+void Ranks::gather(const std::vector<float>& mine, std::vector<float>* all) const {
+    gatherToRankZero(m_mpi, m_rank, m_size, mine, all, MPI_FLOAT);
 }
 
 void Ranks::gather(const std::vector<uint64_t>& mine, std::vector<uint64_t>* all) const {
-    if (!m_mpi) {
-        *all = mine;
-        return;
-    }
-    if (m_rank == 0) all->resize(mine.size() * size_t(m_size));
-    MPI_Gather(mine.data(), int(mine.size()), MPI_UINT64_T, m_rank == 0 ? all->data() : nullptr, int(mine.size()),
-               MPI_UINT64_T, 0, MPI_COMM_WORLD);
+    gatherToRankZero(m_mpi, m_rank, m_size, mine, all, MPI_UINT64_T);
 }
 
 void Ranks::abort(int code) const {

@@ -142,6 +142,18 @@ void read(const nlohmann::json& j, const char* key, bool& out, const std::string
     if (!on) throw Error(where + "/" + key + ": expected \"on\" or \"off\" (or true or false)");
     out = *on;
 }
+
+/// A value, or "auto" for `automatic`; `expected` names the value in the error.
+template <typename T>
+void readOrAuto(const nlohmann::json& j, const char* key, T& out, T automatic, const char* expected,
+                const std::string& where) {
+    if (auto it = j.find(key); it != j.end() && it->is_string()) {
+        if (*it != "auto") throw Error(where + "/" + key + ": expected " + expected + " or \"auto\"");
+        out = automatic;
+    } else {
+        read(j, key, out, where);
+    }
+}
 }  // namespace
 
 RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::string& where) {
@@ -169,19 +181,9 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
     read(j, "alpha", s.alpha, where);
     read(j, "radius", s.radius, where);
     read(j, "surface_radius", s.surfaceRadius, where);
-    if (auto it = j.find("radius_offset"); it != j.end() && it->is_string()) {
-        if (*it != "auto") throw Error(where + "/radius_offset: expected a non-negative integer or \"auto\"");
-        s.radiusOffset = kAutoRadiusOffset;
-    } else {
-        read(j, "radius_offset", s.radiusOffset, where);
-    }
+    readOrAuto(j, "radius_offset", s.radiusOffset, kAutoRadiusOffset, "a non-negative integer", where);
     read(j, "planned_paths", s.plannedPaths, where);
-    if (auto it = j.find("photon_angle"); it != j.end() && it->is_string()) {
-        if (*it != "auto") throw Error(where + "/photon_angle: expected a number of radians >= 0 or \"auto\"");
-        s.photonAngle = kAutoPhotonAngle;
-    } else {
-        read(j, "photon_angle", s.photonAngle, where);
-    }
+    readOrAuto(j, "photon_angle", s.photonAngle, kAutoPhotonAngle, "a number of radians >= 0", where);
     read(j, "seed", s.seed, where);
     read(j, "threads", s.threads, where);
     read(j, "max_photon_bounces", s.maxPhotonBounces, where);

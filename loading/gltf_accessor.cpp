@@ -8,6 +8,12 @@
 
 namespace tyndall {
 
+void checkGltfIndex(const std::string& where, const char* kind, int64_t index, size_t count, const char* plural) {
+    if (index < 0 || uint64_t(index) >= count)
+        throw Error(where + ": " + kind + " index " + std::to_string(index) + " out of range (the file has " +
+                    std::to_string(count) + plural + ")");
+}
+
 namespace {
 
 int componentSize(int componentType) {
@@ -84,14 +90,10 @@ struct View {
 /// Checks that `count` elements of `elementSize` bytes at `byteOffset` fit buffer view `bv`.
 View checkedView(const tinygltf::Model& model, int bv, size_t byteOffset, size_t count, size_t elementSize,
                  bool allowStride, const std::string& at) {
-    if (bv < 0 || size_t(bv) >= model.bufferViews.size())
-        throw Error(at + ": bufferView index " + std::to_string(bv) + " out of range (the file has " +
-                    std::to_string(model.bufferViews.size()) + ")");
+    checkGltfIndex(at, "bufferView", bv, model.bufferViews.size());
     const tinygltf::BufferView& view = model.bufferViews[size_t(bv)];
     std::string vat = at + ": bufferView " + std::to_string(bv);
-    if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size())
-        throw Error(vat + ": buffer index " + std::to_string(view.buffer) + " out of range (the file has " +
-                    std::to_string(model.buffers.size()) + ")");
+    checkGltfIndex(vat, "buffer", view.buffer, model.buffers.size());
     const tinygltf::Buffer& buffer = model.buffers[size_t(view.buffer)];
     if (view.byteOffset > buffer.data.size() || view.byteLength > buffer.data.size() - view.byteOffset)
         throw Error(vat + ": bytes " + std::to_string(view.byteOffset) + ".." +
@@ -117,9 +119,7 @@ View checkedView(const tinygltf::Model& model, int bv, size_t byteOffset, size_t
 /// All values of an accessor as doubles (count * components), sparse substitution applied.
 std::vector<double> readAccessor(const tinygltf::Model& model, int index, const std::string& where, size_t maxElements,
                                  LoadBudget* budget, int* components, int* componentType) {
-    if (index < 0 || size_t(index) >= model.accessors.size())
-        throw Error(where + ": accessor index " + std::to_string(index) + " out of range (the file has " +
-                    std::to_string(model.accessors.size()) + ")");
+    checkGltfIndex(where, "accessor", index, model.accessors.size());
     const tinygltf::Accessor& acc = model.accessors[size_t(index)];
     std::string at = where + ": accessor " + std::to_string(index) + (acc.name.empty() ? "" : " '" + acc.name + "'");
     int nc = componentCount(acc.type);

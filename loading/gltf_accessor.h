@@ -15,6 +15,11 @@ namespace tyndall {
 
 class LoadBudget;
 
+/// Throws Error "WHERE: KIND index INDEX out of range (the file has COUNT[ PLURAL])" unless
+/// 0 <= index < count: the one message for every glTF index (a node's mesh, an accessor, ...).
+void checkGltfIndex(const std::string& where, const char* kind, int64_t index, size_t count,
+                    const char* plural = "");
+
 /// Accessor `index` as `components` floats per element (count * components values).
 /// `components`: 1, 2, 3 or 4 (SCALAR, VEC2, VEC3, VEC4); other accessor types throw. More than
 /// `maxElements` elements is an error; `budget` (may be null) is asked for the declared count x

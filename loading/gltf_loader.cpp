@@ -265,9 +265,7 @@ std::vector<int> GltfImporter::rootNodes() {
     std::vector<int> parents(n, 0);
     for (size_t i = 0; i < n; ++i) {
         for (int c : m_model.nodes[i].children) {
-            if (c < 0 || size_t(c) >= n)
-                throw Error(nodeWhere(i) + ": child index " + std::to_string(c) + " out of range (the file has " +
-                            std::to_string(n) + " nodes)");
+            checkGltfIndex(nodeWhere(i), "child", c, n, " nodes");
             if (++parents[size_t(c)] > 1)
                 throw Error(nodeWhere(size_t(c)) + ": has more than one parent (glTF node hierarchies are trees)");
         }
@@ -279,13 +277,9 @@ std::vector<int> GltfImporter::rootNodes() {
         return roots;
     }
     int s = m_model.defaultScene >= 0 ? m_model.defaultScene : 0;
-    if (size_t(s) >= m_model.scenes.size())
-        throw Error(m_file + ": default scene index " + std::to_string(s) + " out of range (the file has " +
-                    std::to_string(m_model.scenes.size()) + " scenes)");
+    checkGltfIndex(m_file, "default scene", s, m_model.scenes.size(), " scenes");
     for (int r : m_model.scenes[size_t(s)].nodes)
-        if (r < 0 || size_t(r) >= n)
-            throw Error(m_file + ": scene " + std::to_string(s) + ": node index " + std::to_string(r) +
-                        " out of range (the file has " + std::to_string(n) + " nodes)");
+        checkGltfIndex(m_file + ": scene " + std::to_string(s), "node", r, n, " nodes");
     return m_model.scenes[size_t(s)].nodes;
 }
 
@@ -331,9 +325,7 @@ void GltfImporter::visit(int index, const Affine& parent) {
 
 void GltfImporter::addMesh(size_t node, const Affine& world) {
     int meshIndex = m_model.nodes[node].mesh;
-    if (meshIndex < 0 || size_t(meshIndex) >= m_model.meshes.size())
-        throw Error(nodeWhere(node) + ": mesh index " + std::to_string(meshIndex) + " out of range (the file has " +
-                    std::to_string(m_model.meshes.size()) + " meshes)");
+    checkGltfIndex(nodeWhere(node), "mesh", meshIndex, m_model.meshes.size(), " meshes");
     const tinygltf::Mesh& mesh = m_model.meshes[size_t(meshIndex)];
     std::string name = nodeName(node);
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
@@ -492,9 +484,7 @@ int GltfImporter::material(int index, const std::string& primWhere) {
         scene.materials.push_back(def);
         return m_materials[index] = int(scene.materials.size() - 1);
     }
-    if (index < 0 || size_t(index) >= m_model.materials.size())
-        throw Error(primWhere + ": material index " + std::to_string(index) + " out of range (the file has " +
-                    std::to_string(m_model.materials.size()) + " materials)");
+    checkGltfIndex(primWhere, "material", index, m_model.materials.size(), " materials");
     const tinygltf::Material& gm = m_model.materials[size_t(index)];
     GltfMaterialInput in;
     in.where = m_file + ": material " + (gm.name.empty() ? "" : "'" + gm.name + "' ") + "(index " +
@@ -576,9 +566,7 @@ int GltfImporter::material(int index, const std::string& primWhere) {
 
 TextureRef GltfImporter::textureRef(int texture, int texCoord, const tinygltf::ExtensionMap& ext, TextureEncoding enc,
                                     const std::string& where) {
-    if (texture < 0 || size_t(texture) >= m_model.textures.size())
-        throw Error(where + ": texture index " + std::to_string(texture) + " out of range (the file has " +
-                    std::to_string(m_model.textures.size()) + " textures)");
+    checkGltfIndex(where, "texture", texture, m_model.textures.size(), " textures");
     const tinygltf::Texture& tex = m_model.textures[size_t(texture)];
     const int image = tex.source;
     if (image < 0 || size_t(image) >= m_model.images.size())
@@ -691,9 +679,7 @@ void GltfImporter::addLight(size_t node, const Affine& world) {
 
 void GltfImporter::addCamera(size_t node, const Affine& world) {
     int ci = m_model.nodes[node].camera;
-    if (ci < 0 || size_t(ci) >= m_model.cameras.size())
-        throw Error(nodeWhere(node) + ": camera index " + std::to_string(ci) + " out of range (the file has " +
-                    std::to_string(m_model.cameras.size()) + " cameras)");
+    checkGltfIndex(nodeWhere(node), "camera", ci, m_model.cameras.size(), " cameras");
     const tinygltf::Camera& gc = m_model.cameras[size_t(ci)];
     std::string name = !m_model.nodes[node].name.empty() ? m_model.nodes[node].name
                        : !gc.name.empty()                ? gc.name

@@ -11,13 +11,26 @@ namespace {
 nlohmann::json vec(const Vec3& v) { return {v.x, v.y, v.z}; }
 nlohmann::json rgb(const Rgb& c) { return {c.r, c.g, c.b}; }
 
-/// Arrays of the edits must match the scene one to one, by name, so that an edited base is noticed.
-std::vector<JsonValue> matching(const JsonValue& list, size_t count, const char* what) {
-    std::vector<JsonValue> items = list.elements();
-    if (items.size() != count)
+/// Arrays of the edits must match the scene one to one, by name, so that an edited base is noticed:
+/// `apply(entry, item)` reads each entry (its "name" already checked) into the scene's item, and
+/// the entry is finished after it. `what`: the array's name ("lights"), `one`: an item's ("light").
+template <class T, class Apply>
+void applyMatching(const JsonValue& list, std::vector<T>& items, const char* what, const char* one, Apply apply) {
+    std::vector<JsonValue> entries = list.elements();
+    const size_t count = items.size();
+    if (entries.size() != count)
         list.fail("expected " + std::to_string(count) + " " + what + " (the base scene has " + std::to_string(count) +
-                  "), got " + std::to_string(items.size()));
-    return items;
+                  "), got " + std::to_string(entries.size()));
+    for (size_t i = 0; i < count; ++i) {
+        JsonObject o = entries[i].object();
+        T& item = items[i];
+        std::string name = o.require("name").string();
+        if (name != item.name)
+            o.fail(std::string(one) + " " + std::to_string(i) + " of the base scene is '" + item.name + "', not '" +
+                   name + "'");
+        apply(o, item);
+        o.finish();
+    }
 }
 }  // namespace
 
@@ -71,25 +84,14 @@ void applySceneEdits(Scene& scene, const nlohmann::json& edits, const std::strin
         scene.camera = c;
     }
     if (lights) {
-        std::vector<JsonValue> items = matching(*lights, scene.lights.size(), "lights");
-        for (size_t i = 0; i < items.size(); ++i) {
-            JsonObject o = items[i].object();
-            Light& l = scene.lights[i];
-            std::string name = o.require("name").string();
-            if (name != l.name) o.fail("light " + std::to_string(i) + " of the base scene is '" + l.name + "', not '" + name + "'");
+        applyMatching(*lights, scene.lights, "lights", "light", [](JsonObject& o, Light& l) {
             l.position = o.require("position").vec3();
             l.direction = normalize(o.require("direction").direction());
             l.intensity = o.require("intensity").rgb();
-            o.finish();
-        }
+        });
     }
     if (media) {
-        std::vector<JsonValue> items = matching(*media, scene.media.size(), "media");
-        for (size_t i = 0; i < items.size(); ++i) {
-            JsonObject o = items[i].object();
-            Medium& m = scene.media[i];
-            std::string name = o.require("name").string();
-            if (name != m.name) o.fail("medium " + std::to_string(i) + " of the base scene is '" + m.name + "', not '" + name + "'");
+        applyMatching(*media, scene.media, "media", "medium", [](JsonObject& o, Medium& m) {
             m.sigmaS = o.require("sigma_s").rgb();
             m.sigmaA = o.require("sigma_a").rgb();
             m.g = float(o.require("g").number(-0.999, 0.999));
@@ -98,8 +100,7 @@ void applySceneEdits(Scene& scene, const nlohmann::json& edits, const std::strin
             if (!(t.r > 0 || t.g > 0 || t.b > 0)) o.fail("sigma_s + sigma_a must not be 0");
             if (m.density && (std::abs(t.r - t.g) > 1e-5f * t.r || std::abs(t.r - t.b) > 1e-5f * t.r))
                 o.fail("a density-grid medium needs grey extinction (sigma_s + sigma_a equal in r, g, b)");
-            o.finish();
-        }
+        });
     }
     if (environment) {
         JsonObject o = environment->object();

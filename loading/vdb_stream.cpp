@@ -5,6 +5,7 @@
 #include <zlib.h>
 
 #include <istream>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -51,15 +52,22 @@ int64_t blockSize(std::istream& is, size_t numBytes, const char* codec) {
     return size;
 }
 
-/// Reads or skips (data == nullptr) a block stored uncompressed; blockSize checked its size.
-void readStored(std::istream& is, char* data, size_t numBytes) {
-    if (data)
-        is.read(data, std::streamsize(numBytes));
-    else
-        is.seekg(std::streamoff(numBytes), std::ios_base::cur);
-}
-
-std::vector<char> readCompressed(std::istream& is, int64_t size) {
+/// Reads a block's size and, where nothing is left to decompress, the block itself: one stored
+/// uncompressed is read (or skipped: data == nullptr), a compressed one skipped when data is null.
+/// Otherwise returns the compressed bytes, for the caller to decompress into `data`.
+std::optional<std::vector<char>> compressedBlock(std::istream& is, char* data, size_t numBytes, const char* codec) {
+    const int64_t size = blockSize(is, numBytes, codec);
+    if (size <= 0) {
+        if (data)
+            is.read(data, std::streamsize(numBytes));
+        else
+            is.seekg(std::streamoff(numBytes), std::ios_base::cur);
+        return std::nullopt;
+    }
+    if (!data) {
+        is.seekg(std::streamoff(size), std::ios_base::cur);
+        return std::nullopt;
+    }
     std::vector<char> bytes(static_cast<size_t>(size));
     is.read(bytes.data(), std::streamsize(size));
     return bytes;
@@ -75,13 +83,9 @@ namespace OPENVDB_VERSION_NAME {
 namespace io {
 
 void bloscFromStream(std::istream& is, char* data, size_t numBytes) {
-    const int64_t size = tyndall::blockSize(is, numBytes, "blosc");
-    if (size <= 0) return tyndall::readStored(is, data, numBytes);
-    if (!data) {
-        is.seekg(std::streamoff(size), std::ios_base::cur);
-        return;
-    }
-    const std::vector<char> src = tyndall::readCompressed(is, size);
+    const std::optional<std::vector<char>> block = tyndall::compressedBlock(is, data, numBytes, "blosc");
+    if (!block) return;
+    const std::vector<char>& src = *block;
     size_t declared = 0;
     if (src.size() < BLOSC_MIN_HEADER_LENGTH || blosc_cbuffer_validate(src.data(), src.size(), &declared) != 0)
         tyndall::damaged("blosc", "its header does not fit its " + std::to_string(src.size()) + " bytes");
@@ -93,13 +97,9 @@ void bloscFromStream(std::istream& is, char* data, size_t numBytes) {
 }
 
 void unzipFromStream(std::istream& is, char* data, size_t numBytes) {
-    const int64_t size = tyndall::blockSize(is, numBytes, "zip");
-    if (size <= 0) return tyndall::readStored(is, data, numBytes);
-    if (!data) {
-        is.seekg(std::streamoff(size), std::ios_base::cur);
-        return;
-    }
-    const std::vector<char> src = tyndall::readCompressed(is, size);
+    const std::optional<std::vector<char>> block = tyndall::compressedBlock(is, data, numBytes, "zip");
+    if (!block) return;
+    const std::vector<char>& src = *block;
     uLongf got = uLongf(numBytes);
     if (uncompress(reinterpret_cast<Bytef*>(data), &got, reinterpret_cast<const Bytef*>(src.data()), uLong(src.size())) !=
             Z_OK ||

@@ -60,6 +60,19 @@ bool validKey(const std::string& k) {
         if (k == key) return true;
     return k.size() == 1 && k[0] >= '1' && k[0] <= '9';
 }
+
+/// The commands that wait for a count of something (`counted`, as errors name it), at least 1, and
+/// take an optional time-out in seconds.
+struct WaitCommand {
+    const char* name;
+    ScriptOp op;
+    const char* counted;
+};
+constexpr WaitCommand kWaitCommands[] = {{"wait-passes", ScriptOp::WaitPasses, "passes"},
+                                         {"wait-input", ScriptOp::WaitInput, "releases"},
+                                         {"wait-reload", ScriptOp::WaitReload, "reloads"},
+                                         {"wait-final", ScriptOp::WaitFinal, "final renders"},
+                                         {"wait-resize", ScriptOp::WaitResize, "resizes"}};
 }  // namespace
 
 std::vector<ScriptEvent> parseViewScript(const std::string& text, const std::string& file) {
@@ -77,25 +90,16 @@ std::vector<ScriptEvent> parseViewScript(const std::string& text, const std::str
         const std::string& cmd = r.words[0];
         ScriptEvent e;
         e.line = n;
-        if (cmd == "sleep") {
+        const WaitCommand* wait = nullptr;
+        for (const WaitCommand& w : kWaitCommands)
+            if (cmd == w.name) wait = &w;
+        if (wait) {
+            e.op = wait->op, e.value = std::floor(r.number(wait->counted, 1, 1e9));
+            if (r.more()) e.timeout = r.number("seconds", 0.001, 1e6);
+        } else if (cmd == "sleep") {
             e.op = ScriptOp::Sleep, e.value = r.number("milliseconds", 0, 3.6e6);
         } else if (cmd == "wait-frames") {
             e.op = ScriptOp::WaitFrames, e.value = std::floor(r.number("frames", 0, 1e7));
-        } else if (cmd == "wait-passes") {
-            e.op = ScriptOp::WaitPasses, e.value = std::floor(r.number("passes", 1, 1e9));
-            if (r.more()) e.timeout = r.number("seconds", 0.001, 1e6);
-        } else if (cmd == "wait-input") {
-            e.op = ScriptOp::WaitInput, e.value = std::floor(r.number("releases", 1, 1e9));
-            if (r.more()) e.timeout = r.number("seconds", 0.001, 1e6);
-        } else if (cmd == "wait-reload") {
-            e.op = ScriptOp::WaitReload, e.value = std::floor(r.number("reloads", 1, 1e9));
-            if (r.more()) e.timeout = r.number("seconds", 0.001, 1e6);
-        } else if (cmd == "wait-final") {
-            e.op = ScriptOp::WaitFinal, e.value = std::floor(r.number("final renders", 1, 1e9));
-            if (r.more()) e.timeout = r.number("seconds", 0.001, 1e6);
-        } else if (cmd == "wait-resize") {
-            e.op = ScriptOp::WaitResize, e.value = std::floor(r.number("resizes", 1, 1e9));
-            if (r.more()) e.timeout = r.number("seconds", 0.001, 1e6);
         } else if (cmd == "drop") {
             e.op = ScriptOp::Drop, e.text = r.word("path");
         } else if (cmd == "press" || cmd == "release") {
