@@ -27,6 +27,18 @@ Rgb shadowTransmittance(const EmbreeScene& rt, const Vec3& origin, const DirectL
             : nullptr;
     Ray ray{origin, d, 0.0f, finite ? dot(target - origin, d) : kInfinity};
     Rgb tr(1.0f);
+    // Where every surface blocks, the light is no emissive triangle (reaching that one is arriving)
+    // and the medium draws nothing (vacuum or homogeneous): the loop below would trace one ray and
+    // either return 0 at the first surface or the medium's transmittance to the light. An
+    // occluded query answers which, without the closest hit's record.
+    if (rt.everySurfaceBlocks() && !emitter && (medium == kVacuum || scene.media[medium].homogeneous())) {
+        if (!(ray.tMax > 0)) return tr;
+        if (rt.occluded(ray)) return Rgb(0.0f);
+        Ray seg;
+        if (medium != kVacuum && rt.mediumSegment(ray.o, d, ray.tMax, &seg))
+            tr *= estimateTransmittance(scene.media[medium], seg, seg.tMax, rng);
+        return tr;
+    }
     for (int crossing = 0; crossing <= kMaxShadowRayCrossings; ++crossing) {
         if (!(ray.tMax > 0)) return tr;
         SurfaceHit hit;

@@ -35,7 +35,9 @@ inline float diffuseCosine(const HitSide& side, const Vec3& wi) {
 /// transmittances of the medium segments on the way (analytic in homogeneous media, ratio tracking
 /// in grid media: draws from `rng` only there), or 0 when a surface other than an Interface blocks
 /// it. Stops just short of an emissive triangle. DirectLight's shadow rays and the equiangular
-/// estimator's (cpu/equiangular.h).
+/// estimator's (cpu/equiangular.h). In a scene where every surface blocks (EmbreeScene::
+/// everySurfaceBlocks), toward a light that is no emissive triangle, through vacuum or a
+/// homogeneous medium: one occluded query instead of the closest hit, with the same result.
 Rgb shadowTransmittance(const EmbreeScene& rt, const Vec3& origin, const DirectLightSample& light, MediumId medium,
                         Rng& rng);
 

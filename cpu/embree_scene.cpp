@@ -59,6 +59,9 @@ EmbreeScene::EmbreeScene(const Scene& scene, std::shared_ptr<EmbreeDevice> devic
                                                                    3 * sizeof(uint32_t), mesh.triangleCount()));
         std::copy(mesh.indices.begin(), mesh.indices.end(), idx);
         const bool validMaterial = mesh.material >= 0 && size_t(mesh.material) < scene.materials.size();
+        m_everySurfaceBlocks = m_everySurfaceBlocks && validMaterial &&
+                               scene.materials[size_t(mesh.material)].type != MaterialType::Interface &&
+                               scene.materials[size_t(mesh.material)].alphaMode == AlphaMode::Opaque;
         if (validMaterial && scene.materials[size_t(mesh.material)].alphaMode != AlphaMode::Opaque) {
             m_alpha[m] = AlphaGeometry{&scene, int(m)};
             rtcSetGeometryUserData(geom, &m_alpha[m]);

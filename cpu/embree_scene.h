@@ -58,6 +58,10 @@ public:
     bool intersect(const Ray& ray, SurfaceHit* hit) const;
     /// Any hit with t in (ray.tMin, ray.tMax).
     bool occluded(const Ray& ray) const;
+    /// Every surface stops a shadow ray: no mesh has an Interface material or an alpha mode other
+    /// than Opaque (materials as they were at construction, like the alpha filters). Then whether
+    /// anything lies between two points is one occluded() query (shadowTransmittance).
+    bool everySurfaceBlocks() const { return m_everySurfaceBlocks; }
     /// Embree's raw closest hit for `rh` (set up by initRayHit): no hit record, for the photon
     /// tracer's lean loop. True when something was hit.
     bool intersectRaw(RTCRayHit& rh) const {
@@ -186,6 +190,7 @@ private:
     std::shared_ptr<EmbreeDevice> m_device;
     RTCScene m_rtcScene = nullptr;
     float m_sceneDiagonal = 1.0f;
+    bool m_everySurfaceBlocks = true;
     Bounds3 m_mediumBounds;
     /// Per mesh: the vertex normals of each triangle, packed (one cache line, no index fetch), for
     /// specular meshes with normals; empty for every other mesh.

@@ -16,6 +16,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 #include "core/light_sampler.h"
 #include "cpu/direct_light.h"
@@ -187,6 +188,47 @@ TEST(DirectLight, AlphaMaskedOccluderCastsItsOpaqueHalfOnly) {
         EXPECT_GT(directAt(s, x, 0.3f), 0.05f);
     }
     for (float x : {0.4f, 0.8f}) EXPECT_EQ(directAt(s, x, 0.3f), 0.0f) << x;  // opaque half: shadowed
+}
+
+TEST(DirectLight, OccludedQueryGivesTheClosestHitLoopsTransmittanceBitForBit) {
+    // Where every surface blocks (no Interface, no alpha), shadowTransmittance asks one occluded
+    // query; with an Interface quad anywhere in the scene it walks closest hits. A quad where no
+    // shadow ray below goes makes the second scene take the loop: every answer, lit or blocked by
+    // the box, in fog and in vacuum, must be the same bits.
+    for (bool fog : {true, false}) {
+        Scene opaque = floorScene(fog, {pointLight({0.3f, 2.5f, -0.2f}, 1.0f)});
+        opaque.meshes.push_back(makeBox("blocker", {-0.6f, 0.8f, -0.5f}, {0.2f, 1.2f, 0.4f}, 0));
+        Scene crossed = opaque;
+        Material interface;
+        interface.name = "interface";
+        interface.type = MaterialType::Interface;
+        crossed.materials.push_back(interface);
+        crossed.meshes.push_back(makeQuad("portal", {4.2f, 2.5f, 4.2f}, {0.3f, 0, 0}, {0, 0, 0.3f}, 1));
+        opaque.finalize();
+        crossed.finalize();
+        EmbreeScene fast(opaque), loop(crossed);
+        ASSERT_TRUE(fast.everySurfaceBlocks());
+        ASSERT_FALSE(loop.everySurfaceBlocks());
+        Rng rng(21, 3);
+        int lit = 0, blocked = 0;
+        for (int i = 0; i < 400; ++i) {
+            const Vec3 p{4.0f * rng.uniform() - 2.0f, 1e-3f, 4.0f * rng.uniform() - 2.0f};
+            DirectLightSample ls;
+            ls.point = i % 2 ? Vec3(0.3f, 2.5f, -0.2f) : Vec3(rng.uniform() - 0.5f, 2.0f + rng.uniform(), rng.uniform());
+            ls.distance = length(ls.point - p);
+            ls.wi = (ls.point - p) / ls.distance;
+            ls.delta = true;
+            ls.source = 0;
+            Rng a(7, uint64_t(i)), b(7, uint64_t(i));
+            const Rgb ta = shadowTransmittance(fast, p, ls, opaque.globalMedium, a);
+            const Rgb tb = shadowTransmittance(loop, p, ls, crossed.globalMedium, b);
+            ASSERT_EQ(std::memcmp(&ta, &tb, sizeof ta), 0) << i << ": " << ta.g << " vs " << tb.g;
+            lit += ta.g > 0;
+            blocked += ta.isBlack();
+        }
+        EXPECT_GT(lit, 100);
+        EXPECT_GT(blocked, 20);
+    }
 }
 
 TEST(DirectLight, NormalMappedHitUsesTheShadingCosine) {
