@@ -4,9 +4,10 @@
 //    twice (anywhere on the beam, then on a camera segment) toward the camera, as a double integral
 //    over both scattering points computed in the test; the mean of many planes within 4 standard
 //    errors (isotropic, forward and backward HG).
-// 2. PPB with planes on, against the in-tree path tracer: the consistency room (fog, a spot and an
-//    area light, a mirror and a glass sphere: planes along primary and secondary segments, walls
-//    between a plane's two scattering points), with equiangular sampling off and on.
+// 2. PPB with planes on, against the in-tree path tracer: the fog box with a point light in view
+//    (the light's first beams splatted, planes for the rest), and the consistency room (fog, a spot
+//    and an area light, a mirror and a glass sphere: planes along primary and secondary segments,
+//    walls between a plane's two scattering points) with equiangular sampling.
 // 3. The variance law: with the path length capped at 3 in a black-walled fog box, equiangular
 //    sampling carries the single scattering and planes the double (no beam, no kernel left): a
 //    pixel's variance over seeds falls as 1/passes.
