@@ -249,53 +249,86 @@ void SurfaceBoundary::query(const Vec3& x, float r, std::vector<uint32_t>* out) 
     std::sort(out->begin(), out->end());  // Embree's traversal order is not fixed
 }
 
+float SurfaceBoundary::halfOctaveAbove(float r) {
+    uint32_t bits;
+    std::memcpy(&bits, &r, sizeof bits);
+    const uint32_t exponent = bits >> 23;  // r > 0: no sign bit
+    if (exponent == 0 || exponent >= 254) {  // subnormal, or the top binade, infinity and NaN
+        int e;
+        const float m = std::frexp(r, &e);  // r = m 2^e, m in [0.5, 1)
+        return std::ldexp(m < 0.70710677f ? 0.70710683f : 1.0f, e);
+    }
+    // frexp's m carries r's mantissa under the exponent of 0.5; ldexp of 0.70710683f (also in
+    // [0.5, 1)) or of 1 by e puts r's exponent, or the next, on them.
+    constexpr uint32_t kMantissa = (1u << 23) - 1, kHalfExponent = 126u << 23;
+    const uint32_t m = (bits & kMantissa) | kHalfExponent;
+    uint32_t limit, root;
+    const float lo = 0.70710677f, rootHalf = 0.70710683f;
+    std::memcpy(&limit, &lo, sizeof limit);
+    std::memcpy(&root, &rootHalf, sizeof root);
+    const uint32_t key = m < limit ? (exponent << 23) | (root & kMantissa) : (exponent + 1) << 23;
+    float out;
+    std::memcpy(&out, &key, sizeof out);
+    return out;
+}
+
 float SurfaceBoundary::coverage(const Vec3& x, const Vec3& ng, float r) const {
     if (!m_rtcScene || !(r > 0) || r <= m_clearance.clearance(x)) return 1.0f;
-    // The candidates of x's pre-check cell at this radius, cached per thread (surface_boundary.h);
-    // outside the grid, x's own.
+    // The candidates of x's pre-check cell at this radius, cached per thread (surface_boundary.h),
+    // with those that pass the normal test for the last normal asked for; outside the grid, x's own.
     struct CellCandidates {
         uint64_t owner = 0;
         size_t cell = 0;
         float r = 0;
         std::vector<uint32_t> list;
+        Vec3 ng = Vec3(kInfinity);         ///< the normal `facing` holds list's half-edges for
+        std::vector<uint32_t> facing;
     };
     constexpr int kCached = 4;
     thread_local CellCandidates cache[kCached];
     thread_local int nextSlot = 0;
-    thread_local std::vector<uint32_t> own;
-    const std::vector<uint32_t>* candidates = nullptr;
+    thread_local CellCandidates own;
+    CellCandidates* candidates = nullptr;
     size_t cell;
     Vec3 centre;
     float reach;
     if (m_clearance.cellOf(x, &cell, &centre, &reach)) {
         // Keyed by the half octave above r (photons with the cone carry many radii): the cell's
         // list holds the half-edges within that radius, a superset of those within r.
-        int e;
-        const float m = std::frexp(r, &e);  // r = m 2^e, m in [0.5, 1)
-        const float rKey = std::ldexp(m < 0.70710677f ? 0.70710683f : 1.0f, e);
-        for (const CellCandidates& c : cache)
-            if (c.owner == m_id && c.cell == cell && c.r == rKey) candidates = &c.list;
+        const float rKey = halfOctaveAbove(r);
+        for (CellCandidates& c : cache)
+            if (c.owner == m_id && c.cell == cell && c.r == rKey) candidates = &c;
         if (!candidates) {
             CellCandidates& c = cache[nextSlot];
             nextSlot = (nextSlot + 1) % kCached;
             c.owner = m_id, c.cell = cell, c.r = rKey;
             c.list.clear();
+            c.ng = Vec3(kInfinity);
             query(centre, rKey + reach, &c.list);
-            candidates = &c.list;
+            candidates = &c;
         }
     } else {
-        own.clear();
-        query(x, r, &own);
+        own.list.clear();
+        own.ng = Vec3(kInfinity);
+        query(x, r, &own.list);
         candidates = &own;
     }
-    if (candidates->empty()) return 1.0f;
+    if (candidates->list.empty()) return 1.0f;
+    // Another plane's edge; on a sheet of mixed winding either face of x's plane is x's.
+    if (std::memcmp(&candidates->ng, &ng, sizeof ng) != 0) {
+        candidates->facing.clear();
+        for (uint32_t i : candidates->list) {
+            const HalfEdge& e = m_edges[i];
+            if ((e.mixedWinding ? std::abs(dot(e.normal, ng)) : dot(e.normal, ng)) >= kNormalAgreement)
+                candidates->facing.push_back(i);
+        }
+        candidates->ng = ng;
+    }
 
     const Frame frame(ng);
     double missing = 0;
-    for (uint32_t i : *candidates) {
+    for (uint32_t i : candidates->facing) {
         const HalfEdge& e = m_edges[i];
-        // Another plane's edge; on a sheet of mixed winding either face of x's plane is x's.
-        if ((e.mixedWinding ? std::abs(dot(e.normal, ng)) : dot(e.normal, ng)) < kNormalAgreement) continue;
         if (dot(x - e.a, e.inward) < 0) continue;          // x is not on the surface it bounds
         // Near x's plane where it passes closest: the photons of that surface are in the gather's slab.
         const Vec3 ab = e.b - e.a;

@@ -48,8 +48,9 @@
 // (cpu/surface_boundary_clearance.h) answers those without the point query, conservatively, so
 // the coverage is bit for bit what the query gives. Near an edge, the half-edges within r of any
 // point of the grid cell holding x are found once per cell and radius and kept per thread (the last
-// few): neighbouring gather points share them. A superset of those within r of x, summed in
-// half-edge order after the same tests, so again the same coverage.
+// few), with those among them that pass the normal test for the last normal asked for (a wall's
+// gather points share it): neighbouring gather points share them. A superset of those within r of
+// x, summed in half-edge order after the same tests, so again the same coverage.
 #include <embree3/rtcore.h>
 
 #include <cstdint>
@@ -130,6 +131,10 @@ public:
     /// mass beyond the segment a-b (on the side away from the origin) inside the angle the
     /// segment subtends from the origin. Half-plane at distance h: 1/2 at h = 0, 0 at h >= r.
     static double massBeyondSegment(double ax, double ay, double bx, double by, double r);
+    /// The key of the per-cell candidate lists for radius r > 0: ldexp(m < 0.70710677 ? 0.70710683
+    /// : 1, e) with r = m 2^e, m in [0.5, 1) (frexp), the half octave at or above r, by bit
+    /// operations (frexp and ldexp themselves for subnormal and the largest r).
+    static float halfOctaveAbove(float r);
 
     static constexpr float kMinCoverage = 0.25f;
     /// The diffuse gather's normal test (camera_tracer.cpp): photons whose normal is within this

@@ -20,6 +20,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <vector>
 
 #include "core/accumulator.h"
 #include "core/rng.h"
@@ -206,6 +208,45 @@ TEST(SurfaceBoundary, CoverageInARoom) {
     EXPECT_FLOAT_EQ(floorCoverage(frt, fb, 0.05f, 0.3f, r), 1.0f);
     EXPECT_NEAR(floorCoverage(frt, fb, 0.95f, 0.3f, r), 1 - SurfaceBoundary::massBeyondSegment(0.05, -5, 0.05, 5, r),
                 1e-4);
+}
+
+TEST(SurfaceBoundary, HalfOctaveKeyIsFrexpAndLdexpBitForBit) {
+    auto definition = [](float r) {
+        int e;
+        const float m = std::frexp(r, &e);
+        return std::ldexp(m < 0.70710677f ? 0.70710683f : 1.0f, e);
+    };
+    std::vector<float> radii = {1e-45f, 1e-39f, 1.1754942e-38f, 1.1754944e-38f, 0.5f, 0.70710677f, 0.70710683f,
+                                std::nextafter(0.70710677f, 0.0f), 1.0f, 3.0e38f, 1.7e38f, 8.5e37f, kInfinity};
+    Rng rng(5, 5);
+    for (int i = 0; i < 20000; ++i) radii.push_back(std::ldexp(0.5f + 0.5f * rng.uniform(), int(rng.uniform() * 260) - 140));
+    for (float r : radii) {
+        const float a = SurfaceBoundary::halfOctaveAbove(r), b = definition(r);
+        ASSERT_EQ(std::memcmp(&a, &b, sizeof a), 0) << r << ": " << a << " vs " << b;
+    }
+}
+
+TEST(SurfaceBoundary, CellCandidatesServeEveryNormalAsAFreshQuery) {
+    // A corner of the room: the floor's and two walls' points share pre-check cells, and the
+    // per-thread candidate lists keep the half-edges facing the last normal asked for. Asked in
+    // turn with each normal, the coverage must equal what a boundary with empty caches gives.
+    Scene room = roomScene(false);
+    EmbreeScene rt(room);
+    const Vec3 points[3][2] = {{{0.93f, -1.0f, 0.91f}, {0, 1, 0}},    // floor
+                               {{1.0f, -0.95f, 0.9f}, {-1, 0, 0}},    // wall x = 1
+                               {{0.92f, -0.94f, 1.0f}, {0, 0, -1}}};  // wall z = 1
+    float fresh[3][2];
+    for (int k = 0; k < 3; ++k)
+        for (int j = 0; j < 2; ++j) {
+            SurfaceBoundary b(room, rt);  // a new owner: nothing cached for it
+            fresh[k][j] = b.coverage(points[k][0], points[k][1], j ? 0.3f : 0.12f);
+            EXPECT_LT(fresh[k][j], 0.99f) << "the point is near edges";
+        }
+    SurfaceBoundary b(room, rt);
+    for (int round = 0; round < 3; ++round)
+        for (int k = 0; k < 3; ++k)
+            for (int j = 0; j < 2; ++j)
+                EXPECT_EQ(b.coverage(points[k][0], points[k][1], j ? 0.3f : 0.12f), fresh[k][j]) << k << " " << j;
 }
 
 /// A diffuse (or `floorType`) floor x, z in [-1, 1] at y = 0 in a room of black walls 1 high,
