@@ -129,6 +129,19 @@ private:
     };
 
     [[gnu::always_inline]] bool sampleDelta(float u, BsdfSample* s, Rgb* w) const;
+    /// sample()'s coat, GGX conductor and rough dielectric, out of line and on copies (the Bsdf's
+    /// address never leaves the tracer, so the compiler keeps its fields in registers: the photon
+    /// stage, docs/performance.md). The direction, pdf, lobe, medium and eta, and the weight
+    /// f |wi . ns| / pdf before the roulette and the adjoint; not valid where sample() ends the path.
+    struct FramedSample {
+        BsdfSample s;
+        Rgb weight;
+        bool valid = false;
+    };
+    template <class Uniforms>
+    [[gnu::noinline]] static FramedSample sampleFramed(Framed f, HitSide side, MediumId medium, MediumId beyond,
+                                                       bool thin, float ior, TransportMode mode, BsdfLobes allowed,
+                                                       Uniforms& rng);
     /// at()'s coat (Plastic without its metal part), GGX conductor or rough dielectric at a hit
     /// seen from `side`, shading normal `ns`, `wo` = -dIn: the kind, lobes, frame and component.
     /// `metal`: the metal part was chosen. Everything by value (see at()).
@@ -322,45 +335,13 @@ inline bool Bsdf::sample(Uniforms& rng, Rgb* beta, BsdfSample* s, BsdfLobes allo
             w = m_rho;
             break;
         }
-        case Kind::Coated: {
-            // The components' samplers may stay out of line: they get copies, not the Bsdf.
-            const CoatedDiffuse coat = component().coat;
-            const Vec3 wo = local().wo;
-            CoatedSample c;
-            if (allowed & kLobeDiffuse) {
-                const float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
-                c = coat.sample(wo, u0, u1, u2);
-            } else {
-                if (!(allowed & (kLobeGlossy | kLobeSpecular))) return false;
-                const float u1 = rng.uniform(), u2 = rng.uniform();
-                c = coat.sampleSpecular(wo, u1, u2);
-            }
-            if (!c.valid) return false;
-            s->wi = normalize(local().frame.toWorld(c.wi));
-            s->pdf = c.pdf;
-            s->lobe = kLobeReflection | (!c.specular ? kLobeDiffuse : c.delta ? kLobeSpecular : kLobeGlossy);
-            if (!(dot(s->wi, m_side.nf) > 0)) return false;
-            w = c.weight;
-            break;
-        }
+        case Kind::Coated:
         case Kind::Conductor:
         case Kind::RoughDielectric: {
-            if (!(allowed & kLobeGlossy)) return false;
-            const float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
-            const Vec3 wo = local().wo;
-            const MicrofacetSample m = m_kind == Kind::Conductor
-                                           ? RoughConductor(component().metal).sample(wo, u1, u2)
-                                           : RoughDielectric(component().glass).sample(wo, u0, u1, u2, m_mode);
-            if (!m.valid) return false;
-            s->wi = normalize(local().frame.toWorld(m.wi));
-            s->pdf = m.pdf;
-            s->lobe = kLobeGlossy | (m.transmitted ? kLobeTransmission : kLobeReflection);
-            if (m.transmitted) {
-                s->medium = m_beyond;
-                if (!m_thin) s->eta = m_side.entering ? 1.0f / m_ior : m_ior;
-            }
-            if (!(m.transmitted ? dot(s->wi, m_side.nf) < 0 : dot(s->wi, m_side.nf) > 0)) return false;
-            w = m.weight;
+            const FramedSample r = sampleFramed(m_framed, m_side, m_medium, m_beyond, m_thin, m_ior, m_mode, allowed, rng);
+            if (!r.valid) return false;
+            *s = r.s;
+            w = r.weight;
             break;
         }
         case Kind::Delta:
@@ -377,6 +358,60 @@ inline bool Bsdf::sample(Uniforms& rng, Rgb* beta, BsdfSample* s, BsdfLobes allo
     *beta *= w;
     s->weight = w;
     return true;
+}
+
+template <class Uniforms>
+Bsdf::FramedSample Bsdf::sampleFramed(Framed f, HitSide side, MediumId medium, MediumId beyond, bool thin, float ior,
+                                      TransportMode mode, BsdfLobes allowed, Uniforms& rng) {
+    FramedSample r;
+    BsdfSample* s = &r.s;
+    s->medium = medium;
+    s->eta = 1.0f;
+    const Local& local = f.parts.local;
+    switch (f.kind) {
+        case Kind::Coated: {
+            const CoatedDiffuse& coat = f.component.coat;
+            CoatedSample c;
+            if (allowed & kLobeDiffuse) {
+                const float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+                c = coat.sample(local.wo, u0, u1, u2);
+            } else {
+                if (!(allowed & (kLobeGlossy | kLobeSpecular))) return r;
+                const float u1 = rng.uniform(), u2 = rng.uniform();
+                c = coat.sampleSpecular(local.wo, u1, u2);
+            }
+            if (!c.valid) return r;
+            s->wi = normalize(local.frame.toWorld(c.wi));
+            s->pdf = c.pdf;
+            s->lobe = kLobeReflection | (!c.specular ? kLobeDiffuse : c.delta ? kLobeSpecular : kLobeGlossy);
+            if (!(dot(s->wi, side.nf) > 0)) return r;
+            r.weight = c.weight;
+            break;
+        }
+        case Kind::Conductor:
+        case Kind::RoughDielectric: {
+            if (!(allowed & kLobeGlossy)) return r;
+            const float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+            const MicrofacetSample m = f.kind == Kind::Conductor ? f.component.metal.sample(local.wo, u1, u2)
+                                                                 : f.component.glass.sample(local.wo, u0, u1, u2, mode);
+            if (!m.valid) return r;
+            s->wi = normalize(local.frame.toWorld(m.wi));
+            s->pdf = m.pdf;
+            s->lobe = kLobeGlossy | (m.transmitted ? kLobeTransmission : kLobeReflection);
+            if (m.transmitted) {
+                s->medium = beyond;
+                if (!thin) s->eta = side.entering ? 1.0f / ior : ior;
+            }
+            if (!(m.transmitted ? dot(s->wi, side.nf) < 0 : dot(s->wi, side.nf) > 0)) return r;
+            r.weight = m.weight;
+            break;
+        }
+        case Kind::Diffuse:
+        case Kind::Delta:
+            return r;
+    }
+    r.valid = true;
+    return r;
 }
 
 }  // namespace tyndall

@@ -302,7 +302,8 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
             }
         }
         if (mat.type != MaterialType::Interface) direct = false;  // a diffuse, glossy, mirror or glass vertex scatters
-        const Bsdf bsdf = Bsdf::at(m_scene, hit, at, d, medium, TransportMode::Importance, rng);
+        // Not const: GCC keeps a const aggregate in memory (no scalar replacement).
+        Bsdf bsdf = Bsdf::at(m_scene, hit, at, d, medium, TransportMode::Importance, rng);
         // Russian roulette keeps path power near its start value, at every vertex but delta ones.
         const bool roulette = (bsdf.lobes() & (kLobeDiffuse | kLobeGlossy)) != 0;
         BsdfSample s;
@@ -314,7 +315,9 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
         deltaPath = deltaPath && (s.lobe & kLobeSpecular);
         medium = s.medium;
         const bool diffuse = bsdf.lobes() == (kLobeReflection | kLobeDiffuse);
-        o = m_rt.offsetOrigin(p, tHit, diffuse ? bsdf.side().nf : ng, s.wi);
+        Vec3 away = ng;  // by value: a pointer into the Bsdf (a ?: of lvalues) would keep it in memory
+        if (diffuse) away = bsdf.side().nf;
+        o = m_rt.offsetOrigin(p, tHit, away, s.wi);
         d = s.wi;
         if (!bsdf.isPassThrough()) ++segment;
     }

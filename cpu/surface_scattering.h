@@ -22,7 +22,8 @@ inline SurfacePoint surfaceAt(const Scene& scene, const SurfaceHit& hit, float f
 inline void applyNormalMap(const Scene& scene, SurfaceHit* hit, float footprint) {
     const TriangleMesh& mesh = scene.meshes[size_t(hit->mesh)];
     if (!scene.materials[size_t(mesh.material)].isNormalMapped()) return;
-    hit->ns = normalMappedNormal(scene, mesh, hit->triangle, hit->b1, hit->b2, hit->ng, footprint);
+    const Vec3 ng = hit->ng;  // a copy: the hit's address stays with the caller
+    hit->ns = normalMappedNormal(scene, mesh, hit->triangle, hit->b1, hit->b2, ng, footprint);
 }
 
 }  // namespace tyndall
