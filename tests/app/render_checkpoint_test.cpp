@@ -16,6 +16,7 @@
 #include <thread>
 #include <vector>
 
+#include "app/render_checkpoint.h"
 #include "core/checkpoint.h"
 #include "core/error.h"
 #include "core/image_io.h"
@@ -238,6 +239,22 @@ TEST(ResumeErrors, ChangedSceneTruncatedAndForeignFilesAreRefusedUntouched) {
     r = runTyndall("render --resume " + ck + " --photons 5 -q");
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_NE(r.output.find("--photons"), std::string::npos) << r.output;
+}
+
+// The on/off switches are recorded as set; a checkpoint written before a switch existed has no key
+// for it and was rendered as with it off, so it resumes that way, whatever today's default.
+TEST(ResumeRecord, SwitchesAbsentFromOlderCheckpointsReadAsTheyWereRendered) {
+    tyndall::app::RenderRecord record;
+    record.settings.equiangular = record.settings.directLight = record.settings.surfaceBoundary = true;
+    tyndall::Checkpoint c =
+        tyndall::app::makeCheckpoint(record, std::vector<std::pair<std::string, tyndall::Accumulator>>{});
+    tyndall::RenderSettings now = tyndall::app::readRecord(c, "new.ckpt").settings;
+    EXPECT_TRUE(now.equiangular && now.directLight && now.surfaceBoundary);
+    for (const char* key : {"equiangular", "direct_light", "surface_boundary"}) c.header["settings"].erase(key);
+    tyndall::RenderSettings old = tyndall::app::readRecord(c, "old.ckpt").settings;
+    EXPECT_FALSE(old.equiangular);
+    EXPECT_FALSE(old.directLight);
+    EXPECT_FALSE(old.surfaceBoundary);
 }
 
 }  // namespace
