@@ -223,7 +223,7 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
     const uint64_t pass = primary.pass;
     const float spread = pixelSpread(m_scene.camera.yFov, h);  // texture footprint per unit path length
     Image radiance(w, h);
-    if (layers) *layers = SecondaryLayers{Image(w, h), Image(w, h)};
+    if (layers) *layers = SecondaryLayers{Image(w, h), Image(w, h), Image(w, h)};
     tbb::enumerable_thread_specific<ThreadScratch> scratch;
     // --photon-planes on: this batch's planes, gathered along every camera segment in a
     // homogeneous medium (cpu/plane_bvh.h).
@@ -254,7 +254,7 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
             const bool keep = stored.contains(x, y);
             const uint64_t pixel = uint64_t(y) * w + x;
             const PrimaryHit& ph = (*primary.hits)[pixel];
-            Rgb throughput = ph.throughput, L, Lmedia, Lsurface;
+            Rgb throughput = ph.throughput, L, Lmedia, Lsurface, LmediaPrimary;
             float clear = 0;  // the share of this path that reached the background (transparent film)
             auto store = [&]() {
                 if (!keep) return;
@@ -263,12 +263,13 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                 if (layers) {
                     layers->media.at(x, y) = Lmedia;
                     layers->surface.at(x, y) = Lsurface;
+                    layers->mediaPrimary.at(x, y) = LmediaPrimary;
                 }
             };
             // The primary segment's medium emission (the splatters add its beams) and, with
             // --equiangular on, its single scattering from point and spot lights (a light path of
             // two segments), once per pass like the emission.
-            if (emission) L = Lmedia = ph.emitted;
+            if (emission) L = LmediaPrimary = ph.emitted;
             const int maxLength = m_settings.maxPathLength;
             Rng equiangularRng = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::Equiangular);
             if (m_equiangular && emission && (maxLength == 0 || maxLength >= 2)) {
@@ -276,7 +277,7 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                 if (pr.medium != kVacuum && pr.tMax > 0) {
                     const Rgb single = m_equiangular->estimate(pr.medium, pr.origin, pr.dir, pr.tMax, equiangularRng);
                     L += single;
-                    Lmedia += single;
+                    LmediaPrimary += single;
                 }
             }
             // --photon-planes on: the planes of this batch along the primary segment (the splatters
@@ -287,7 +288,7 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                     const Rgb planes = gatherPlanes(m_rt, *planeBvh, pr.medium, pr.origin, pr.dir, pr.tMax,
                                                     maxLength > 0 ? maxLength - 1 : 0, tls.planes);
                     L += planes;
-                    Lmedia += planes;
+                    LmediaPrimary += planes;
                 }
             }
             if (!ph.surface) {

@@ -105,11 +105,12 @@ struct PrimaryPass {
     }
 };
 
-/// The secondary stage's radiance split by what it comes from (AOV layers); the two add up to
+/// The secondary stage's radiance split by what it comes from (AOV layers); the three add up to
 /// the stage's radiance (up to float rounding).
 struct SecondaryLayers {
-    Image media;    ///< media seen through mirrors and glass (the secondary segments' beams)
-    Image surface;  ///< surface photons and emission
+    Image media;         ///< media seen through mirrors and glass (the secondary segments)
+    Image surface;       ///< surface photons and emission
+    Image mediaPrimary;  ///< the primary segments' medium light not splatted: emission, equiangular, planes
 };
 
 struct CameraPassResult {

@@ -165,7 +165,8 @@ Image PassRenderer::renderBatches(uint64_t pass, PassStats* stats, PassLayers* l
         RasterStats raster;
         Image part = splatPrimary(primary.segments, photons, &raster);
         if (layers) {
-            addBatch(layers->mediaPrimary, Image(part));
+            secondary.mediaPrimary += part;  // the splat's beams and the CPU's share of the primary segments
+            addBatch(layers->mediaPrimary, std::move(secondary.mediaPrimary));
             addBatch(layers->mediaSecondary, std::move(secondary.media));
             addBatch(layers->surface, std::move(secondary.surface));
         }

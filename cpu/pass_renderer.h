@@ -56,7 +56,8 @@ struct PassStats {
 /// mediaSecondary + surface up to float rounding; beauty itself has the same bits as renderPass's.
 struct PassLayers {
     Image beauty;
-    Image mediaPrimary;    ///< media seen directly by the camera (the primary segments' beams)
+    Image mediaPrimary;    ///< media seen directly by the camera (the primary segments: beams,
+                           ///< emission, equiangular single scattering, planes)
     Image mediaSecondary;  ///< media seen through mirrors and glass
     Image surface;         ///< surface photons and emission
     /// With RenderSettings::transparentFilm (renderPass with or without layers): the coverage,

@@ -24,7 +24,7 @@ PassLayers PassFlight::finishGl() {
     while (!splats.empty()) collectSplat();
     if (glError) std::rethrow_exception(glError);
     PassLayers out = std::move(image);
-    if (!out.surface.pixels.empty()) out.mediaPrimary = splatSum;  // the AOV layers
+    if (!out.surface.pixels.empty()) addBatch(out.mediaPrimary, Image(splatSum));  // the AOV layers
     splatSum += out.beauty;
     out.beauty = std::move(splatSum);
     return out;

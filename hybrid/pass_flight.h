@@ -31,7 +31,7 @@ struct PassFlight {
     /// Waits for every pending splat, their images dropped (a pass thrown away).
     void waitSplats();
     /// GL: collects the remaining splats and returns the pass: beauty = splats + secondary
-    /// radiance, mediaPrimary = the splats. Rethrows glError.
+    /// radiance, mediaPrimary = the splats + the CPU's primary-segment share. Rethrows glError.
     PassLayers finishGl();
 };
 

@@ -234,6 +234,7 @@ void PassScheduler::Run::traceGlBatches(PassFlight& f) {
                  m_renderer.traceSecondary(*m_primary, *m_photons, &m_camera, batch == 0, layers ? &secondary : nullptr,
                                            m_renderer.settings().transparentFilm ? &f.image.alpha : nullptr));
         if (layers) {
+            addBatch(f.image.mediaPrimary, std::move(secondary.mediaPrimary));  // the GL splat adds its beams
             addBatch(f.image.mediaSecondary, std::move(secondary.media));
             addBatch(f.image.surface, std::move(secondary.surface));
         }

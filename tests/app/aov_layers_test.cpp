@@ -1,7 +1,8 @@
 // `tyndall render --aov`: each layer on a scene where it alone holds the light. The layers adding up
 // to the beauty image (tests/app/render_production_test.cpp) cannot tell two of them apart: a swap
 // passes it. Here
-//   - fog lit by a point light, seen directly, black walls: all in media_primary;
+//   - fog lit by a point light, seen directly, black walls: all in media_primary (equiangular
+//     sampling off and on);
 //   - fog in a closed volume the camera sees only in a mirror (vacuum elsewhere): all in media_secondary;
 //   - no medium, a lit floor seen directly and in a mirror, and an emitter: all in surface.
 // In each, the other two layers are zero (to float rounding) and the known one is the beauty image.
@@ -34,12 +35,14 @@ double layerSum(const std::string& exr, const std::string& layer) {
     return sum;
 }
 
-/// Renders `scene` with --aov and checks that layer `only` holds the beauty image and the others nothing.
-void expectOnlyLayer(const std::string& name, const std::string& scene, const std::string& only) {
+/// Renders `scene` with --aov (and `options`) and checks that layer `only` holds the beauty image and
+/// the others nothing.
+void expectOnlyLayer(const std::string& name, const std::string& scene, const std::string& only,
+                     const std::string& options = "") {
     const std::string exr = tyndall::test::outputDir() + "/aov_" + name + ".exr";
     std::remove(exr.c_str());
     auto r = runTyndall("render " + writeScene(name, scene) +
-                        " --size 32x24 --passes 3 --photons 3000 --seed 5 --gpu off -q --aov -o " + exr);
+                        " --size 32x24 --passes 3 --photons 3000 --seed 5 --gpu off -q --aov " + options + " -o " + exr);
     ASSERT_EQ(r.exitCode, 0) << r.output;
     const double beauty = layerSum(exr, "");
     ASSERT_GT(beauty, 1.0) << name << ": the scene should be lit";
@@ -54,13 +57,16 @@ void expectOnlyLayer(const std::string& name, const std::string& scene, const st
 }
 
 TEST(AovLayers, FogSeenDirectlyIsMediaPrimaryAlone) {
-    expectOnlyLayer("direct_fog", R"({"name": "aov-direct-fog",
+    // With equiangular sampling the lamp's single scattering along the primary segments is the
+    // CPU's, not the splat's: media_primary all the same.
+    for (const std::string equiangular : {"off", "on"})
+        expectOnlyLayer("direct_fog_equiangular_" + equiangular, R"({"name": "aov-direct-fog",
  "materials": [{"name": "black", "albedo": 0}],
  "media": [{"name": "fog", "sigma_s": 0.3, "sigma_a": 0.05}], "global_medium": "fog",
  "shapes": [{"type": "box", "name": "room", "material": "black", "min": [-2, -2, -2], "max": [2, 2, 2], "inward": true}],
  "lights": [{"type": "point", "name": "p", "position": [0, 0, 0], "intensity": 2}],
  "cameras": [{"name": "c", "position": [0, 0, 1.8], "target": [0, 0, 0], "fov": 60}]})",
-                    "media_primary");
+                        "media_primary", "--equiangular " + equiangular);
 }
 
 TEST(AovLayers, FogSeenOnlyInAMirrorIsMediaSecondaryAlone) {
