@@ -29,9 +29,9 @@ constexpr uint64_t kImagesPerPass = 8;
 // AOV layers: LayerAccumulator's double sums (beauty, its three components, the beauty squares).
 constexpr uint64_t kAovAccumulators = 5;
 // Float images an AOV pass adds (PassRenderer::renderPassLayers, the render driver's MPI rounds):
-// its three component images, the secondary stage's two parts, and the packed, gathered and
+// its three component images, the secondary stage's three parts, and the packed, gathered and
 // unpacked copies of its four images.
-constexpr uint64_t kAovImagesPerPass = 3 + 2 + 3 * 4;
+constexpr uint64_t kAovImagesPerPass = 3 + 3 + 3 * 4;
 // A checkpoint's JSON header (the resolved settings, paths) and layer records: a few KiB.
 constexpr uint64_t kCheckpointHeaderBytes = 64 * 1024;
 }  // namespace
