@@ -370,21 +370,9 @@ TEST(EquiangularPpb, FogBoxWithTheLampInViewAndAPanelAgreesWithThePathTracer) {
     ps.surfaceRadius = 0.06f;
     ps.radiusOffset = 1000000000000ull;
     ps.photonAngle = 0;
-    PassRenderer renderer(scene, ps);
-    const int batches = 8, passesPerBatch = 4;
-    std::vector<Image> means;
-    for (int b = 0; b < batches; ++b) means.push_back(test::renderPpbPasses(renderer, uint64_t(b) * passesPerBatch, passesPerBatch));
-
-    ReferenceSettings rs;
-    rs.width = rs.height = size;
-    rs.samplesPerPixel = 512;
-    rs.seed = 21;
-    EmbreeScene rt(scene);
-    ReferenceImage ref = ReferenceTracer(rt, rs).render();
-
     // The whole image and its four quadrants (the lamp is in the upper right one), within 4
     // standard errors plus 2% for the kernel bias of the scattered light's beams and photons.
-    test::expectQuadrantsAgree(means, ref, 0.03, 0.02);
+    test::expectBatchesAgreeWithThePathTracer(scene, ps, 0.03, 0.02);
 }
 
 TEST(EquiangularPpb, LightsEditedInPlaceGiveTheImageOfAFreshRenderer) {

@@ -116,21 +116,9 @@ void expectPlanesAgreeWithThePathTracer(const Scene& scene, bool equiangular, ui
     ps.photonAngle = 0;
     ps.photonPlanes = true;
     ps.equiangular = equiangular;
-    PassRenderer renderer(scene, ps);
-    const int batches = 8, passesPerBatch = 4;
-    std::vector<Image> means;
-    for (int b = 0; b < batches; ++b) means.push_back(test::renderPpbPasses(renderer, uint64_t(b) * passesPerBatch, passesPerBatch));
-
-    ReferenceSettings rs;
-    rs.width = rs.height = size;
-    rs.samplesPerPixel = 512;
-    rs.seed = 21;
-    EmbreeScene rt(scene);
-    ReferenceImage ref = ReferenceTracer(rt, rs).render();
-
     // The whole image and its four quadrants, within 4 standard errors plus `bias` for the kernel
     // bias of the remaining beams and surface photons.
-    test::expectQuadrantsAgree(means, ref, noise, bias);
+    test::expectBatchesAgreeWithThePathTracer(scene, ps, noise, bias);
 }
 
 TEST(PhotonPlanePpb, FogBoxWithAPartitionAgreesWithThePathTracer) {

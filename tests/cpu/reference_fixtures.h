@@ -366,6 +366,26 @@ inline void expectQuadrantsAgree(const std::vector<Image>& means, const Referenc
     }
 }
 
+/// PPB with `ps` (constant radii, so batches are independent and alike) against a 512-spp reference
+/// of the same size (seed 21): 8 batches of 4 passes, then expectQuadrantsAgree with `noise` and
+/// `bias`.
+inline void expectBatchesAgreeWithThePathTracer(const Scene& scene, const RenderSettings& ps, double noise,
+                                                double bias) {
+    PassRenderer renderer(scene, ps);
+    const int batches = 8, passesPerBatch = 4;
+    std::vector<Image> means;
+    for (int b = 0; b < batches; ++b) means.push_back(renderPpbPasses(renderer, uint64_t(b) * passesPerBatch, passesPerBatch));
+
+    ReferenceSettings rs;
+    rs.width = ps.width;
+    rs.height = ps.height;
+    rs.samplesPerPixel = 512;
+    rs.seed = 21;
+    EmbreeScene rt(scene);
+    ReferenceImage ref = ReferenceTracer(rt, rs).render();
+    expectQuadrantsAgree(means, ref, noise, bias);
+}
+
 /// The variance law of a renderer whose passes are independent and unbiased: renders `scene` with
 /// `ps` and `seeds` seeds (firstSeed, firstSeed + 1, ...) for 4 and for 16 passes; per pixel the
 /// variance over seeds relative to the pixel's mean squared, averaged over pixels; returns the slope
