@@ -271,20 +271,20 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
             // two segments), once per pass like the emission.
             if (emission) L = LmediaPrimary = ph.emitted;
             const int maxLength = m_settings.maxPathLength;
-            Rng equiangularRng = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::Equiangular);
-            if (m_equiangular && emission && (maxLength == 0 || maxLength >= 2)) {
-                const PrimaryRay& pr = primary.segments.rays[pixel];
-                if (pr.medium != kVacuum && pr.tMax > 0) {
+            // Keyed only where --equiangular on draws from it (every use is behind m_equiangular).
+            Rng equiangularRng =
+                m_equiangular ? Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::Equiangular) : Rng();
+            const PrimaryRay& pr = primary.segments.rays[pixel];
+            if (((m_equiangular && emission) || planeBvh) && (maxLength == 0 || maxLength >= 2) &&
+                pr.medium != kVacuum && pr.tMax > 0) {
+                if (m_equiangular && emission) {
                     const Rgb single = m_equiangular->estimate(pr.medium, pr.origin, pr.dir, pr.tMax, equiangularRng);
                     L += single;
                     LmediaPrimary += single;
                 }
-            }
-            // --photon-planes on: the planes of this batch along the primary segment (the splatters
-            // draw only beams), as along every later one.
-            if (planeBvh && (maxLength == 0 || maxLength >= 2)) {
-                const PrimaryRay& pr = primary.segments.rays[pixel];
-                if (pr.medium != kVacuum && pr.tMax > 0 && m_scene.media[pr.medium].homogeneous()) {
+                // --photon-planes on: this batch's planes along it too (the splatters draw only
+                // beams), as along every later segment.
+                if (planeBvh && m_scene.media[pr.medium].homogeneous()) {
                     const Rgb planes = gatherPlanes(m_rt, *planeBvh, pr.medium, pr.origin, pr.dir, pr.tMax,
                                                     maxLength > 0 ? maxLength - 1 : 0, tls.planes);
                     L += planes;
@@ -296,7 +296,7 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                 // transparent film, the coverage it leaves).
                 clear = throughput.average();
                 if (environment && background && !throughput.isBlack()) {
-                    Lsurface = throughput * environment->eval(primary.segments.rays[pixel].dir);
+                    Lsurface = throughput * environment->eval(pr.dir);
                     L += Lsurface;
                 }
                 store();
@@ -313,7 +313,7 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
             Rng neeRng = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::DirectLight);
             MediumId medium = ph.medium;
             SurfaceHit hit = ph.hit;
-            Vec3 dir = primary.segments.rays[pixel].dir;
+            Vec3 dir = pr.dir;
             float pathLength = hit.t;
             bool straight = true;  // no reflection or refraction yet (Interface crossings are none)
             // RenderSettings::maxPathLength: `segment` is the index of the camera segment that
