@@ -10,6 +10,7 @@
 
 #include "core/environment_light.h"
 #include "loading/mesh_builders.h"
+#include "tests/test_scenes.h"
 #include "tests/test_util.h"
 #include "viewer/render_loop.h"
 #include "viewer/view_save.h"
@@ -21,10 +22,7 @@ TEST(RenderLoopAlpha, FramesCarryTheCoverageAndASavedViewWritesIt) {
     Scene s;
     s.name = "film";
     s.source = "<test>";
-    Material card;
-    card.name = "card";
-    card.albedo = Rgb(0.5f);
-    s.materials.push_back(card);
+    test::addMaterial(s, "card", MaterialType::Diffuse, Rgb(0.5f));
     s.meshes.push_back(makeQuad("card", {-2, -2, -3}, {2, 0, 0}, {0, 4, 0}, 0));  // the left half
     s.environment = EnvironmentLight::constant(Rgb(1.5f));
     s.camera = Camera::lookAt({0, 0, 0}, {0, 0, -3}, {0, 1, 0}, 0.7f);
