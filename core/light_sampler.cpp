@@ -211,11 +211,8 @@ DirectLightSample LightSampler::sampleDirect(const Vec3& x, Rng& rng) const {
         return s;
     }
     const EmissiveTriangle& e = m_scene.emitters[i - m_scene.lights.size()];
-    const TriangleMesh& mesh = m_scene.meshes[e.mesh];
     Vec2 b = sampleUniformTriangle(u1, u2);
-    s.point = mesh.vertex(e.triangle, 0) * (1.0f - b.x - b.y) + mesh.vertex(e.triangle, 1) * b.x +
-              mesh.vertex(e.triangle, 2) * b.y;
-    s.normal = normalize(mesh.geometricNormal(e.triangle));
+    emitterPointAt(e, b, &s.point, &s.normal);
     Vec3 toLight = s.point - x;
     float d2 = lengthSquared(toLight);
     if (!(d2 > 0)) return DirectLightSample{};
@@ -288,11 +285,9 @@ EmittedPhoton LightSampler::sample(Rng& rng) const {
         power = es.pdf > 0 ? es.radiance * (kPi * m_sceneRadius * m_sceneRadius / es.pdf) : Rgb(0.0f);
     } else {
         const EmissiveTriangle& e = m_scene.emitters[i - m_scene.lights.size()];
-        const TriangleMesh& mesh = m_scene.meshes[e.mesh];
         Vec2 b = sampleUniformTriangle(u1, u2);
-        Vec3 p0 = mesh.vertex(e.triangle, 0), p1 = mesh.vertex(e.triangle, 1), p2 = mesh.vertex(e.triangle, 2);
-        Vec3 n = normalize(mesh.geometricNormal(e.triangle));
-        ph.ray.o = p0 * (1.0f - b.x - b.y) + p1 * b.x + p2 * b.y;
+        Vec3 n;
+        emitterPointAt(e, b, &ph.ray.o, &n);
         ph.ray.d = Frame(n).toWorld(sampleCosineHemisphere(rng.uniform(), rng.uniform()));
         ph.emitterMesh = e.mesh;
         // Le cos / (cos/pi * 1/area) = Le * pi * area.
@@ -309,15 +304,19 @@ LightSampler::EmitterPoint LightSampler::sampleEmitterPoint(Rng& rng) const {
     if (!(m_emitterPower > 0)) return p;
     const size_t i = chooseEmitter(u);
     const EmissiveTriangle& e = m_scene.emitters[i];
-    const TriangleMesh& mesh = m_scene.meshes[size_t(e.mesh)];
     const Vec2 b = sampleUniformTriangle(u1, u2);
-    p.point = mesh.vertex(e.triangle, 0) * (1.0f - b.x - b.y) + mesh.vertex(e.triangle, 1) * b.x +
-              mesh.vertex(e.triangle, 2) * b.y;
-    p.normal = normalize(mesh.geometricNormal(e.triangle));
+    emitterPointAt(e, b, &p.point, &p.normal);
     p.radiance = emittedRadiance(e, b);
     p.pdfArea = float(emitterShare(i) / double(e.area));
     p.source = int(m_scene.lights.size() + i);
     return p;
+}
+
+void LightSampler::emitterPointAt(const EmissiveTriangle& e, Vec2 b, Vec3* point, Vec3* normal) const {
+    const TriangleMesh& mesh = m_scene.meshes[size_t(e.mesh)];
+    *point = mesh.vertex(e.triangle, 0) * (1.0f - b.x - b.y) + mesh.vertex(e.triangle, 1) * b.x +
+             mesh.vertex(e.triangle, 2) * b.y;
+    *normal = normalize(mesh.geometricNormal(e.triangle));
 }
 
 Rgb LightSampler::emittedRadiance(const EmissiveTriangle& e, Vec2 b) const {

@@ -123,6 +123,9 @@ private:
     /// Le at barycentrics b of an emitter: the material's emission times its emissiveTexture there
     /// (the source pmf follows the untextured power; the texture weights the sample, unbiased).
     Rgb emittedRadiance(const EmissiveTriangle& e, Vec2 b) const;
+    /// The point at barycentrics b of an emitter and the triangle's unit front normal: where
+    /// direct light, photon emission and sampleEmitterPoint put their point on an area light.
+    void emitterPointAt(const EmissiveTriangle& e, Vec2 b, Vec3* point, Vec3* normal) const;
 
     /// The spatial choice's weights at x: w[k] for light k, w[lights] for all emitters together,
     /// w[lights + 1] for the environment; returns their sum.
