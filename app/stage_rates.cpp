@@ -59,16 +59,16 @@ PhotonRate measurePhotonTracing(const PassRenderer& renderer, int passes, int ro
     PhotonRate best;
     for (int round = 0; round < rounds; ++round) {
         uint64_t paths = 0, beams = 0, traced = 0;
-        double length = 0;
-        auto t0 = Clock::now();
+        double length = 0, s = 0;  // s: the tracing alone, not the tallies below
         for (int i = 0; i < passes; ++i) {
+            const auto t0 = Clock::now();
             PhotonMap m = renderer.tracePhotons(uint64_t(i));
+            s += secondsSince(t0);
             paths += m.pathCount;
             beams += m.beams.size();
             traced += m.raysTraced;
             for (const PhotonBeam& b : m.beams) length += double(b.tMax);
         }
-        double s = secondsSince(t0);
         if (traced / s > best.raysPerSecond)
             best = {paths / s, beams / s, traced / s, double(beams) / double(std::max<uint64_t>(paths, 1)),
                     beams > 0 ? length / double(beams) : 0.0};
