@@ -14,6 +14,7 @@ namespace tyndall {
 
 namespace {
 constexpr int kBand = 8;  // rows per band: the unit of parallel work
+static_assert(kBand <= SplatRows::kMaxRows, "a band's columns are found at once");
 
 struct CameraSpace {
     float x, y, z;
@@ -99,14 +100,6 @@ BeamFootprint beamFootprint(const Camera& cam, int width, int height, const Phot
     return fp;
 }
 
-namespace {
-/// The straight sides of a footprint's hull (the tangents common to its two discs), which every
-/// row's span needs: computed once per beam.
-struct FootprintSides {
-    bool present = false;  ///< false when one disc holds the other (no straight sides)
-    float quad[4][2] = {};
-};
-
 FootprintSides footprintSides(const BeamFootprint& fp) {
     FootprintSides sides;
     if (fp.fullScreen) return sides;
@@ -129,6 +122,7 @@ FootprintSides footprintSides(const BeamFootprint& fp) {
     return sides;
 }
 
+namespace {
 /// footprintRowSpan with the footprint's sides already found (footprintSides).
 bool rowSpan(const BeamFootprint& fp, const FootprintSides& sides, float y, float* x0, float* x1) {
     if (fp.fullScreen) {
@@ -298,7 +292,6 @@ Image BeamRasterizer::rasterize(const PrimarySegments& primary, const PhotonMap&
     // pixels get exactly what they get in the whole image (each sums its beams in index order).
     const PixelRegion region = primary.region.whole() ? PixelRegion{0, 0, w, h} : primary.region;
     const int firstBand = region.y / kBand, endBand = (region.y + region.height + kBand - 1) / kBand;
-    const float regionX0 = float(region.x), regionX1 = float(region.x + region.width - 1);  // pixel columns
     Image out(w, h);
     const std::vector<PhotonBeam>& beams = photons.beams;
 
@@ -346,38 +339,35 @@ Image BeamRasterizer::rasterize(const PrimarySegments& primary, const PhotonMap&
             hits = &s.hits;
             fillBlock(primary, y0, y1, block);
         }
+        SplatRows rows;
         for (uint32_t b : bandBeams[band]) {
-            const BeamPixelEvaluator eval(m_scene, photons, b);
+            localTests += footprintBandColumns(fps[b], sides[b], y0, rowBegin, rowEnd, region.x,
+                                               region.x + region.width - 1, w, &rows);
             const Medium& medium = m_scene.media[beams[b].medium];
-            SplatBeam sb;
-            if (simd) sb = splatBeam(m_scene, photons, b);
-            for (int y = rowBegin; y < rowEnd; ++y) {
-                float sx0, sx1;
-                if (!rowSpan(fps[b], sides[b], float(y) + 0.5f, &sx0, &sx1)) continue;
-                // Pixels whose centre x + 0.5 lies in [sx0, sx1], inside the region.
-                const int x0 = int(std::max(regionX0, std::ceil(std::max(sx0, -1.0f) - 0.5f)));
-                const int x1 = int(std::min(regionX1, std::floor(std::min(sx1, float(w) + 1.0f) - 0.5f)));
-                if (x1 < x0) continue;
-                localTests += uint64_t(x1 - x0 + 1);
-                size_t row = size_t(y) * w;
-                if (!simd) {
-                    for (int x = x0; x <= x1; ++x) out.pixels[row + x] += eval(primary, row + x);
-                    continue;
+            if (!simd) {
+                const BeamPixelEvaluator eval(m_scene, photons, b);
+                for (int i = 0; i < rows.rows; ++i) {
+                    const size_t row = size_t(y0 + i) * w;
+                    for (int x = rows.x0[i]; x <= rows.x1[i]; ++x) out.pixels[row + x] += eval(primary, row + x);
                 }
-                const size_t first = size_t(y - y0) * w + x0, count = size_t(x1 - x0 + 1);
-                if (medium.homogeneous()) {
-                    splatSpanHomogeneous(sb, *block, first, count);
-                    continue;
-                }
-                // Grid media: sigma_s(x_w) is a density lookup per pixel, after the kernel; the
-                // factors multiply in beamRadiance's order.
-                splatSpanHeterogeneous(sb, *block, first, count, hits);
+                continue;
+            }
+            const SplatBeam sb = splatBeam(m_scene, photons, b);
+            if (medium.homogeneous()) {
+                splatRowsHomogeneous(sb, *block, size_t(w), rows);
+                continue;
+            }
+            // Grid media: sigma_s(x_w) is a density lookup per pixel, after the kernel; the
+            // factors multiply in beamRadiance's order.
+            for (int i = 0; i < rows.rows; ++i) {
+                if (rows.x0[i] > rows.x1[i]) continue;
+                splatSpanHeterogeneous(sb, *block, size_t(i) * w + rows.x0[i], size_t(rows.x1[i] - rows.x0[i] + 1), hits);
                 for (size_t k = 0; k < hits->count; ++k) {
-                    const size_t i = hits->pixel[k];
-                    const PrimaryRay& ray = primary.rays[size_t(y0) * w + i];
+                    const size_t p = hits->pixel[k];
+                    const PrimaryRay& ray = primary.rays[size_t(y0) * w + p];
                     const Rgb c = medium.sigmaSAt(ray.origin + ray.dir * hits->s[k]) * beams[b].power *
                                   Rgb(hits->trCam[k]) * Rgb(hits->trBeam[k]) * hits->weight[k];
-                    block->sumR[i] += c.r, block->sumG[i] += c.g, block->sumB[i] += c.b;
+                    block->sumR[p] += c.r, block->sumG[p] += c.g, block->sumB[p] += c.b;
                 }
             }
         }

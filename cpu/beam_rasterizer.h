@@ -7,9 +7,10 @@
 // radius there (f r / (z - r), stretched by 1/cos of the off-axis angle), plus the lens's circle
 // of confusion and 0.75 px for the film jitter. The projected radius is convex in screen space
 // (1/z is linear there), so the linear taper is conservative. Beams are binned to bands of rows;
-// each band walks, per row, the exact span of the capsule and evaluates the estimator against
-// each pixel's stored primary ray. Beams are visited in index order inside a band, so the result
-// does not depend on the thread count.
+// each band finds a beam's exact capsule span on all its rows at once (footprintBandColumns, a
+// row per SIMD lane) and evaluates the estimator against each pixel's stored primary ray in
+// them. Beams are visited in index order inside a band, so the result does not depend on the
+// thread count.
 //
 // Two kernels evaluate the estimator along a row span: the scalar one (BeamPixelEvaluator, the
 // definition, one pixel at a time) and the SIMD one (cpu/beam_splat_simd.h: 8 or 16 pixels per
@@ -44,8 +45,20 @@ struct BeamFootprint {
 BeamFootprint beamFootprint(const Camera& camera, int width, int height, const PhotonBeam& beam);
 
 /// The x-interval [x0, x1] where the horizontal line at `y` crosses the footprint; false if it
-/// misses. For a full-screen footprint, the whole line.
+/// misses. For a full-screen footprint, the whole line. The definition of a footprint's rows: the
+/// rasterizer computes a band's rows at once (footprintBandColumns, cpu/beam_splat_simd.h), with
+/// the same float operations.
 bool footprintRowSpan(const BeamFootprint& fp, float y, float* x0, float* x1);
+
+/// The straight sides of a footprint's hull (the tangents common to its two discs), which every
+/// row's span needs: computed once per beam. `quad` runs a's side 0 point, b's side 0 point, b's
+/// side 1 point, a's side 1 point.
+struct FootprintSides {
+    bool present = false;  ///< false when one disc holds the other (no straight sides)
+    float quad[4][2] = {};
+};
+
+FootprintSides footprintSides(const BeamFootprint& fp);
 
 /// Which estimator kernel the rasterizer runs (RenderSettings::simd, `--simd on|off`).
 enum class SplatKernel { Scalar, Simd };

@@ -1,7 +1,8 @@
 #pragma once
 // The SIMD kernels of the CPU beam rasterizer: the beam x ray estimator of core/beam_estimator.h
 // for one beam against a run of consecutive pixels, 8 (AVX2) or 16 (AVX-512) pixels per
-// instruction, with Google Highway and runtime dispatch to the best instruction set the CPU has.
+// instruction, with Google Highway and runtime dispatch to the best instruction set the CPU has;
+// and a footprint's pixel columns on a band's rows, a row per lane.
 //
 // The scalar evaluator in cpu/beam_rasterizer.cpp stays the definition. These kernels do the same
 // float operations in the same order, without fused multiply-adds (the file is built with
@@ -21,6 +22,7 @@
 
 #include "core/math.h"
 #include "core/medium.h"
+#include "cpu/beam_rasterizer.h"
 
 namespace tyndall {
 
@@ -37,7 +39,8 @@ struct SplatBlock {
     int freeFlightsPerRay = 0;
     std::vector<float> sumR, sumG, sumB;
 
-    /// Room for `pixels` pixels plus padding; sums zeroed, rays of the padding in no medium.
+    /// Room for `pixels` pixels plus padding; sums zeroed, rays of the padding in no medium (the
+    /// pixels' rays are left for the caller to fill).
     void reset(size_t pixels, int freeFlightsPerRay);
 };
 
@@ -54,9 +57,25 @@ struct SplatBeam {
     int freeFlightsPerBeam = 0;
 };
 
-/// Homogeneous medium: adds the estimator of `beam` to the sums of block pixels
-/// [first, first + count).
-void splatSpanHomogeneous(const SplatBeam& beam, SplatBlock& block, size_t first, size_t count);
+/// The pixel columns one footprint covers on each row of a band of at most kMaxRows rows: row i
+/// (block row i) holds the pixels [x0[i], x1[i]], none when x0[i] > x1[i].
+struct SplatRows {
+    static constexpr int kMaxRows = 8;
+    int rows = 0;
+    int32_t x0[kMaxRows] = {}, x1[kMaxRows] = {};
+};
+
+/// The rows [rowBegin, rowEnd) of the band starting at image row y0 (rowEnd - y0 <= kMaxRows; the
+/// band's rows before rowBegin stay empty): on each, the pixels whose centre x + 0.5 lies in
+/// footprintRowSpan's interval at y + 0.5 and in the columns [colMin, colMax]. The rows are
+/// computed together, each with footprintRowSpan's float operations, so the columns are exactly
+/// the ones a row at a time gives (tests/cpu/beam_splat_simd_test.cpp). Returns the number of pixels.
+size_t footprintBandColumns(const BeamFootprint& fp, const FootprintSides& sides, int y0, int rowBegin, int rowEnd,
+                            int colMin, int colMax, int width, SplatRows* rows);
+
+/// Homogeneous medium: adds the estimator of `beam` to the sums of the block pixels of `rows`
+/// (block row i starts at block pixel i * rowStride).
+void splatRowsHomogeneous(const SplatBeam& beam, SplatBlock& block, size_t rowStride, const SplatRows& rows);
 
 /// What the heterogeneous kernel leaves for the caller: the pixels of a span that the beam reaches
 /// with non-zero stored transmittances on both sides, with s_w and the estimator's factors except

@@ -3,7 +3,8 @@
 // relative per pixel, on random beams including near-parallel ones (the 1/sin clamp and the
 // parallel cut-off), beams that end inside a row span, chromatic and grey media, g of both signs,
 // and grid media with heterogeneous stored distances on rays and beams. And the SIMD splat is bit
-// for bit the same with 1 and 2 threads.
+// for bit the same with 1 and 2 threads; a band's pixel columns, found for its rows at once, are
+// exactly the scalar row spans'.
 #include "cpu/beam_splat_simd.h"
 
 #include <gtest/gtest.h>
@@ -253,4 +254,55 @@ TEST(BeamSplatSimd, EveryInstructionSetThisCpuRunsMatchesTheScalarEstimator) {
     }
     hwy::SetSupportedTargetsForTest(0);
     EXPECT_GE(tried, 2);
+}
+
+TEST(BeamSplatSimd, BandColumnsAreTheRowSpansOfTheScalarDefinition) {
+    // footprintBandColumns finds a band's rows at once; each row must be exactly footprintRowSpan's
+    // span rounded to pixel centres and clamped as the rasterizer clamps it, on every instruction
+    // set. Footprint coordinates on a quarter-pixel grid put span ends exactly on pixel centres,
+    // and equal ends make horizontal sides.
+    Rng rng(17, 3);
+    const int width = 61;
+    auto quarter = [&](float lo, float hi) { return std::round((lo + (hi - lo) * rng.uniform()) * 4.0f) / 4.0f; };
+    int tried = 0, rowsSeen = 0;
+    for (int64_t target : hwy::SupportedAndGeneratedTargets()) {
+        hwy::SetSupportedTargetsForTest(target);
+        for (int trial = 0; trial < 400; ++trial) {
+            BeamFootprint fp;
+            fp.visible = true;
+            fp.ax = quarter(-20, 80), fp.ay = quarter(-10, 50), fp.ra = quarter(0, 12);
+            fp.bx = quarter(-20, 80), fp.by = quarter(-10, 50), fp.rb = quarter(0, 12);
+            if (trial % 5 == 1) fp.by = fp.ay, fp.rb = fp.ra;         // horizontal sides
+            if (trial % 5 == 2) fp.bx = fp.ax + 0.25f, fp.by = fp.ay;  // one disc holds the other
+            fp.fullScreen = trial % 23 == 0;
+            const FootprintSides sides = footprintSides(fp);
+            const int y0 = 8 * int(rng.uniform() * 6), rowBegin = y0 + (trial % 3 == 0 ? 3 : 0);
+            const int rowEnd = y0 + (trial % 4 == 0 ? 5 : 8);
+            const int colMin = trial % 3 == 1 ? 7 : 0, colMax = trial % 3 == 1 ? 40 : width - 1;
+            SplatRows rows;
+            footprintBandColumns(fp, sides, y0, rowBegin, rowEnd, colMin, colMax, width, &rows);
+            ASSERT_EQ(rows.rows, rowEnd - y0);
+            for (int i = 0; i < rows.rows; ++i) {
+                const int y = y0 + i;
+                float sx0, sx1;
+                bool hit = y >= rowBegin && footprintRowSpan(fp, float(y) + 0.5f, &sx0, &sx1);
+                int x0 = 0, x1 = -1;
+                if (hit) {
+                    x0 = int(std::max(float(colMin), std::ceil(std::max(sx0, -1.0f) - 0.5f)));
+                    x1 = int(std::min(float(colMax), std::floor(std::min(sx1, float(width) + 1.0f) - 0.5f)));
+                }
+                if (x1 < x0) {
+                    EXPECT_GT(rows.x0[i], rows.x1[i]) << hwy::TargetName(target) << " trial " << trial << " row " << y;
+                    continue;
+                }
+                ++rowsSeen;
+                EXPECT_EQ(rows.x0[i], x0) << hwy::TargetName(target) << " trial " << trial << " row " << y;
+                EXPECT_EQ(rows.x1[i], x1) << hwy::TargetName(target) << " trial " << trial << " row " << y;
+            }
+        }
+        ++tried;
+    }
+    hwy::SetSupportedTargetsForTest(0);
+    EXPECT_GE(tried, 2);
+    EXPECT_GT(rowsSeen, 1000);
 }
