@@ -159,6 +159,7 @@ const std::pair<const char*, const char*> kOptionKeys[] = {
     {"--direct-light", "direct_light"},
     {"--surface-boundary", "surface_boundary"},
     {"--equiangular", "equiangular"},
+    {"--equiangular-samples", "equiangular_samples"},
     {"--photon-planes", "photon_planes"},
     {"--max-path-length", "max_path_length"},
     {"--region", "region"}};
@@ -199,6 +200,28 @@ void addDirectLightOption(CLI::App* cmd, CommonOptions& o) {
     addOnOffOption(cmd, "--equiangular", o.settings.equiangular,
                    "on|off: single scattering from point, spot and area lights along camera rays in media by "
                    "equiangular sampling; off = those lights' first photon beams (docs/algorithm.md)");
+    cmd->add_option_function<std::string>(
+           "--equiangular-samples",
+           [&o](const std::string& text) {
+               double n = RenderSettings::kAutoEquiangularSamples;
+               if (text != "auto") {
+                   size_t used = 0;
+                   try {
+                       n = std::stod(text, &used);
+                   } catch (const std::exception&) {
+                       used = 0;
+                   }
+                   if (used == 0 || used != text.size() || !(n > 0 && n <= RenderSettings::kMaxEquiangularSamples))
+                       throw CLI::ValidationError("--equiangular-samples",
+                                                  "expected auto or a number in (0, 64], got '" + text + "'");
+               }
+               o.settings.equiangularSamples = n;
+           },
+           "N|auto: equiangular distances per camera segment in a medium, all lights together (a fraction: "
+           "one more on that share of the segments); auto = 4 at 64x64 pixels and 4000 photon paths per pass, "
+           "falling as sqrt(pixels / photon paths), at least 1/4 (docs/algorithm.md)")
+        ->type_name("TEXT")
+        ->default_str("auto");
     addOnOffOption(cmd, "--photon-planes", o.settings.photonPlanes,
                    "on|off: photon planes in homogeneous media (a beam swept along its next direction, "
                    "no kernel) instead of the beams after a scattering there; off = beams only (docs/algorithm.md)");

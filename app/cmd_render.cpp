@@ -73,7 +73,7 @@ void rejectWithResume(const CLI::App* cmd) {
                                    "--radius-offset", "--free-flights",  "--exposure",     "--aov",
                                    "--photon-angle",  "--planned-paths", "--direct-light", "--surface-boundary",
                                    "--environment",   "--max-path-length", "--equiangular", "--photon-planes",
-                                   "--transparent"};
+                                   "--transparent",   "--equiangular-samples"};
     for (const char* name : kFixed)
         if (given(cmd, name))
             throw Error(std::string("--resume: ") + (name[0] == '-' ? name : "the scene file") +
@@ -102,8 +102,9 @@ RenderStart startNew(RenderOptions& o, bool root) {
         // The automatic radii become plain numbers here, once, so a resume or another MPI rank
         // renders with the same ones whatever share of the target it runs. A --time budget plans
         // for the open-ended horizon (a measured rate would differ between ranks and resumes).
+        // So does the automatic equiangular sample count.
         const EmbreeScene rt(r.scene);
-        c.settings = resolveRadiusDefaults(c.settings, rt);
+        c.settings = resolveEquiangularSamples(resolveRadiusDefaults(c.settings, rt));
     }
     r.record = {c.scene, c.camera, sceneHash(c.scene, r.scene), c.settings, c.output, c.exposure, o.aov, 0.0,
                 c.environment};

@@ -134,6 +134,8 @@ RenderRecord readRecord(const Checkpoint& c, const std::string& where) {
         if (!j.at("settings").contains("surface_boundary")) r.settings.surfaceBoundary = false;
         // ... and from before --equiangular with beams alone.
         if (!j.at("settings").contains("equiangular")) r.settings.equiangular = false;
+        // ... and from before --equiangular-samples with 4 per light (the nearest: 4 per segment).
+        if (!j.at("settings").contains("equiangular_samples")) r.settings.equiangularSamples = 4;
         r.output = j.at("output").get<std::string>();
         r.exposure = j.at("exposure").get<float>();
         r.aov = j.at("aov").get<bool>();

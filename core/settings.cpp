@@ -1,5 +1,6 @@
 #include "core/settings.h"
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -56,6 +57,9 @@ void RenderSettings::validate() const {
     if (maxCameraBounces <= 0) fail("max_camera_bounces", "must be positive");
     if (maxPathLength < 0 || maxPathLength > 65535) fail("max_path_length", "must be in 0..65535 (0 = uncapped)");
     if (freeFlightSamples < 1 || freeFlightSamples > 64) fail("free_flights", "must be in 1..64");
+    if (equiangularSamples != kAutoEquiangularSamples &&
+        !(equiangularSamples > 0 && equiangularSamples <= kMaxEquiangularSamples))
+        fail("equiangular_samples", "must be a number in (0, 64] or auto (got " + std::to_string(equiangularSamples) + ")");
     if (memoryMiB < 64 || memoryMiB > (uint64_t(1) << 30))
         fail("memory", "must be in 64..2^30 MiB (got " + std::to_string(memoryMiB) + ")");
 }
@@ -84,6 +88,8 @@ nlohmann::json RenderSettings::toJson() const {
             {"direct_light", onOffText(directLight)},
             {"surface_boundary", onOffText(surfaceBoundary)},
             {"equiangular", onOffText(equiangular)},
+            {"equiangular_samples", equiangularSamples == kAutoEquiangularSamples ? nlohmann::json("auto")
+                                                                                   : nlohmann::json(equiangularSamples)},
             {"photon_planes", onOffText(photonPlanes)},
             {"transparent", onOffText(transparentFilm)}};
     if (!region.whole()) j["region"] = {region.x, region.y, region.width, region.height};
@@ -166,7 +172,7 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
                                   "surface_radius", "radius_offset", "planned_paths", "photon_angle", "seed", "threads",
                                   "max_photon_bounces", "max_camera_bounces", "free_flights", "gpu", "memory", "simd",
                                   "direct_light", "surface_boundary", "max_path_length", "region", "equiangular",
-                                  "photon_planes", "transparent"};
+                                  "equiangular_samples", "photon_planes", "transparent"};
     for (auto it = j.begin(); it != j.end(); ++it) {
         bool known = false;
         for (const char* k : kKeys) known |= it.key() == k;
@@ -196,8 +202,37 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
     read(j, "direct_light", s.directLight, where);
     read(j, "surface_boundary", s.surfaceBoundary, where);
     read(j, "equiangular", s.equiangular, where);
+    readOrAuto(j, "equiangular_samples", s.equiangularSamples, kAutoEquiangularSamples, "a number in (0, 64]", where);
     read(j, "photon_planes", s.photonPlanes, where);
     read(j, "transparent", s.transparentFilm, where);
+    return s;
+}
+
+namespace {
+// "auto": 4 equiangular samples per segment at 64x64 with 4000 photon paths per pass (the quality
+// bench), where 4 measured better than 8 and 1 noisier (docs/performance.md); an equiangular
+// sample costs a shadow ray per pixel, a photon path is the beams' share of a pass, and the
+// equal-time optimum of N against the rest of a pass falls as sqrt(pixels / photon paths).
+constexpr double kAutoEquiangularAt64 = 4;
+constexpr double kAutoEquiangularPathsPerPixelAt64 = 4000.0 / (64 * 64);
+constexpr double kAutoEquiangularMin = 0.25;
+}  // namespace
+
+double RenderSettings::autoEquiangularSamples(int width, int height, uint32_t photonsPerPass) {
+    const double pixels = std::max(1.0, double(width) * double(height));
+    const double n =
+        kAutoEquiangularAt64 * std::sqrt(double(photonsPerPass) / pixels / kAutoEquiangularPathsPerPixelAt64);
+    // Rounded to 1/64 so the recorded number reads plainly (and a resume reads it back exactly).
+    return std::clamp(std::round(n * 64) / 64, kAutoEquiangularMin, kAutoEquiangularAt64);
+}
+
+double RenderSettings::resolvedEquiangularSamples() const {
+    return equiangularSamples == kAutoEquiangularSamples ? autoEquiangularSamples(width, height, photonsPerPass)
+                                                         : equiangularSamples;
+}
+
+RenderSettings resolveEquiangularSamples(RenderSettings s) {
+    s.equiangularSamples = s.resolvedEquiangularSamples();
     return s;
 }
 

@@ -98,6 +98,14 @@ struct RenderSettings {
     /// which are then not stored (docs/algorithm.md, "Single scattering by equiangular sampling").
     /// false = beams only.
     bool equiangular = false;
+    /// Equiangular distances per camera segment in a medium, shared by its lights (each drawn for
+    /// one light, chosen by its estimated share of the segment's light: cpu/equiangular.h), in
+    /// (0, 64]; a fraction f over floor(N) is one more distance on a share f of the segments (the
+    /// sum divided by N). kAutoEquiangularSamples = autoEquiangularSamples(), resolved before
+    /// rendering (resolveEquiangularSamples) and recorded as a number.
+    double equiangularSamples = kAutoEquiangularSamples;
+    static constexpr double kAutoEquiangularSamples = 0;
+    static constexpr double kMaxEquiangularSamples = 64;
     /// Photon planes (core/photon_plane.h) in homogeneous media: every beam there is joined with a
     /// sampled next direction into a plane that every camera segment in a medium gathers without a
     /// kernel, and the beams that start at a scattering in a homogeneous medium (which the planes
@@ -119,6 +127,18 @@ struct RenderSettings {
     /// true/false.
     static RenderSettings fromJson(const nlohmann::json& j, const std::string& where, RenderSettings base);
     static RenderSettings fromJson(const nlohmann::json& j, const std::string& where);
+
+    /// What equiangularSamples "auto" stands for at this image size and photon count: falls as
+    /// sqrt(pixels / photon paths per pass) from 4 at the quality bench's 64x64 with 4000 paths,
+    /// within bounds (settings.cpp; docs/algorithm.md, "How many samples, and which light"). The
+    /// whole image's size counts, not the region's (a region renders its pixels as the whole
+    /// image does).
+    static double autoEquiangularSamples(int width, int height, uint32_t photonsPerPass);
+    /// equiangularSamples, "auto" resolved.
+    double resolvedEquiangularSamples() const;
 };
+
+/// `s` with equiangularSamples "auto" replaced by its number (a pure function of the settings).
+RenderSettings resolveEquiangularSamples(RenderSettings s);
 
 }  // namespace tyndall

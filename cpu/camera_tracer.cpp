@@ -65,7 +65,7 @@ void CameraTracer::lightsChanged() {
     // The equiangular estimator's lights and their choice by power.
     m_equiangular.reset();
     if (m_settings.equiangular && !m_scene.media.empty()) {
-        m_equiangular = std::make_unique<EquiangularScattering>(m_rt);
+        m_equiangular = std::make_unique<EquiangularScattering>(m_rt, m_settings.resolvedEquiangularSamples());
         if (!m_equiangular->any()) m_equiangular.reset();
     }
     if (!m_settings.directLight) return;

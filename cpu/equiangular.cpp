@@ -11,7 +11,11 @@
 
 namespace tyndall {
 
-EquiangularScattering::EquiangularScattering(const EmbreeScene& rt) : m_rt(rt) {
+EquiangularScattering::EquiangularScattering(const EmbreeScene& rt, double samples)
+    : m_rt(rt),
+      m_samples(samples > 0 ? samples : 1.0),
+      m_whole(int(std::floor(m_samples))),
+      m_fraction(float(m_samples - m_whole)) {
     const Scene& scene = rt.scene();
     double total = 0;
     for (size_t i = 0; i < scene.lights.size(); ++i) {
@@ -20,6 +24,7 @@ EquiangularScattering::EquiangularScattering(const EmbreeScene& rt) : m_rt(rt) {
         const double power = LightSampler::lightPower(l, scene.bounds).luminance();
         if (!(power > 0)) continue;
         m_lights.push_back(int(i));
+        m_intensity.push_back(std::max(0.0f, l.intensity.luminance()));
         total += power;
         m_cdf.push_back(total);
     }
@@ -28,8 +33,14 @@ EquiangularScattering::EquiangularScattering(const EmbreeScene& rt) : m_rt(rt) {
         if (const double power = sampler->emitterPower(); power > 0) {
             m_areaLights = std::move(sampler);
             m_lights.push_back(kAreaLights);
+            m_intensity.push_back(power / kPi);  // a Lambertian emitter's intensity along its normal
             total += power;
             m_cdf.push_back(total);
+            Bounds3 bounds;
+            for (const EmissiveTriangle& t : scene.emitters)
+                for (int v = 0; v < 3; ++v) bounds.extend(scene.meshes[size_t(t.mesh)].vertex(t.triangle, v));
+            m_areaCentre = bounds.center();
+            m_areaReach = 0.5f * length(bounds.diagonal());
         }
     }
     for (double& c : m_cdf) c /= total;
@@ -40,27 +51,85 @@ bool EquiangularScattering::handles(const Scene& scene, const EmittedPhoton& pho
     return photon.emitterMesh >= 0;
 }
 
+double EquiangularScattering::segmentWeight(size_t i, float g, const Vec3& o, const Vec3& d, float sMax) const {
+    float a = 0, b = sMax, reach = 0;
+    Vec3 p = m_areaCentre;
+    if (m_lights[i] == kAreaLights) {
+        reach = m_areaReach;
+    } else {
+        const Light& light = m_rt.scene().lights[size_t(m_lights[i])];
+        if (light.type == LightType::Spot &&
+            !clipToCone(o, d, light.position, light.direction, light.cosOuterAngle, &a, &b))
+            return 0;
+        p = light.position;
+    }
+    // The integral of 1 / (h^2 + D^2) over [a, b], h the distance along the segment from the
+    // light's foot (core/equiangular.h), D at least `reach`; the phase function at the foot.
+    const EquiangularLine line(o, d, a, b, p);
+    const double D = std::max(double(line.D), double(reach));
+    const double t0 = line.t0;
+    const double span = std::atan2(double(b) - t0, D) - std::atan2(double(a) - t0, D);
+    const Vec3 x = o + d * std::clamp(line.t0, a, b);
+    const Vec3 toLight = p - x;
+    const float dist = length(toLight);
+    const float phase = dist > 0 ? hgPhase(dot(toLight / dist, d), g) : 1.0f;
+    return m_intensity[i] * std::max(span, 0.0) / D * double(phase);
+}
+
+bool EquiangularScattering::segmentCdf(const Medium& med, const Vec3& o, const Vec3& d, float sMax,
+                                       double* cdf) const {
+    const size_t n = m_lights.size();
+    if (n > kWeighedUpTo) {
+        std::copy(m_cdf.begin(), m_cdf.end(), cdf);
+        return true;
+    }
+    double total = 0;
+    size_t lit = 0;
+    for (size_t i = 0; i < n; ++i) {
+        cdf[i] = segmentWeight(i, med.g, o, d, sMax);
+        if (!(cdf[i] > 0 && std::isfinite(cdf[i]))) cdf[i] = 0;
+        total += cdf[i];
+        lit += cdf[i] > 0;
+    }
+    if (!(total > 0)) return false;
+    // (1 - kDefensive) of the estimated shares, kDefensive spread evenly over the sources with one.
+    double sum = 0;
+    for (size_t i = 0; i < n; ++i) {
+        if (cdf[i] > 0) sum += (1.0 - kDefensive) * cdf[i] / total + kDefensive / double(lit);
+        cdf[i] = sum;
+    }
+    for (size_t i = 0; i < n; ++i) cdf[i] /= sum;
+    cdf[n - 1] = 1.0;
+    return true;
+}
+
 Rgb EquiangularScattering::estimate(MediumId medium, const Vec3& o, const Vec3& d, float sMax, Rng& rng) const {
     if (m_lights.empty() || medium == kVacuum || !(sMax > 0)) return Rgb(0.0f);
     const Scene& scene = m_rt.scene();
     const Medium& med = scene.media[medium];
     if (med.sigmaS.isBlack()) return Rgb(0.0f);
-    // kSamples stratified distances per source: (k + xi) / kSamples mapped through the sampler.
-    const int n = kSamples;
+    const int n = m_whole + (m_fraction > 0 && rng.uniform() < m_fraction ? 1 : 0);
+    if (n == 0) return Rgb(0.0f);
+    double cdf[kWeighedUpTo];
+    const size_t sources = m_lights.size();
+    const double* c = m_cdf.data();
+    if (sources > 1 && sources <= kWeighedUpTo) {
+        if (!segmentCdf(med, o, d, sMax, cdf)) return Rgb(0.0f);
+        c = cdf;
+    }
+    // n stratified uniforms (k + xi) / n, each choosing a source and, rescaled inside the source's
+    // interval of the cdf, its distance; the sum over N (n's mean).
     Rgb sum;
     for (int k = 0; k < n; ++k) {
-        if (m_lights.size() <= kEveryLightUpTo) {
-            for (int i : m_lights) sum += fromSource(i, med, medium, o, d, sMax, (float(k) + rng.uniform()) / float(n), rng);
-            continue;
-        }
-        const double u = rng.uniform();
-        const size_t c =
-            std::min(size_t(std::upper_bound(m_cdf.begin(), m_cdf.end(), u) - m_cdf.begin()), m_cdf.size() - 1);
-        const double p = m_cdf[c] - (c > 0 ? m_cdf[c - 1] : 0.0);
-        sum += fromSource(m_lights[c], med, medium, o, d, sMax, (float(k) + rng.uniform()) / float(n), rng) *
-               float(1.0 / p);
+        const float u = (float(k) + rng.uniform()) / float(n);
+        size_t i = sources == 1 ? 0 : size_t(std::upper_bound(c, c + sources, double(u)) - c);
+        i = std::min(i, sources - 1);
+        const double lo = i > 0 ? c[i - 1] : 0.0, p = c[i] - lo;
+        if (!(p > 0)) continue;
+        const float uDistance = std::min(float((double(u) - lo) / p), 1.0f - 0x1p-24f);
+        sum += fromSource(m_lights[i], med, medium, o, d, sMax, std::max(uDistance, 0.0f), rng) * float(1.0 / p);
     }
-    return sum / float(n);
+    return sum / float(m_samples);
 }
 
 namespace {

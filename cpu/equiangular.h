@@ -20,9 +20,17 @@
 // environment keep their beams.
 //
 // Sources: each point and spot light of non-zero power, and all area lights together as one.
-// Each gets kSamples stratified distances per segment (up to kEveryLightUpTo sources; beyond, each
-// of the kSamples picks one source in proportion to its power). Randomness only from the caller's
-// stream.
+// A segment gets N = RenderSettings::resolvedEquiangularSamples() distances in all, whatever the
+// number of sources (a fractional N: floor(N), and one more with probability N - floor(N); the
+// sum divided by N): stratified uniforms (k + xi) / n, k = 0..n-1, each mapped through the
+// sources' choice for the segment (its cdf; the uniform's place inside the chosen source's
+// interval is that source's distance uniform), the sample divided by the source's probability.
+// Up to kWeighedUpTo sources the choice follows each source's share of this segment's light,
+// estimated in closed form (segmentWeight: intensity x the inverse square's integral over the
+// segment, clipped to a spot's cone, x the phase function at the foot of the light on it), mixed
+// with kDefensive of a uniform choice among the sources with a share; beyond, it follows the
+// sources' powers. One source: every sample is its own, as with one light per segment.
+// Randomness only from the caller's stream.
 #include <memory>
 #include <vector>
 
@@ -34,8 +42,10 @@ namespace tyndall {
 
 class EquiangularScattering {
 public:
-    /// Keeps a reference to `rt` (it must outlive this); reads the scene's lights now.
-    explicit EquiangularScattering(const EmbreeScene& rt);
+    /// Keeps a reference to `rt` (it must outlive this); reads the scene's lights now. `samples`:
+    /// distances per segment, all sources together (> 0; a fraction as RenderSettings::
+    /// equiangularSamples says).
+    EquiangularScattering(const EmbreeScene& rt, double samples);
 
     /// True for the lights this estimator stands for (point and spot; area lights too, below):
     /// their unscattered beams must not be stored when it is used.
@@ -46,18 +56,28 @@ public:
     bool any() const { return !m_lights.empty(); }
 
     /// The single-scattered radiance arriving at `o` along -d from the segment o + s d, s in
-    /// [0, sMax], inside `medium`, before the camera path's throughput. Draws from `rng`: per
-    /// sample, one uniform (two with more than kEveryLightUpTo sources; three more for an area
-    /// light's point), then the transmittance estimates' (grid media only).
+    /// [0, sMax], inside `medium`, before the camera path's throughput. Draws from `rng`: one
+    /// uniform for the fraction's extra sample (a fractional count only); per sample, one uniform
+    /// (three more for an area light's point), then the transmittance estimates' (grid media only).
     Rgb estimate(MediumId medium, const Vec3& o, const Vec3& d, float sMax, Rng& rng) const;
 
-    static constexpr size_t kEveryLightUpTo = 8;
-    /// Distances per source and segment, stratified: one per pixel and pass was the noisier
-    /// estimator where the light changes along the ray (shadows, a cone, a grid's density), and a
-    /// sample costs little next to a pass (docs/performance.md).
-    static constexpr int kSamples = 4;
+    /// The sources' choice for the segment, as a cdf over sources() (the last entry 1); false when
+    /// none can light it. Public for the tests.
+    bool segmentCdf(const Medium& med, const Vec3& o, const Vec3& d, float sMax, double* cdf) const;
+    size_t sources() const { return m_lights.size(); }
+    double samples() const { return m_samples; }
+
+    /// Sources chosen per segment by their estimated share; beyond, by power.
+    static constexpr size_t kWeighedUpTo = 8;
+    /// The uniform choice's part in the per-segment mixture: bounds a source's weight 1 / p by
+    /// kWeighedUpTo / kDefensive where the estimate misjudges its share (shadows, a grid's density
+    /// and the transmittances are not in it).
+    static constexpr double kDefensive = 0.1;
 
 private:
+    /// The estimated light of source `i` (an index into m_lights) along the segment, up to the
+    /// factors all sources share (sigma_s, the camera's transmittance); 0 when it cannot light it.
+    double segmentWeight(size_t i, float g, const Vec3& o, const Vec3& d, float sMax) const;
     /// One sample of the source `source` (an index into Scene::lights, or kAreaLights), its
     /// distance drawn from the uniform `u`.
     Rgb fromSource(int source, const Medium& med, MediumId medium, const Vec3& o, const Vec3& d, float sMax, float u,
@@ -66,8 +86,16 @@ private:
     static constexpr int kAreaLights = -1;  ///< all emissive triangles together, as one source
 
     const EmbreeScene& m_rt;
+    double m_samples;  ///< per segment: m_whole, and one more on a share m_fraction of them
+    int m_whole;
+    float m_fraction;
     std::vector<int> m_lights;  ///< indices into Scene::lights, and kAreaLights when they emit
     std::vector<double> m_cdf;  ///< over the luminance of their powers, normalised
+    std::vector<double> m_intensity;  ///< luminance: a light's intensity; the area lights' power / pi
+    /// The area lights as one point for segmentWeight: their bounds' centre, and the distance
+    /// below which the inverse square is flattened (the bounds' half diagonal).
+    Vec3 m_areaCentre;
+    float m_areaReach = 0;
     std::unique_ptr<LightSampler> m_areaLights;  ///< the emitters' choice by power, when they emit
 };
 

@@ -51,7 +51,7 @@ PassStats& PassStats::operator+=(const PassStats& o) {
 PassRenderer::PassRenderer(const Scene& scene, const RenderSettings& settings, BeamBvh::Kind beamBvh, bool aovLayers)
     : m_scene(scene),
       m_rt(std::make_unique<EmbreeScene>(scene)),
-      m_settings(resolveRadiusDefaults(settings, *m_rt)),
+      m_settings(resolveEquiangularSamples(resolveRadiusDefaults(settings, *m_rt))),
       m_radii(RadiusSetup::resolve(m_settings, scene)),
       m_memory(MemoryPlan::resolve(m_settings, storedFreeFlights(scene, m_settings), aovLayers)),
       m_bvhKind(beamBvh),

@@ -54,7 +54,8 @@ TEST(Settings, SwitchesReadOnOffTextAndJsonBooleans) {
 TEST(Settings, BadTextIsRefusedNamingTheKey) {
     for (const auto& [key, value] : std::vector<std::pair<std::string, nlohmann::json>>{
              {"gpu", "yes"}, {"gpu", true}, {"simd", "maybe"}, {"direct_light", 1}, {"surface_boundary", "ON"},
-             {"equiangular", "yes"}, {"photon_planes", "1"}}) {
+             {"equiangular", "yes"}, {"photon_planes", "1"}, {"equiangular_samples", "many"},
+             {"equiangular_samples", true}}) {
         try {
             RenderSettings::fromJson(nlohmann::json{{key, value}}, "scene.json: /render");
             ADD_FAILURE() << key << " = " << value.dump() << " was accepted";
@@ -86,6 +87,41 @@ TEST(Settings, ValidateNamesTheSettingKey) {
         EXPECT_EQ(e.key, "size");
     }
     EXPECT_NO_THROW(RenderSettings().validate());
+}
+
+TEST(Settings, EquiangularSamplesReadAutoOrANumberAndResolveBeforeRendering) {
+    RenderSettings s;
+    EXPECT_EQ(s.toJson().at("equiangular_samples"), "auto");
+    s.equiangularSamples = 0.359375;
+    EXPECT_EQ(RenderSettings::fromJson(s.toJson(), "test").equiangularSamples, 0.359375);
+    EXPECT_EQ(RenderSettings::fromJson(nlohmann::json{{"equiangular_samples", "auto"}}, "test").equiangularSamples,
+              RenderSettings::kAutoEquiangularSamples);
+    s.equiangularSamples = 65;
+    try {
+        s.validate();
+        FAIL() << "65 samples passed";
+    } catch (const SettingError& e) {
+        EXPECT_EQ(e.key, "equiangular_samples");
+    }
+    s.equiangularSamples = -1;
+    EXPECT_THROW(s.validate(), SettingError);
+    // auto: 4 at the quality bench's 64x64 and 4000 paths per pass, as sqrt(paths per pixel)
+    // below (to 1/64), never under 1/4 nor over 4.
+    EXPECT_EQ(RenderSettings::autoEquiangularSamples(64, 64, 4000), 4);
+    EXPECT_EQ(RenderSettings::autoEquiangularSamples(128, 128, 4000), 2);
+    EXPECT_EQ(RenderSettings::autoEquiangularSamples(256, 256, 4000), 1);
+    EXPECT_EQ(RenderSettings::autoEquiangularSamples(512, 512, 4000), 0.5);
+    EXPECT_EQ(RenderSettings::autoEquiangularSamples(640, 640, 4000), 26.0 / 64);  // 0.4
+    EXPECT_EQ(RenderSettings::autoEquiangularSamples(1920, 1080, 4000), 0.25);     // 0.178
+    EXPECT_EQ(RenderSettings::autoEquiangularSamples(16, 16, 100000), 4);
+    // Resolved into a number, which stays; an explicit one is kept.
+    RenderSettings a;
+    a.width = a.height = 128;
+    a.photonsPerPass = 4000;
+    EXPECT_EQ(resolveEquiangularSamples(a).equiangularSamples, 2);
+    EXPECT_EQ(resolveEquiangularSamples(a).toJson().at("equiangular_samples"), 2);
+    a.equiangularSamples = 7;
+    EXPECT_EQ(resolveEquiangularSamples(a).equiangularSamples, 7);
 }
 
 }  // namespace

@@ -12,8 +12,12 @@
 // 3. PPB with it on, against the in-tree path tracer on a fog box with walls, a point light in view
 //    and an area light (the direct beams left out, the rest of the media from beams); lights edited
 //    between passes give a fresh renderer's image.
+// 2a. Several lights sharing one budget of samples per segment, each choosing its source by its
+//    estimated share of the segment: the mean against the sum of the lights' closed forms, the
+//    choice's shares, and an estimate's variance against its sample count.
 // 4. The variance law: with the path length capped at 2 (single scattering only: every photon beam
-//    of such a path is a direct one and left out), a pixel's variance over seeds falls as 1/passes.
+//    of such a path is a direct one and left out), a pixel's variance over seeds falls as 1/passes
+//    (two lamps of unequal power, one sample per segment).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -144,9 +148,10 @@ struct Estimate {
     double mean = 0, standardError = 0;
 };
 
-Estimate estimateMany(const Scene& scene, Vec3 o, Vec3 d, float sMax, int n) {
+/// The mean of n estimates (each from its own stream) of `samples` distances per segment.
+Estimate estimateMany(const Scene& scene, Vec3 o, Vec3 d, float sMax, int n, double samples = 4) {
     EmbreeScene rt(scene);
-    EquiangularScattering eq(rt);
+    EquiangularScattering eq(rt, samples);
     double sum = 0, sum2 = 0;
     for (int i = 0; i < n; ++i) {
         Rng rng = Rng::forKey(3, 0, uint64_t(i), StreamPurpose::Test);
@@ -198,7 +203,7 @@ TEST(Equiangular, SpotLightConeAgainstQuadrature) {
     // Rays wholly outside the cone (below it, and behind the spot) see nothing.
     Rng rng(1, 1);
     EmbreeScene rt(s);
-    EquiangularScattering eq(rt);
+    EquiangularScattering eq(rt, 4);
     EXPECT_EQ(eq.estimate(0, {-3, 0, 2}, {1, 0, 0}, 6.0f, rng).g, 0.0f);
     EXPECT_EQ(eq.estimate(0, {-3, 1.6f, 0}, {1, 0, 0}, 6.0f, rng).g, 0.0f);
 }
@@ -250,6 +255,72 @@ TEST(Equiangular, AreaLightInHomogeneousFogAgainstQuadrature) {
         std::printf("area light: quadrature %.6f, equiangular %.6f +- %.6f\n", expected, e.mean, e.standardError);
         EXPECT_LT(e.standardError, 0.01 * expected) << "too noisy to test";
         EXPECT_NEAR(e.mean, expected, 4 * e.standardError);
+    }
+}
+
+// ---- 2a. Several lights: one budget of samples per segment, each choosing its source ----
+
+TEST(Equiangular, TwoPointLightsOfUnequalPowerAndASpotShareTheSamplesAgainstQuadrature) {
+    // A bright light 0.3 from the ray, a dim one 0.15 from it further on, and a spot whose cone
+    // the ray crosses: each sample picks one by its estimated share of this segment and is divided
+    // by that probability, so the mean is the sum of the three lights' single scattering whatever
+    // the budget (1 sample: each segment lit by one source; 3: stratified over the choice; 0.5:
+    // one sample on half the segments, none on the others).
+    Light spot = pointLight({-1.0f, 1.5f, 0.0f}, 4.0f);
+    spot.type = LightType::Spot;
+    spot.direction = {0, -1, 0};
+    spot.cosInnerAngle = std::cos(20.0f * kPi / 180.0f);
+    spot.cosOuterAngle = std::cos(30.0f * kPi / 180.0f);
+    const std::vector<Light> lights = {pointLight({0.2f, 0.3f, -0.1f}, 2.0f), pointLight({1.3f, -0.1f, 0.12f}, 0.25f),
+                                       spot};
+    const Vec3 o{-2.0f, 0.0f, 0.0f}, d = normalize(Vec3(1.0f, 0.02f, -0.03f));
+    const float sMax = 4.0f, g = 0.6f;
+    Scene s = openFog(lights, g);
+    s.finalize();
+    double expected = 0;
+    for (const Light& l : lights) expected += quadrature(l, o, d, sMax, g);
+    for (double samples : {0.5, 1.0, 3.0}) {
+        const Estimate e = estimateMany(s, o, d, sMax, int(60000 / samples), samples);
+        std::printf("three lights, %.1f samples: quadrature %.6f, equiangular %.6f +- %.6f\n", samples, expected, e.mean,
+                    e.standardError);
+        EXPECT_LT(e.standardError, 0.01 * expected) << "too noisy to test";
+        EXPECT_NEAR(e.mean, expected, 4 * e.standardError) << samples << " samples";
+    }
+    // The choice follows the segment: a ray past the dim light alone gives it most samples; one
+    // outside the spot's cone gives the spot none; one below the bright light, it most.
+    EmbreeScene rt(s);
+    const EquiangularScattering eq(rt, 1);
+    ASSERT_EQ(eq.sources(), 3u);
+    double cdf[3];
+    ASSERT_TRUE(eq.segmentCdf(s.media[0], {1.3f, -0.2f, -1.0f}, {0, 0, 1}, 2.0f, cdf));
+    EXPECT_GT(cdf[1] - cdf[0], 0.6) << "the dim light 0.1 from the ray";
+    EXPECT_EQ(cdf[2] - cdf[1], 0.0) << "the spot's cone is far";
+    EXPECT_EQ(cdf[2], 1.0);
+    ASSERT_TRUE(eq.segmentCdf(s.media[0], {0.2f, 0.0f, -1.0f}, {0, 0, 1}, 2.0f, cdf));
+    EXPECT_GT(cdf[0], 0.6) << "the bright light 0.3 above the ray";
+}
+
+TEST(Equiangular, TheVarianceOfAnEstimateFallsAtLeastAsOneOverItsSamples) {
+    // Two lights of unequal power, N samples per segment stratified over the source choice and
+    // the distance: the variance of one estimate is at most that of one sample over N (equal for
+    // independent samples; stratification lowers it further, here to about 1/N^2.5), and one
+    // sample on a quarter of the segments has at least 4 times the variance of one on each.
+    const std::vector<Light> lights = {pointLight({0.2f, 0.3f, -0.1f}, 2.0f), pointLight({1.3f, -0.1f, 0.12f}, 0.25f)};
+    Scene s = openFog(lights, 0.0f);
+    s.finalize();
+    const Vec3 o{-2.0f, 0.0f, 0.0f}, d = normalize(Vec3(1.0f, 0.02f, -0.03f));
+    const int n = 20000;
+    const double samples[4] = {0.25, 1, 4, 16};
+    double variance[4] = {0, 0, 0, 0};
+    for (int k = 0; k < 4; ++k) {
+        const Estimate e = estimateMany(s, o, d, 4.0f, n, samples[k]);
+        variance[k] = e.standardError * e.standardError * (n - 1);
+    }
+    std::printf("variance of one estimate with 1/4, 1, 4, 16 samples: %.4g %.4g %.4g %.4g\n", variance[0],
+                variance[1], variance[2], variance[3]);
+    for (int k = 1; k < 4; ++k) {
+        const double ratio = variance[k] / variance[k - 1];  // 4x the samples
+        EXPECT_LT(ratio, 0.25 * 1.1) << k;
     }
 }
 
@@ -409,13 +480,17 @@ TEST(EquiangularPpb, SingleScatteringVarianceFallsAsOneOverPasses) {
     // remains, so each pass is an independent unbiased estimate: the variance of a pixel's mean
     // over n passes, measured over seeds, must fall as 1/n. The lamp is out of view, so the film
     // jitter's low-discrepancy sequence (which converges faster) adds little variance of its own.
-    const Scene scene = fogBoxWithLamp(false);
+    // Two lamps of unequal power share one sample per segment, each segment choosing its source.
+    Scene scene = fogBoxWithLamp(false);
+    scene.lights.push_back(pointLight({-0.5f, 0.3f, -0.4f}, 0.3f));
+    scene.finalize();
     const int size = 8, seeds = 48;
     RenderSettings ps;
     ps.width = ps.height = size;
     ps.photonsPerPass = 16;
     ps.maxPathLength = 2;
     ps.equiangular = true;
+    ps.equiangularSamples = 1;
     ps.radius = 0.03f;
     ps.surfaceRadius = 0.06f;
     ps.radiusOffset = 1000000000000ull;
