@@ -17,6 +17,8 @@ enum class StreamPurpose : uint32_t {
     PixelJitterRotation = 7,  ///< a pixel's offset of the film jitter's sequence (core/pixel_jitter.h)
     Equiangular = 8,  ///< a camera path's equiangular single scattering (cpu/equiangular.h)
     PhotonPlane = 9,  ///< a photon path's plane directions and lengths (core/photon_plane.h)
+    MediumEmission = 10,  ///< a camera path's grid-medium emission, primary segment (cpu/segment_emission.h)
+    LaterMediumEmission = 11,  ///< the same along its later segments
     Test = 99,
 };
 

@@ -49,7 +49,12 @@ Rgb gatherBeams(const Scene& scene, const PhotonMap& photons, const std::vector<
 
 CameraTracer::CameraTracer(const EmbreeScene& rt, const RenderSettings& settings)
     : m_rt(rt), m_scene(rt.scene()), m_settings(settings) {
-    for (const Medium& m : m_scene.media) m_anyHeterogeneous |= !m.homogeneous();
+    bool gridEmission = false;
+    for (const Medium& m : m_scene.media) {
+        m_anyHeterogeneous |= !m.homogeneous();
+        gridEmission |= !m.homogeneous() && m.emissive();
+    }
+    if (gridEmission) m_segmentEmission = std::make_unique<SegmentEmission>(m_scene);
     if (settings.surfaceBoundary) m_boundary = std::make_unique<SurfaceBoundary>(m_scene, m_rt);
     lightsChanged();
     if (settings.directLight) {
@@ -203,8 +208,12 @@ PrimaryPass CameraTracer::tracePrimary(uint64_t pass) const {
                     ph.emitted = homogeneousEmission(med, seg.tMax);
                 } else {
                     float* ff = &primary.freeFlights[pixel * nff];
-                    sampleCollisionDistances(med, seg, seg.tMax, jitter, nff, ff, &ph.emitted);
+                    sampleCollisionDistances(med, seg, seg.tMax, jitter, nff, ff);
                     ph.throughput = Rgb(storedTransmittance(ff, nff, seg.tMax));
+                    if (m_segmentEmission && med.emissive()) {
+                        Rng emissionRng = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::MediumEmission);
+                        ph.emitted = m_segmentEmission->estimate(cameraMedium, seg.o, seg.d, seg.tMax, emissionRng);
+                    }
                 }
             } else {
                 primary.rays[pixel] = PrimaryRay{ray.o, 0.0f, ray.d, kVacuum};
@@ -274,6 +283,7 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
             // Keyed only where --equiangular on draws from it (every use is behind m_equiangular).
             Rng equiangularRng =
                 m_equiangular ? Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::Equiangular) : Rng();
+            std::optional<Rng> emissionRng;  // keyed at the first later segment in an emitting grid
             const PrimaryRay& pr = primary.segments.rays[pixel];
             if (((m_equiangular && emission) || planeBvh) && (maxLength == 0 || maxLength >= 2) &&
                 pr.medium != kVacuum && pr.tMax > 0) {
@@ -453,10 +463,17 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                     const Medium& med = m_scene.media[medium];
                     float* ff = tls.freeFlights.data();
                     Rgb emitted;  // the segment's medium emission, with the pass's emission only
-                    if (!med.homogeneous())
-                        sampleCollisionDistances(med, seg, seg.tMax, rng, nff, ff, emission ? &emitted : nullptr);
-                    else if (emission)
+                    if (!med.homogeneous()) {
+                        sampleCollisionDistances(med, seg, seg.tMax, rng, nff, ff);
+                        if (emission && m_segmentEmission && med.emissive()) {
+                            if (!emissionRng)
+                                emissionRng.emplace(
+                                    Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::LaterMediumEmission));
+                            emitted = m_segmentEmission->estimate(medium, seg.o, seg.d, seg.tMax, *emissionRng);
+                        }
+                    } else if (emission) {
                         emitted = homogeneousEmission(med, seg.tMax);
+                    }
                     // Beams of photon paths that fit the cap with this segment (none when it is full);
                     // the medium's own emission is a path of `segment` segments, always within it.
                     const int maxBeamSegment = maxLength > 0 ? maxLength - segment : 0;

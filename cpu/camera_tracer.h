@@ -4,8 +4,8 @@
 //   tracePrimary(i)                         the first segment (camera -> first surface) of every
 //                                           pixel: recorded for a beam splatter (CPU rasterizer or
 //                                           GL), which adds its medium radiance; needs no photons;
-//                                           also estimates the segment's medium emission (with
-//                                           its stored distances, cpu/free_flight.h)
+//                                           also estimates the segment's medium emission
+//                                           (cpu/segment_emission.h)
 //   traceSecondary(i, primary, photons...)  the rest of each path: the primary segment's medium
 //                                           emission, emission at the first hit, then
 //                                           through mirrors and glass (Fresnel choice), every later
@@ -45,6 +45,7 @@
 #include "cpu/direct_light.h"
 #include "cpu/embree_scene.h"
 #include "cpu/equiangular.h"
+#include "cpu/segment_emission.h"
 #include "cpu/surface_boundary.h"
 #include "cpu/surface_photon_grid.h"
 
@@ -163,6 +164,9 @@ private:
     /// --equiangular on (and a point or spot light): single scattering along every camera segment
     /// in a medium (cpu/equiangular.h); null otherwise.
     std::unique_ptr<EquiangularScattering> m_equiangular;
+    /// The emission of grid media along every camera segment (cpu/segment_emission.h); null when
+    /// no grid medium emits.
+    std::unique_ptr<SegmentEmission> m_segmentEmission;
     bool m_skipDirectPhotons = false;  ///< the diffuse gather must test kPhotonDirect (glossy photons)
     std::shared_ptr<HitPool> m_hitPool = std::make_shared<HitPool>();
     std::shared_ptr<PrimarySegmentPool> m_segmentPool = std::make_shared<PrimarySegmentPool>();

@@ -121,19 +121,12 @@ Rgb homogeneousEmission(const Medium& medium, float d) {
     return e;
 }
 
-void sampleCollisionDistances(const Medium& medium, const Ray& ray, float tEnd, Rng& rng, int n, float* out,
-                              Rgb* emitted) {
+void sampleCollisionDistances(const Medium& medium, const Ray& ray, float tEnd, Rng& rng, int n, float* out) {
     n = std::min(n, kMaxFreeFlights);
-    if (emitted) *emitted = Rgb(0.0f);
     if (medium.homogeneous()) {
         for (int k = 0; k < n; ++k) out[k] = sampleCollisionDistance(medium, ray, tEnd, rng);
-        if (emitted) *emitted = homogeneousEmission(medium, tEnd);
         return;
     }
-    if (emitted && (!medium.emissive() || n <= 0)) emitted = nullptr;
-    // Emission at a tentative collision x with density dx: sigma_a dx Le(x) / (sigma_t maj), / n.
-    Rgb emittedSum(0.0f);
-    const Rgb sourceScale = emitted ? medium.sigmaA / (medium.sigmaT().r * float(n)) : Rgb(0.0f);
     // n delta trackers advanced piece by piece: the same process as n separate calls (each
     // tracker has its own optical-depth targets), with one walk of the majorant grid.
     const DensityGrid& grid = *medium.density;
@@ -167,10 +160,7 @@ void sampleCollisionDistances(const Medium& medium, const Ray& ray, float tEnd, 
                     break;
                 }
                 t += dt;
-                const Vec3 x = ray.at(t);
-                const float dx = grid.density(x);
-                if (emitted && dx > 0) emittedSum += sourceScale * medium.emissionAt(x) * (dx / maj);
-                if (rng.uniform() * maj < dx) {
+                if (rng.uniform() * maj < grid.density(ray.at(t))) {
                     out[k] = t;
                     collided = true;
                     break;
@@ -184,7 +174,6 @@ void sampleCollisionDistances(const Medium& medium, const Ray& ray, float tEnd, 
             }
         }
     }
-    if (emitted) *emitted = emittedSum;
 }
 
 Rgb estimateEmission(const Medium& medium, const Ray& ray, float tEnd, Rng& rng) {

@@ -85,23 +85,16 @@ float sampleCollisionDistance(const Medium& medium, const Ray& ray, float tEnd, 
 /// `n` (<= kMaxFreeFlights) independent collision distances along one segment, each distributed as
 /// sampleCollisionDistance's: the stored set of one beam or one pixel. Grid media walk the
 /// majorant grid once for all n trackers.
-///
-/// `emitted`, when given, receives an unbiased estimate of the medium's emission reaching ray.o
-/// from [0, tEnd], E = integral of Tr(0, s) sigma_a(s) Le(s) ds: exact for homogeneous media
-/// (homogeneousEmission); for grid media each tracker adds sigma_a(x) Le(x) / sigma_majorant(x) at
-/// every tentative collision x up to and including its real one (the tentative collisions come at
-/// rate sigma_majorant and the tracker is still alive at s with probability Tr(0, s)), averaged
-/// over the n trackers. It draws no random numbers: the distances are those without it.
 constexpr int kMaxFreeFlights = 64;
-void sampleCollisionDistances(const Medium& medium, const Ray& ray, float tEnd, Rng& rng, int n, float* out,
-                              Rgb* emitted = nullptr);
+void sampleCollisionDistances(const Medium& medium, const Ray& ray, float tEnd, Rng& rng, int n, float* out);
 
 /// The emission of a homogeneous medium reaching the start of a segment of length d:
 /// sigma_a Le (1 - exp(-sigma_t d)) / sigma_t per channel (sigma_a Le d where sigma_t = 0).
 Rgb homogeneousEmission(const Medium& medium, float d);
 
-/// An unbiased estimate of the emission reaching ray.o from [0, tEnd] (as above), for callers
-/// without stored distances (the reference path tracer): exact for homogeneous media, ratio
+/// An unbiased estimate of the emission reaching ray.o from [0, tEnd],
+/// E = integral of Tr(0, s) sigma_a(s) Le(s) ds, for the reference path tracer (camera paths use
+/// cpu/segment_emission.h's lower-variance one): exact for homogeneous media, ratio
 /// tracking for grid media (at each tentative collision x, T sigma_a(x) Le(x) / sigma_majorant(x)
 /// with T the running ratio-tracking transmittance, which then takes the factor
 /// 1 - sigma_t(x) / sigma_majorant(x)). Zero for media that do not emit, drawing nothing.
