@@ -92,14 +92,21 @@ bool collectCandidate(RTCPointQueryFunctionArguments* args) {
 
 }  // namespace
 
-double SurfaceBoundary::massBeyondSegment(double ax, double ay, double bx, double by, double r) {
+SurfaceBoundary::PlaneSegment::PlaneSegment(double ax, double ay, double bx, double by)
+    : m_h(0), m_ta(0), m_tb(0), m_atA(0), m_atB(0), m_tanA(0), m_tanB(0), m_atans(false), m_hasTanA(false),
+      m_hasTanB(false) {
     const double dx = bx - ax, dy = by - ay;
     const double len = std::sqrt(dx * dx + dy * dy);
-    if (!(len > 0) || !(r > 0)) return 0.0;
+    m_line = len > 0;
+    if (!m_line) return;
     const double ux = dx / len, uy = dy / len;
-    const double h = std::abs(ax * uy - ay * ux);  // distance from the centre to the segment's line
-    if (h >= r) return 0.0;
-    const double ta = ax * ux + ay * uy, tb = bx * ux + by * uy;  // along the line from the foot, ta < tb
+    m_h = std::abs(ax * uy - ay * ux);  // distance from the centre to the segment's line
+    m_ta = ax * ux + ay * uy, m_tb = bx * ux + by * uy;  // along the line from the foot, ta < tb
+}
+
+double SurfaceBoundary::PlaneSegment::mass(double r) {
+    if (!m_line || !(r > 0) || m_h >= r) return 0.0;
+    const double h = m_h, ta = m_ta, tb = m_tb;
     const double kInv2Pi = 0.5 / M_PI;
     if (h < 1e-9 * r) {
         // The centre on the line: beyond it is the half-disc, of which the segment's angle holds
@@ -110,16 +117,26 @@ double SurfaceBoundary::massBeyondSegment(double ax, double ay, double bx, doubl
     // In polar angle phi from the foot, the line lies at h / cos(phi); beyond it up to r the
     // kernel's mass per radian is 1/(2 pi) - G(h sec phi), G(s) = (s^2/r^2 - s^4/(2 r^4)) / pi,
     // zero past phi_c = acos(h / r). Its antiderivative:
-    //   F(phi) = phi/(2 pi) - (eta^2 tan phi - eta^4/2 (tan phi + tan^3 phi / 3)) / pi,  eta = h/r.
+    //   F(phi) = phi/(2 pi) - (eta^2 tan phi - eta^4/2 (tan phi + tan^3 phi / 3)) / pi,  eta = h/r,
+    // from lo = max(atan(ta / h), -phi_c) to hi = min(atan(tb / h), phi_c). The ends' angles and
+    // tangents do not depend on r (kept); tan(-phi_c) is -tan(phi_c) (libm's tan is odd bit for
+    // bit: it reduces |phi| and restores the sign).
     const double eta = h / r, phiC = std::acos(eta);
-    const double lo = std::max(std::atan(ta / h), -phiC), hi = std::min(std::atan(tb / h), phiC);
+    if (!m_atans) m_atA = std::atan(ta / h), m_atB = std::atan(tb / h), m_atans = true;
+    const bool clipLo = m_atA < -phiC, clipHi = phiC < m_atB;  // std::max's and std::min's tests
+    const double lo = clipLo ? -phiC : m_atA, hi = clipHi ? phiC : m_atB;
     if (!(hi > lo)) return 0.0;
+    const double tanC = clipLo || clipHi ? std::tan(phiC) : 0.0;
+    if (!clipLo && !m_hasTanA) m_tanA = std::tan(m_atA), m_hasTanA = true;
+    if (!clipHi && !m_hasTanB) m_tanB = std::tan(m_atB), m_hasTanB = true;
+    const double tLo = clipLo ? -tanC : m_tanA, tHi = clipHi ? tanC : m_tanB;
     const double e2 = eta * eta, e4 = e2 * e2;
-    auto F = [&](double phi) {
-        const double t = std::tan(phi);
-        return phi * kInv2Pi - (e2 * t - 0.5 * e4 * (t + t * t * t / 3.0)) / M_PI;
-    };
-    return std::max(0.0, F(hi) - F(lo));
+    auto F = [&](double phi, double t) { return phi * kInv2Pi - (e2 * t - 0.5 * e4 * (t + t * t * t / 3.0)) / M_PI; };
+    return std::max(0.0, F(hi, tHi) - F(lo, tLo));
+}
+
+double SurfaceBoundary::massBeyondSegment(double ax, double ay, double bx, double by, double r) {
+    return PlaneSegment(ax, ay, bx, by).mass(r);
 }
 
 SurfaceBoundary::SurfaceBoundary(const Scene& scene, const EmbreeScene& rt, Layers layers) {
@@ -272,8 +289,8 @@ float SurfaceBoundary::halfOctaveAbove(float r) {
     return out;
 }
 
-float SurfaceBoundary::coverage(const Vec3& x, const Vec3& ng, float r) const {
-    if (!m_rtcScene || !(r > 0) || r <= m_clearance.clearance(x)) return 1.0f;
+const std::vector<uint32_t>* SurfaceBoundary::facingCandidates(const Vec3& x, const Vec3& ng, float r,
+                                                               float* reach) const {
     // The candidates of x's pre-check cell at this radius, cached per thread (surface_boundary.h),
     // with those that pass the normal test for the last normal asked for; outside the grid, x's own.
     struct CellCandidates {
@@ -291,8 +308,8 @@ float SurfaceBoundary::coverage(const Vec3& x, const Vec3& ng, float r) const {
     CellCandidates* candidates = nullptr;
     size_t cell;
     Vec3 centre;
-    float reach;
-    if (m_clearance.cellOf(x, &cell, &centre, &reach)) {
+    float cellReach;
+    if (m_clearance.cellOf(x, &cell, &centre, &cellReach)) {
         // Keyed by the half octave above r (photons with the cone carry many radii): the cell's
         // list holds the half-edges within that radius, a superset of those within r.
         const float rKey = halfOctaveAbove(r);
@@ -304,16 +321,18 @@ float SurfaceBoundary::coverage(const Vec3& x, const Vec3& ng, float r) const {
             c.owner = m_id, c.cell = cell, c.r = rKey;
             c.list.clear();
             c.ng = Vec3(kInfinity);
-            query(centre, rKey + reach, &c.list);
+            query(centre, rKey + cellReach, &c.list);
             candidates = &c;
         }
+        *reach = rKey;
     } else {
         own.list.clear();
         own.ng = Vec3(kInfinity);
         query(x, r, &own.list);
         candidates = &own;
+        *reach = r;
     }
-    if (candidates->list.empty()) return 1.0f;
+    if (candidates->list.empty()) return nullptr;
     // Another plane's edge; on a sheet of mixed winding either face of x's plane is x's.
     if (std::memcmp(&candidates->ng, &ng, sizeof ng) != 0) {
         candidates->facing.clear();
@@ -324,22 +343,56 @@ float SurfaceBoundary::coverage(const Vec3& x, const Vec3& ng, float r) const {
         }
         candidates->ng = ng;
     }
+    return &candidates->facing;
+}
 
+bool SurfaceBoundary::nearEdge(const HalfEdge& e, const Vec3& x, const Vec3& ng, const Frame& frame, NearEdge* out) {
+    if (dot(x - e.a, e.inward) < 0) return false;  // x is not on the surface it bounds
+    // Where it passes closest to x: near x's plane there, the photons of that surface are in the
+    // gather's slab (cuts()).
+    const Vec3 ab = e.b - e.a;
+    const float s = std::clamp(dot(x - e.a, ab) / dot(ab, ab), 0.0f, 1.0f);
+    const Vec3 c = e.a + ab * s - x;
+    const Vec3 a = frame.toLocal(e.a - x), b = frame.toLocal(e.b - x);
+    *out = {dot(c, c), std::abs(dot(c, ng)), e.layerOffset, PlaneSegment(a.x, a.y, b.x, b.y)};
+    return true;
+}
+
+float SurfaceBoundary::coverage(const Vec3& x, const Vec3& ng, float r) const {
+    if (!m_rtcScene || !(r > 0) || r <= m_clearance.clearance(x)) return 1.0f;
+    float reach;
+    const std::vector<uint32_t>* facing = facingCandidates(x, ng, r, &reach);
+    if (!facing) return 1.0f;
     const Frame frame(ng);
     double missing = 0;
-    for (uint32_t i : candidates->facing) {
-        const HalfEdge& e = m_edges[i];
-        if (dot(x - e.a, e.inward) < 0) continue;          // x is not on the surface it bounds
-        // Near x's plane where it passes closest: the photons of that surface are in the gather's slab.
-        const Vec3 ab = e.b - e.a;
-        const float s = std::clamp(dot(x - e.a, ab) / dot(ab, ab), 0.0f, 1.0f);
-        const Vec3 c = e.a + ab * s - x;
-        if (dot(c, c) >= r * r || std::abs(dot(c, ng)) > 0.25f * r) continue;
-        // A parallel surface just past it whose photons the slab takes: nothing lost there.
-        if (e.layerOffset <= 0.25f * r) continue;
-        const Vec3 a = frame.toLocal(e.a - x), b = frame.toLocal(e.b - x);
-        missing += massBeyondSegment(a.x, a.y, b.x, b.y, r);
+    NearEdge near;
+    for (uint32_t i : *facing)
+        if (nearEdge(m_edges[i], x, ng, frame, &near) && near.cuts(r)) missing += near.segment.mass(r);
+    return float(std::clamp(1.0 - missing, double(kMinCoverage), 1.0));
+}
+
+bool SurfaceBoundary::AtPoint::prepare(float r) {
+    if (m_nearRadius > 0 && r <= m_nearRadius) return !m_overflow;
+    m_nearCount = 0;
+    m_overflow = false;
+    const std::vector<uint32_t>* facing = m_b.facingCandidates(m_x, m_ng, r, &m_nearRadius);
+    if (!facing) return true;
+    const Frame frame(m_ng);
+    for (uint32_t i : *facing) {
+        NearEdge near;
+        if (!nearEdge(m_b.m_edges[i], m_x, m_ng, frame, &near)) continue;
+        if (m_nearCount == kNear) return !(m_overflow = true);
+        m_near[m_nearCount++] = near;
     }
+    return true;
+}
+
+float SurfaceBoundary::AtPoint::at(float r) {
+    if (!m_b.m_rtcScene || !(r > 0) || r <= m_clear) return 1.0f;
+    if (!prepare(r)) return m_b.coverage(m_x, m_ng, r);
+    double missing = 0;
+    for (int k = 0; k < m_nearCount; ++k)
+        if (m_near[k].cuts(r)) missing += m_near[k].segment.mass(r);
     return float(std::clamp(1.0 - missing, double(kMinCoverage), 1.0));
 }
 

@@ -81,14 +81,61 @@ public:
     /// photon-holding surface of x's plane. 1 away from edges (and for r <= 0).
     float coverage(const Vec3& x, const Vec3& ng, float r) const;
 
+    /// In the plane, with the kernel K(d) = 2/(pi r^2) (1 - d^2/r^2) centred at the origin: a
+    /// segment a-b, with what its mass beyond (massBeyondSegment) needs that does not depend on r,
+    /// the ends' angles and their tangents kept once computed, so that the radii of one gather
+    /// share them. massBeyondSegment is PlaneSegment(a, b).mass(r).
+    class PlaneSegment {
+    public:
+        PlaneSegment() = default;  ///< uninitialised (a gather keeps an array of them)
+        PlaneSegment(double ax, double ay, double bx, double by);
+        double mass(double r);
+
+    private:
+        double m_h, m_ta, m_tb;  ///< distance to the line; the ends along it from the foot
+        double m_atA, m_atB, m_tanA, m_tanB;
+        bool m_line;  ///< a-b has a length
+        bool m_atans, m_hasTanA, m_hasTanB;
+    };
+
+private:
+    struct HalfEdge {
+        Vec3 a, b;
+        Vec3 normal;  ///< unit geometric normal of the triangle the edge bounds
+        Vec3 inward;  ///< unit, in that triangle's plane, perpendicular to a-b, toward its interior
+        float layerOffset;  ///< |normal offset| of a photon-holding surface just past it; infinity: none
+        bool mixedWinding;  ///< its sheet holds neighbours wound opposite ways: normal's sign unknown
+    };
+    /// A facing half-edge seen from a gather point x with x on its inner side: what coverage()
+    /// tests and sums for it at any radius.
+    struct NearEdge {
+        float d2;        ///< squared distance from x to the half-edge
+        float offPlane;  ///< |(its point nearest x - x) . ng|
+        float layerOffset;
+        PlaneSegment segment;  ///< in x's tangent frame (Frame(ng)), x at the origin
+        /// Whether it removes kernel mass at radius r: near x's plane where it passes within r,
+        /// and no parallel surface past it within the slab.
+        bool cuts(float r) const { return !(d2 >= r * r || offPlane > 0.25f * r) && !(layerOffset <= 0.25f * r); }
+    };
+    /// The NearEdge of half-edge e from x (false: x is not on the surface it bounds).
+    static bool nearEdge(const HalfEdge& e, const Vec3& x, const Vec3& ng, const Frame& frame, NearEdge* out);
+
+public:
+
     /// coverage() for the photons of one gather at x, each at its own radius quantised to 1/32
-    /// octave (the float's exponent and top 5 mantissa bits, the bucket's middle): one query per
-    /// distinct value. A late pass's photons share two or three; an early pass's span more (the
-    /// first pass after a radius offset of 1000 paths, 4000 paths, about 19), so kSlots values are
-    /// kept, in the order first met, and the last one found is tried first. Dividing each photon's term by the
-    /// coverage at its own radius keeps the estimate a sum of per-photon terms, so a pass traced
-    /// in photon batches sums to the whole pass (a coverage from the gathered photons' mean radius
-    /// would depend on which photons a batch holds).
+    /// octave (the float's exponent and top 5 mantissa bits, the bucket's middle): one evaluation
+    /// per distinct value. A late pass's photons share two or three; an early pass's span more (the
+    /// first pass after a radius offset of 1000 paths, 4000 paths, about 19), kept in a table
+    /// indexed by the bucket's low bits (two octaves without a collision). Dividing each photon's
+    /// term by the coverage at its own radius keeps the estimate a sum of per-photon terms, so a
+    /// pass traced in photon batches sums to the whole pass (a coverage from the gathered photons'
+    /// mean radius would depend on which photons a batch holds).
+    ///
+    /// What does not depend on the radius is found once per gather: the half-edges facing x's
+    /// normal with x on their inner side, from the candidates for the largest radius asked so far
+    /// (a superset serves every smaller radius), with their distances to x and their segments in
+    /// x's plane (PlaneSegment). Each radius then sums, in half-edge order, over those its tests
+    /// keep, as coverage() does: bit for bit coverage(x, ng, the bucket's middle).
     class AtPoint {
     public:
         AtPoint(const SurfaceBoundary& boundary, const Vec3& x, const Vec3& ng)
@@ -98,26 +145,34 @@ public:
             if (r * 1.02f <= m_clear) return 1.0f;
             uint32_t bits;
             std::memcpy(&bits, &r, sizeof bits);
-            const uint32_t key = bits >> 18;
-            if (m_count > 0 && m_key[m_last] == key) return m_value[m_last];
-            for (int i = 0; i < m_count; ++i)
-                if (m_key[i] == key) return m_value[m_last = i];
+            const uint32_t key = bits >> 18, slot = key & (kSlots - 1);
+            if ((m_filled >> slot & 1) && m_key[slot] == key) return m_value[slot];
             const uint32_t mid = (key << 18) | (1u << 17);
             float rq;
             std::memcpy(&rq, &mid, sizeof rq);
-            const float c = m_b.coverage(m_x, m_ng, rq);
-            if (m_count < kSlots) m_last = m_count, m_key[m_count] = key, m_value[m_count++] = c;
+            const float c = at(rq);
+            m_filled |= uint64_t(1) << slot, m_key[slot] = key, m_value[slot] = c;
             return c;
         }
 
     private:
-        static constexpr int kSlots = 32;
+        /// coverage(m_x, m_ng, r) from the kept half-edges.
+        float at(float r);
+        /// Keeps the half-edges for radii up to r (false: more than kNear, ask coverage()).
+        bool prepare(float r);
+
+        static constexpr int kSlots = 64;
+        static constexpr int kNear = 24;
         const SurfaceBoundary& m_b;
         Vec3 m_x, m_ng;
         float m_clear;  ///< no feature half-edge is nearer x than this
-        int m_count = 0, m_last = 0;
+        uint64_t m_filled = 0;
         uint32_t m_key[kSlots];
         float m_value[kSlots];
+        float m_nearRadius = 0;  ///< m_near holds the half-edges that can matter up to this radius
+        bool m_overflow = false;
+        int m_nearCount = 0;
+        NearEdge m_near[kNear];
     };
 
     /// Number of feature half-edges (0: no surface in the scene ends anywhere a kernel notices).
@@ -142,15 +197,12 @@ public:
     static constexpr float kNormalAgreement = kSurfaceNormalAgreement;
 
 private:
-    struct HalfEdge {
-        Vec3 a, b;
-        Vec3 normal;  ///< unit geometric normal of the triangle the edge bounds
-        Vec3 inward;  ///< unit, in that triangle's plane, perpendicular to a-b, toward its interior
-        float layerOffset;  ///< |normal offset| of a photon-holding surface just past it; infinity: none
-        bool mixedWinding;  ///< its sheet holds neighbours wound opposite ways: normal's sign unknown
-    };
     /// Appends to `out` the half-edges Embree finds within r of x (a superset of those closer).
     void query(const Vec3& x, float r, std::vector<uint32_t>* out) const;
+    /// The candidate half-edges for coverage(x, ng, r) (a superset of those within r of x, in
+    /// half-edge order) that pass the normal test for ng, from the thread's cache (nullptr: none);
+    /// *reach: the largest radius the list serves at x.
+    const std::vector<uint32_t>* facingCandidates(const Vec3& x, const Vec3& ng, float r, float* reach) const;
 
     std::vector<HalfEdge> m_edges;
     EdgeClearanceGrid m_clearance;

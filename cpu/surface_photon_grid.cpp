@@ -1,11 +1,14 @@
 #include "cpu/surface_photon_grid.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 namespace tyndall {
 
 SurfacePhotonGrid::SurfacePhotonGrid(const std::vector<SurfacePhoton>& photons) : m_photons(photons) {
+    static std::atomic<uint64_t> grids{0};
+    m_id = ++grids;
     if (photons.empty()) {
         m_cellStart.assign(2, 0);
         return;
@@ -71,7 +74,8 @@ int SurfacePhotonGrid::bucketsNear(const Vec3& x, const Vec3& n, uint32_t* bucke
 }
 
 SurfacePhotonGrid::Region* SurfacePhotonGrid::regionFor(const Vec3& x) const {
-    RegionCache& cache = m_regions.local();
+    thread_local RegionCache cache;
+    if (cache.owner != m_id) cache.owner = m_id, cache.used = 0, cache.next = 0;
     for (int i = 0; i < cache.used; ++i) {
         Region& r = cache.regions[i];
         if (x.x >= r.lo.x && x.y >= r.lo.y && x.z >= r.lo.z && x.x <= r.hi.x && x.y <= r.hi.y && x.z <= r.hi.z)

@@ -14,9 +14,8 @@
 // of the box, ascending) and a lookup inside such a box scans only those, without hashing, with
 // Highway (cpu/surface_photon_scan.h: the scalar test's operations, 4-16 candidates at a time).
 // Both ways visit the same photons in the same (ascending) order, so the sums are bit for bit the
-// same whatever the cache held.
-#include <tbb/enumerable_thread_specific.h>
-
+// same whatever the cache held. The cache is one per thread (thread_local), keyed by the grid it
+// holds regions of: a lookup in another grid starts it afresh.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -45,7 +44,7 @@ public:
     /// Calls visit(photon, d2) once for every photon within its own radius of x (d2 = |x - x_p|^2
     /// < r_p^2) and near the plane through x with unit normal n (|(x_p - x).n| <= r_p / 4), in
     /// an order fixed by the photons and x alone (ascending photon order). The query density()
-    /// and gather() share. `visit` must not query this grid (it scans the thread's cached region).
+    /// and gather() share. `visit` must not query a grid (it scans the thread's cached region).
     template <class Visit>
     void forEachNear(const Vec3& x, const Vec3& n, const Visit& visit) const;
     /// forEachNear without the per-thread cache (the definition the cache must reproduce).
@@ -58,6 +57,9 @@ public:
     }
 
 private:
+    static bool isZeroWeight(float w) { return w == 0.0f; }
+    static bool isZeroWeight(const Rgb& w) { return w.isBlack(); }
+
     // The candidates of one box [lo, hi], structure of arrays (the scan reads four floats each),
     // padded by kPhotonScanPadding for the SIMD scan, and where the scan writes what it accepts.
     struct Region {
@@ -69,6 +71,7 @@ private:
     };
     struct RegionCache {
         static constexpr int kRegions = 4;
+        uint64_t owner = 0;  ///< the SurfacePhotonGrid::m_id the regions belong to
         Region regions[kRegions];
         int used = 0, next = 0;
     };
@@ -98,7 +101,7 @@ private:
     Vec3 m_origin;
     Vec3 m_extentCells;  // the photons' bounds in cells, from m_origin
     uint32_t m_buckets = 1;
-    mutable tbb::enumerable_thread_specific<RegionCache> m_regions;
+    uint64_t m_id;  ///< unique per grid: keys the per-thread region cache
 };
 
 template <class Visit>
@@ -134,7 +137,10 @@ Rgb SurfacePhotonGrid::gather(const Vec3& x, const Vec3& n, const Weight& weight
     Rgb sum;
     forEachNear(x, n, [&](const SurfacePhoton& p, float d2) {
         if (std::abs(dot(p.normal, n)) < kSurfaceNormalAgreement) return;
-        sum += weight(p) * p.power * kernel(d2, p.radius);
+        const auto w = weight(p);
+        // A zero weight adds +-0 (finite powers and kernels): the sum's bits stay as they are.
+        if (isZeroWeight(w)) return;
+        sum += w * p.power * kernel(d2, p.radius);
     });
     return sum;
 }

@@ -18,6 +18,7 @@
 //    kernels' exact means (plain, boundary without the layer probe: over-counted ~1.4x, with it).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -247,6 +248,95 @@ TEST(SurfaceBoundary, CellCandidatesServeEveryNormalAsAFreshQuery) {
         for (int k = 0; k < 3; ++k)
             for (int j = 0; j < 2; ++j)
                 EXPECT_EQ(b.coverage(points[k][0], points[k][1], j ? 0.3f : 0.12f), fresh[k][j]) << k << " " << j;
+}
+
+/// massBeyondSegment as first written, every angle and tangent per call: the definition the kept
+/// angles (PlaneSegment) must reproduce bit for bit.
+double massBeyondSegmentDefinition(double ax, double ay, double bx, double by, double r) {
+    const double dx = bx - ax, dy = by - ay;
+    const double len = std::sqrt(dx * dx + dy * dy);
+    if (!(len > 0) || !(r > 0)) return 0.0;
+    const double ux = dx / len, uy = dy / len;
+    const double h = std::abs(ax * uy - ay * ux);
+    if (h >= r) return 0.0;
+    const double ta = ax * ux + ay * uy, tb = bx * ux + by * uy;
+    const double kInv2Pi = 0.5 / M_PI;
+    if (h < 1e-9 * r) {
+        const double lo = ta < 0 ? -0.5 * M_PI : 0.0, hi = tb > 0 ? 0.5 * M_PI : 0.0;
+        return hi > lo ? (hi - lo) * kInv2Pi : 0.0;
+    }
+    const double eta = h / r, phiC = std::acos(eta);
+    const double lo = std::max(std::atan(ta / h), -phiC), hi = std::min(std::atan(tb / h), phiC);
+    if (!(hi > lo)) return 0.0;
+    const double e2 = eta * eta, e4 = e2 * e2;
+    auto F = [&](double phi) {
+        const double t = std::tan(phi);
+        return phi * kInv2Pi - (e2 * t - 0.5 * e4 * (t + t * t * t / 3.0)) / M_PI;
+    };
+    return std::max(0.0, F(hi) - F(lo));
+}
+
+// The per-gather evaluation (AtPoint: the facing half-edges kept once for the largest radius asked
+// so far, each segment's angles and tangents computed once) must give coverage() at the radius
+// bucket's middle bit for bit, whatever order the radii come in: points near the room's edges and
+// corners (on the floor, walls and ceiling), 40 radii over three octaves each, ascending,
+// descending or shuffled. And a PlaneSegment evaluated at a run of radii must give the
+// definition's double at each (massBeyondSegment as first written), for segments of every kind
+// (through the centre, ending inside the disc, reaching past it on one side or both).
+TEST(SurfaceBoundary, PerGatherCoverageIsCoverageAtTheBucketMiddleBitForBit) {
+    auto bitsOf = [](auto v) {
+        uint64_t bits = 0;
+        std::memcpy(&bits, &v, sizeof v);
+        return bits;
+    };
+    auto bucketMiddle = [](float r) {
+        uint32_t bits;
+        std::memcpy(&bits, &r, sizeof bits);
+        bits = ((bits >> 18) << 18) | (1u << 17);
+        float rq;
+        std::memcpy(&rq, &bits, sizeof rq);
+        return rq;
+    };
+    Scene room = roomScene(false);
+    EmbreeScene rt(room);
+    SurfaceBoundary b(room, rt);
+    Rng rng(23, 7);
+    int cut = 0, evaluations = 0;
+    for (int q = 0; q < 240; ++q) {
+        // From the middle toward a point with every coordinate 0.6 to 1 from the centre: the
+        // hit lies near an edge or a corner of the face it meets.
+        Vec3 target;
+        for (int k = 0; k < 3; ++k) target[k] = (rng.uniform() < 0.5f ? -1.0f : 1.0f) * (0.6f + 0.4f * rng.uniform());
+        SurfaceHit hit;
+        ASSERT_TRUE(rt.intersect(Ray{Vec3(0.0f), normalize(target)}, &hit));
+        std::vector<float> radii;
+        for (int i = 0; i < 40; ++i) radii.push_back(0.05f * std::exp2(3.0f * rng.uniform()));
+        if (q % 3 == 0) std::sort(radii.begin(), radii.end());
+        if (q % 3 == 1) std::sort(radii.rbegin(), radii.rend());
+        SurfaceBoundary::AtPoint at(b, hit.p, hit.ng);
+        for (float r : radii) {
+            const float got = at(r), want = b.coverage(hit.p, hit.ng, bucketMiddle(r));
+            ASSERT_EQ(bitsOf(got), bitsOf(want)) << "point " << q << " r " << r << ": " << got << " vs " << want;
+            cut += got < 1.0f;
+            ++evaluations;
+        }
+    }
+    EXPECT_GT(cut, evaluations / 3) << "most points are near an edge";
+
+    int nonzero = 0;
+    for (int q = 0; q < 2000; ++q) {
+        auto in = [&] { return 3.0 * rng.uniform() - 1.5; };
+        double s[4] = {in(), in(), in(), in()};
+        if (q % 10 == 0) s[2] = -s[0] * 0.7, s[3] = -s[1] * 0.7;  // through the centre
+        SurfaceBoundary::PlaneSegment segment(s[0], s[1], s[2], s[3]);
+        for (int i = 0; i < 12; ++i) {
+            const double r = 0.1 + 2.0 * rng.uniform();
+            ASSERT_EQ(bitsOf(segment.mass(r)), bitsOf(massBeyondSegmentDefinition(s[0], s[1], s[2], s[3], r)))
+                << s[0] << " " << s[1] << " " << s[2] << " " << s[3] << " r " << r;
+            nonzero += segment.mass(r) > 0;
+        }
+    }
+    EXPECT_GT(nonzero, 8000);
 }
 
 /// A diffuse (or `floorType`) floor x, z in [-1, 1] at y = 0 in a room of black walls 1 high,
