@@ -96,8 +96,8 @@ struct RenderSettings {
     /// Single scattering from point, spot and area lights along every camera segment in a medium by
     /// equiangular sampling (cpu/equiangular.h) instead of those lights' unscattered first beams,
     /// which are then not stored (docs/algorithm.md, "Single scattering by equiangular sampling").
-    /// false = beams only.
-    bool equiangular = false;
+    /// false = beams only (docs/performance.md: on is better or level at equal time on every scene).
+    bool equiangular = true;
     /// Equiangular distances per camera segment in a medium, shared by its lights (each drawn for
     /// one light, chosen by its estimated share of the segment's light: cpu/equiangular.h), in
     /// (0, 64]; a fraction f over floor(N) is one more distance on a share f of the segments (the
