@@ -72,6 +72,7 @@ struct Medium {
     /// Analytic transmittance over distance `t` (homogeneous only).
     Rgb transmittance(float t) const {
         Rgb st = sigmaT();
+        if (st.r == st.g && st.r == st.b) return Rgb(std::exp(-st.r * t));  // grey: one exp, the same values
         return exp(Rgb(-st.r * t, -st.g * t, -st.b * t));
     }
 };

@@ -185,38 +185,70 @@ PrimaryPass CameraTracer::tracePrimary(uint64_t pass) const {
     out.hits = acquireHits(size_t(w) * h);
     std::vector<PrimaryHit>& hits = *out.hits;
 
-    tbb::parallel_for(region.y, region.y + region.height, [&](int y) {
-        for (int x = region.x; x < region.x + region.width; ++x) {
-            const uint64_t pixel = uint64_t(y) * w + x;
-            Rng jitter = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::PixelJitter);
-            const Vec2 film = pixelJitter(m_settings.seed, pass, pixel);
-            Vec2 lens{jitter.uniform(), jitter.uniform()};
-            Ray ray = camera.generateRay(float(x) + film.x, float(y) + film.y, w, h, lens);
-            PrimaryHit& ph = hits[pixel];
-            if (nff > 0) std::fill_n(&primary.freeFlights[pixel * nff], nff, kInfinity);  // none stored
-            ph.medium = cameraMedium;
-            ph.throughput = Rgb(1.0f);
-            ph.emitted = Rgb(0.0f);
-            ph.surface = m_rt.intersect(ray, &ph.hit);
-            float tHit = ph.surface ? ph.hit.t : kInfinity;
-            Ray seg;
-            if (cameraMedium != kVacuum && m_rt.mediumSegment(ray.o, ray.d, tHit, &seg)) {
-                const Medium& med = m_scene.media[cameraMedium];
-                primary.rays[pixel] = PrimaryRay{seg.o, seg.tMax, seg.d, cameraMedium};
-                if (med.homogeneous()) {
-                    ph.throughput = med.transmittance(seg.tMax);
-                    ph.emitted = homogeneousEmission(med, seg.tMax);
-                } else {
-                    float* ff = &primary.freeFlights[pixel * nff];
-                    sampleCollisionDistances(med, seg, seg.tMax, jitter, nff, ff);
-                    ph.throughput = Rgb(storedTransmittance(ff, nff, seg.tMax));
-                    if (m_segmentEmission && med.emissive()) {
-                        Rng emissionRng = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::MediumEmission);
-                        ph.emitted = m_segmentEmission->estimate(cameraMedium, seg.o, seg.d, seg.tMax, emissionRng);
+    const Camera::RayGenerator generateRay(camera, w, h);
+    // The pixel's keyed stream feeds the lens sample and a grid medium's stored distances: a
+    // pinhole camera in a scene without grid media draws nothing from it.
+    const bool jitterStream = camera.lensRadius > 0.0f || nff > 0;
+    // Packets of 4 x 2 pixels (EmbreeScene::intersectCoherent): neighbouring camera rays share
+    // most of their traversal.
+    constexpr int kPacketWidth = EmbreeScene::kPacket / 2;
+    const int rowPairs = (region.height + 1) / 2;
+    tbb::parallel_for(0, rowPairs, [&](int pair) {
+        const int y0 = region.y + 2 * pair, rows = std::min(2, region.y + region.height - y0);
+        for (int x0 = region.x; x0 < region.x + region.width; x0 += kPacketWidth) {
+            const int cols = std::min(kPacketWidth, region.x + region.width - x0);
+            Ray rays[EmbreeScene::kPacket];
+            SurfaceHit surfaceHits[EmbreeScene::kPacket];
+            bool found[EmbreeScene::kPacket];
+            Rng jitters[EmbreeScene::kPacket];
+            uint64_t pixels[EmbreeScene::kPacket];
+            int n = 0;
+            for (int dy = 0; dy < rows; ++dy) {
+                for (int dx = 0; dx < cols; ++dx, ++n) {
+                    const int x = x0 + dx, y = y0 + dy;
+                    const uint64_t pixel = uint64_t(y) * w + x;
+                    pixels[n] = pixel;
+                    Vec2 lens{0.0f, 0.0f};
+                    if (jitterStream) {
+                        jitters[n] = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::PixelJitter);
+                        lens = Vec2{jitters[n].uniform(), jitters[n].uniform()};
                     }
+                    const Vec2 film = pixelJitter(m_settings.seed, pass, pixel);
+                    rays[n] = generateRay(float(x) + film.x, float(y) + film.y, lens);
                 }
-            } else {
-                primary.rays[pixel] = PrimaryRay{ray.o, 0.0f, ray.d, kVacuum};
+            }
+            m_rt.intersectCoherent(rays, n, surfaceHits, found);
+            for (int k = 0; k < n; ++k) {
+                const uint64_t pixel = pixels[k];
+                const Ray& ray = rays[k];
+                PrimaryHit& ph = hits[pixel];
+                if (nff > 0) std::fill_n(&primary.freeFlights[pixel * nff], nff, kInfinity);  // none stored
+                ph.medium = cameraMedium;
+                ph.throughput = Rgb(1.0f);
+                ph.emitted = Rgb(0.0f);
+                ph.surface = found[k];
+                if (found[k]) ph.hit = surfaceHits[k];
+                float tHit = ph.surface ? ph.hit.t : kInfinity;
+                Ray seg;
+                if (cameraMedium != kVacuum && m_rt.mediumSegment(ray.o, ray.d, tHit, &seg)) {
+                    const Medium& med = m_scene.media[cameraMedium];
+                    primary.rays[pixel] = PrimaryRay{seg.o, seg.tMax, seg.d, cameraMedium};
+                    if (med.homogeneous()) {
+                        ph.throughput = med.transmittance(seg.tMax);
+                        ph.emitted = homogeneousEmission(med, seg.tMax);
+                    } else {
+                        float* ff = &primary.freeFlights[pixel * nff];
+                        sampleCollisionDistances(med, seg, seg.tMax, jitters[k], nff, ff);
+                        ph.throughput = Rgb(storedTransmittance(ff, nff, seg.tMax));
+                        if (m_segmentEmission && med.emissive()) {
+                            Rng emissionRng = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::MediumEmission);
+                            ph.emitted =
+                                m_segmentEmission->estimate(cameraMedium, seg.o, seg.d, seg.tMax, emissionRng);
+                        }
+                    }
+                } else {
+                    primary.rays[pixel] = PrimaryRay{ray.o, 0.0f, ray.d, kVacuum};
+                }
             }
         }
     });

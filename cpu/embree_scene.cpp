@@ -1,5 +1,6 @@
 #include "cpu/embree_scene.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -129,16 +130,37 @@ bool EmbreeScene::intersect(const Ray& ray, SurfaceHit* hit) const {
     RTCRayHit rh;
     initRayHit(rh, ray.o, ray.d, ray.tMin, ray.tMax);
     if (!intersectRaw(rh)) return false;
-    hit->t = rh.ray.tfar;
-    hit->mesh = int(rh.hit.geomID);
-    hit->triangle = rh.hit.primID;
-    hit->b1 = rh.hit.u;
-    hit->b2 = rh.hit.v;
-    hit->p = ray.at(hit->t);
-    // Embree's Ng is cross(v1 - v0, v2 - v0): the same orientation as Scene's CCW convention.
-    hit->ng = normalize(Vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
-    hit->ns = shadingNormal(hit->mesh, hit->triangle, hit->b1, hit->b2, hit->ng);
+    fillHit(ray, rh.ray.tfar, rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v,
+            Vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z), hit);
     return true;
+}
+
+void EmbreeScene::intersectCoherent(const Ray* rays, int n, SurfaceHit* hits, bool* found) const {
+    static_assert(kPacket == 8, "rtcIntersect8");
+    alignas(32) int valid[kPacket];
+    alignas(32) RTCRayHit8 rh;
+    for (int i = 0; i < kPacket; ++i) {
+        const Ray& r = rays[std::min(i, n - 1)];
+        valid[i] = i < n ? -1 : 0;
+        rh.ray.org_x[i] = r.o.x, rh.ray.org_y[i] = r.o.y, rh.ray.org_z[i] = r.o.z, rh.ray.tnear[i] = r.tMin;
+        rh.ray.dir_x[i] = r.d.x, rh.ray.dir_y[i] = r.d.y, rh.ray.dir_z[i] = r.d.z, rh.ray.time[i] = 0.0f;
+        rh.ray.tfar[i] = r.tMax;
+        rh.ray.mask[i] = 0xFFFFFFFFu;
+        rh.ray.id[i] = unsigned(i);
+        rh.ray.flags[i] = 0;
+        rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+    }
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    rtcIntersect8(valid, m_rtcScene, &ctx, &rh);
+    for (int i = 0; i < n; ++i) {
+        found[i] = rh.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
+        if (found[i])
+            fillHit(rays[i], rh.ray.tfar[i], rh.hit.geomID[i], rh.hit.primID[i], rh.hit.u[i], rh.hit.v[i],
+                    Vec3(rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]), &hits[i]);
+    }
 }
 
 bool EmbreeScene::occluded(const Ray& ray) const {

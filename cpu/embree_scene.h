@@ -56,6 +56,11 @@ public:
 
     /// Closest hit with t in (ray.tMin, ray.tMax).
     bool intersect(const Ray& ray, SurfaceHit* hit) const;
+    /// The closest hits of up to kPacket coherent rays (neighbouring camera rays) at once, through
+    /// Embree's packet traversal: found[i] and hits[i] as intersect(rays[i], &hits[i]) gives them,
+    /// for i < n (tests/cpu/embree_scene_test.cpp compares the two bit for bit).
+    static constexpr int kPacket = 8;
+    void intersectCoherent(const Ray* rays, int n, SurfaceHit* hits, bool* found) const;
     /// Any hit with t in (ray.tMin, ray.tMax).
     bool occluded(const Ray& ray) const;
     /// Every surface stops a shadow ray: no mesh has an Interface material or an alpha mode other
@@ -185,6 +190,19 @@ private:
         int mesh;
     };
     static void alphaFilter(const RTCFilterFunctionNArguments* args);
+    /// The hit record of `ray` from Embree's answer (t, ids, barycentrics, unnormalised Ng).
+    void fillHit(const Ray& ray, float t, unsigned geomID, unsigned primID, float u, float v, const Vec3& ng,
+                 SurfaceHit* hit) const {
+        hit->t = t;
+        hit->mesh = int(geomID);
+        hit->triangle = primID;
+        hit->b1 = u;
+        hit->b2 = v;
+        hit->p = ray.at(t);
+        // Embree's Ng is cross(v1 - v0, v2 - v0): the same orientation as Scene's CCW convention.
+        hit->ng = normalize(ng);
+        hit->ns = shadingNormal(hit->mesh, hit->triangle, hit->b1, hit->b2, hit->ng);
+    }
 
     const Scene& m_scene;
     std::shared_ptr<EmbreeDevice> m_device;

@@ -1,6 +1,7 @@
 // EmbreeScene's hit record: shading normals come from a packed per-triangle copy of the vertex
 // normals (specular meshes only); they must equal, bit for bit, the interpolation straight from
-// TriangleMesh's indices and normals, and diffuse meshes with normals keep ns = ng.
+// TriangleMesh's indices and normals, and diffuse meshes with normals keep ns = ng. The packet
+// query (intersectCoherent) gives the single-ray query's hits bit for bit.
 #include "cpu/embree_scene.h"
 
 #include <gtest/gtest.h>
@@ -54,6 +55,57 @@ TEST(EmbreeScene, ShadingNormalsMatchTheMeshInterpolation) {
         }
         EXPECT_GT(sphereHits, 1500);
     }
+}
+
+bool sameHit(const SurfaceHit& a, const SurfaceHit& b) {
+    return a.t == b.t && a.mesh == b.mesh && a.triangle == b.triangle && a.b1 == b.b1 && a.b2 == b.b2 &&
+           sameBits(a.p, b.p) && sameBits(a.ng, b.ng) && sameBits(a.ns, b.ns);
+}
+
+TEST(EmbreeScene, PacketHitsEqualSingleRayHits) {
+    // Camera rays in packets of 4 x 2 pixels (as the primary stage traces them), some packets cut
+    // short (n < 8), some rays limited in t so that they miss; then packets of scattered rays,
+    // which Embree traverses ray by ray inside the packet.
+    Scene scene = test::causticScene();
+    scene.materials[1].type = MaterialType::Dielectric;  // shading normals on the sphere
+    EmbreeScene rt(scene);
+    const int w = 64, h = 64;
+    Rng rng(5, 6);
+    int compared = 0, misses = 0, sphere = 0;
+    for (int trial = 0; trial < 2; ++trial) {
+        for (int y = 0; y < h; y += 2) {
+            for (int x = 0; x < w; x += 4) {
+                Ray rays[EmbreeScene::kPacket];
+                const int n = 1 + int(rng.uniform() * EmbreeScene::kPacket);
+                for (int k = 0; k < n; ++k) {
+                    if (trial == 0) {
+                        rays[k] = scene.camera.generateRay(float(x + k % 4) + rng.uniform(), float(y + k / 4) + rng.uniform(),
+                                                           w, h, Vec2{0.5f, 0.5f});
+                    } else {
+                        rays[k] = Ray{Vec3(0.0f) + sampleUniformSphere(rng.uniform(), rng.uniform()) * 0.5f,
+                                      sampleUniformSphere(rng.uniform(), rng.uniform())};
+                    }
+                    if (rng.uniform() < 0.2f) rays[k].tMax = 2.0f * rng.uniform();
+                }
+                SurfaceHit packet[EmbreeScene::kPacket], single;
+                bool found[EmbreeScene::kPacket];
+                rt.intersectCoherent(rays, n, packet, found);
+                for (int k = 0; k < n; ++k) {
+                    const bool hit = rt.intersect(rays[k], &single);
+                    ASSERT_EQ(found[k], hit) << trial << " " << x << " " << y << " " << k;
+                    if (hit) {
+                        ASSERT_TRUE(sameHit(packet[k], single)) << trial << " " << x << " " << y << " " << k;
+                        sphere += single.mesh == 1;
+                    }
+                    misses += !hit;
+                    compared++;
+                }
+            }
+        }
+    }
+    EXPECT_GT(compared, 1500);
+    EXPECT_GT(misses, 50);
+    EXPECT_GT(sphere, 100);
 }
 
 }  // namespace
