@@ -114,7 +114,8 @@ TEST(Cli, HelpListsEveryOptionWithDefaults) {
     const std::vector<std::string> ppb = {"--passes", "--time",           "--photons",       "--alpha",
                                           "--radius", "--surface-radius", "--radius-offset", "--planned-paths",
                                           "--photon-angle", "--free-flights", "--memory", "--simd", "--direct-light",
-                                          "--surface-boundary", "--equiangular", "--photon-planes"};
+                                          "--surface-boundary", "--equiangular", "--equiangular-samples",
+                                          "--photon-planes"};
     auto join = [](std::initializer_list<std::vector<std::string>> parts) {
         std::set<std::string> all = {"--help", "--help-all"};
         for (const auto& p : parts) all.insert(p.begin(), p.end());
@@ -126,7 +127,8 @@ TEST(Cli, HelpListsEveryOptionWithDefaults) {
                           "--reference", "--convergence", "--max-path-length", "--region", "--transparent"}})},
         {"reference", join({scene, output, {"--spp", "--max-depth", "--max-path-length", "--no-nee", "--transparent"}})},
         {"bench", join({scene, {"--passes", "--photons", "--no-hybrid", "--radius", "--radius-offset", "--simd",
-                            "--direct-light", "--surface-boundary", "--equiangular", "--photon-planes"}})},
+                            "--direct-light", "--surface-boundary", "--equiangular", "--equiangular-samples",
+                            "--photon-planes"}})},
         {"compare", join({scene, output, ppb, {"--gpu", "--density", "--twin"}})}};
     for (const auto& [command, names] : expected) {
         CliRun r = runTyndall(command + " --help");
