@@ -78,7 +78,7 @@ struct Variant {
 /// The rows of one scene: equal work compares radius choices at `passes`; equal time the legacy
 /// defaults with today's (and, given `passes`, the radii planned for it).
 std::vector<Variant> variantsFor(const Scene& scene, const RenderSettings& base, uint64_t passes, bool equalTime,
-                                 bool legacy) {
+                                 bool legacy, const std::vector<double>& equiangularSamples) {
     std::vector<Variant> variants;
     if (legacy) variants.push_back({"LEGACY", withLegacyDefaults(base, scene)});
     RenderSettings open = base;
@@ -90,6 +90,17 @@ std::vector<Variant> variantsFor(const Scene& scene, const RenderSettings& base,
         RenderSettings switched = open;
         switched.equiangular = !open.equiangular;
         variants.push_back({switched.equiangular ? "EQUIANGULAR ON" : "EQUIANGULAR OFF", switched});
+        for (double n : equiangularSamples) {
+            RenderSettings counted = open;
+            counted.equiangular = true;
+            counted.equiangularSamples = n;
+            char label[64];
+            if (n == RenderSettings::kAutoEquiangularSamples)
+                std::snprintf(label, sizeof label, "EQUIANGULAR AUTO");
+            else
+                std::snprintf(label, sizeof label, "EQUIANGULAR %g", n);
+            variants.push_back({label, counted});
+        }
         if (passes > 0) {
             RenderSettings planned = base;
             planned.plannedPaths = passes * uint64_t(base.photonsPerPass);
@@ -158,10 +169,11 @@ Curve studyRow(const Scene& scene, const Variant& v, const Reference& ref, uint6
     PixelFootprint fp = measurePixelFootprint(renderer.rayTracer(), scene.camera, r.width, r.height);
     double rEnd = renderer.radii().beamRadiusOf(runs.back().passesDone * r.photonsPerPass);
     std::printf("  %-16s %-18s %7.0f %8.1f %8.2f%% %8.2f%% %+8.2f%% %8.2f   (radius %.4g, surface %.4g, offset %llu, "
-                "photon angle %.3g, direct light %s, boundary %s, equiangular %s)\n",
+                "photon angle %.3g, direct light %s, boundary %s, equiangular %s, %.4g samples)\n",
                 scene.name.c_str(), v.label.c_str(), passesDone, cpu, 100 * e.relRmse, 100 * e.relRmse99,
                 100 * e.relBias, rEnd / fp.beam(1.0), r.radius, r.surfaceRadius, (unsigned long long)r.radiusOffset,
-                r.photonAngle, onOffText(r.directLight), onOffText(r.surfaceBoundary), onOffText(r.equiangular));
+                r.photonAngle, onOffText(r.directLight), onOffText(r.surfaceBoundary), onOffText(r.equiangular),
+                r.equiangularSamples);
     std::fflush(stdout);
     return curve;
 }
@@ -228,7 +240,7 @@ void runQualityStudy(const RenderSettings& settings, const QualityStudyOptions& 
         base.timeBudget = 0;
         Reference ref = loadOrRenderReference(scene, scene.name, base, o.referenceDir, o.referenceSpp);
         std::vector<Curve> curves;
-        for (const Variant& v : variantsFor(scene, base, passes, equalTime, o.legacy))
+        for (const Variant& v : variantsFor(scene, base, passes, equalTime, o.legacy, o.equiangularSamples))
             curves.push_back(studyRow(scene, v, ref, passes, o));
         panels.push_back({scene.name, std::move(curves)});
     }

@@ -50,6 +50,10 @@ struct QualityStudyOptions {
     std::vector<std::string> only;
     /// The LEGACY row (false leaves it out, for studies of today's settings alone).
     bool legacy = true;
+    /// Equal time: one more row per entry, today's defaults with --equiangular on and this many
+    /// equiangular samples per segment (RenderSettings::equiangularSamples; 0 = auto), to compare
+    /// counts in one run.
+    std::vector<double> equiangularSamples;
 };
 
 /// The LEGACY row's settings: `s` with the scene-relative radii (withSceneRelativeRadii), no photon
