@@ -93,8 +93,9 @@ struct RenderSettings {
     /// the edges and corners of surfaces (docs/algorithm.md, "The surface kernel at edges").
     /// false = the plain kernel.
     bool surfaceBoundary = true;
-    /// Single scattering from point, spot and area lights along every camera segment in a medium by
-    /// equiangular sampling (cpu/equiangular.h) instead of those lights' unscattered first beams,
+    /// Single scattering from point, spot, area and directional lights along every camera segment in
+    /// a medium by equiangular sampling (directional lights: distance sampling; cpu/equiangular.h)
+    /// instead of those lights' unscattered first beams,
     /// which are then not stored (docs/algorithm.md, "Single scattering by equiangular sampling").
     /// false = beams only (docs/performance.md: on is better or level at equal time on every scene).
     bool equiangular = true;

@@ -44,6 +44,26 @@ EquiangularScattering::EquiangularScattering(const EmbreeScene& rt, double sampl
         }
     }
     for (double& c : m_cdf) c /= total;
+    // The media that parallel light cannot enter while direct: not the global medium, and bounded
+    // only by opaque surfaces that block shadow rays (no Interface, no alpha), like the sea under a
+    // refracting water surface. A shadow ray toward the sun from inside one must cross such a
+    // surface, so the estimate there is 0 and is not drawn.
+    m_sealed.assign(scene.media.size(), true);
+    if (scene.globalMedium >= 0 && size_t(scene.globalMedium) < m_sealed.size()) m_sealed[size_t(scene.globalMedium)] = false;
+    for (const TriangleMesh& mesh : scene.meshes) {
+        const bool valid = mesh.material >= 0 && size_t(mesh.material) < scene.materials.size();
+        const bool blocks = valid && scene.materials[size_t(mesh.material)].type != MaterialType::Interface &&
+                            scene.materials[size_t(mesh.material)].alphaMode == AlphaMode::Opaque;
+        if (blocks) continue;
+        for (MediumId m : {mesh.interiorMedium, mesh.exteriorMedium}) {
+            if (m == kInheritMedium) m_sealed.assign(m_sealed.size(), false);  // unresolved: assume open
+            if (m >= 0 && size_t(m) < m_sealed.size()) m_sealed[size_t(m)] = false;
+        }
+    }
+}
+
+bool EquiangularScattering::parallel(size_t i) const {
+    return m_lights[i] >= 0 && m_rt.scene().lights[size_t(m_lights[i])].type == LightType::Directional;
 }
 
 bool EquiangularScattering::handles(const Scene& scene, const EmittedPhoton& photon) {
@@ -51,13 +71,33 @@ bool EquiangularScattering::handles(const Scene& scene, const EmittedPhoton& pho
     return photon.emitterMesh >= 0;
 }
 
-double EquiangularScattering::segmentWeight(size_t i, float g, const Vec3& o, const Vec3& d, float sMax) const {
+namespace {
+
+/// The integral of the camera's transmittance over [0, sMax], guessed with one extinction: the
+/// channels' mean (times the grid's mean density in a grid medium).
+double transmittanceIntegral(const Medium& med, float sMax) {
+    const Rgb st = med.sigmaT();
+    double sigma = (double(st.r) + st.g + st.b) / 3.0;
+    if (!med.homogeneous()) sigma *= double(med.density->meanDensity());
+    const double depth = sigma * sMax;
+    return depth > 1e-6 ? -std::expm1(-depth) / sigma : double(sMax);
+}
+
+}  // namespace
+
+double EquiangularScattering::segmentWeight(size_t i, const Medium& med, const Vec3& o, const Vec3& d,
+                                            float sMax) const {
+    const float g = med.g;
     float a = 0, b = sMax, reach = 0;
     Vec3 p = m_areaCentre;
     if (m_lights[i] == kAreaLights) {
         reach = m_areaReach;
     } else {
         const Light& light = m_rt.scene().lights[size_t(m_lights[i])];
+        // Parallel light: its irradiance wherever the camera's transmittance lets it count, the
+        // phase function the same along the whole segment.
+        if (light.type == LightType::Directional)
+            return m_intensity[i] * transmittanceIntegral(med, sMax) * double(hgPhase(dot(light.direction, -d), g));
         if (light.type == LightType::Spot &&
             !clipToCone(o, d, light.position, light.direction, light.cosOuterAngle, &a, &b))
             return 0;
@@ -78,6 +118,11 @@ double EquiangularScattering::segmentWeight(size_t i, float g, const Vec3& o, co
 
 bool EquiangularScattering::segmentCdf(const Medium& med, const Vec3& o, const Vec3& d, float sMax,
                                        double* cdf) const {
+    return segmentCdf(med, false, o, d, sMax, cdf);
+}
+
+bool EquiangularScattering::segmentCdf(const Medium& med, bool sealed, const Vec3& o, const Vec3& d, float sMax,
+                                       double* cdf) const {
     const size_t n = m_lights.size();
     if (n > kWeighedUpTo) {
         std::copy(m_cdf.begin(), m_cdf.end(), cdf);
@@ -86,7 +131,7 @@ bool EquiangularScattering::segmentCdf(const Medium& med, const Vec3& o, const V
     double total = 0;
     size_t lit = 0;
     for (size_t i = 0; i < n; ++i) {
-        cdf[i] = segmentWeight(i, med.g, o, d, sMax);
+        cdf[i] = sealed && parallel(i) ? 0.0 : segmentWeight(i, med, o, d, sMax);
         if (!(cdf[i] > 0 && std::isfinite(cdf[i]))) cdf[i] = 0;
         total += cdf[i];
         lit += cdf[i] > 0;
@@ -108,13 +153,15 @@ Rgb EquiangularScattering::estimate(MediumId medium, const Vec3& o, const Vec3& 
     const Scene& scene = m_rt.scene();
     const Medium& med = scene.media[medium];
     if (med.sigmaS.isBlack()) return Rgb(0.0f);
+    const size_t sources = m_lights.size();
+    const bool sealed = m_sealed[size_t(medium)];
+    if (sealed && sources == 1 && parallel(0)) return Rgb(0.0f);
     const int n = m_whole + (m_fraction > 0 && rng.uniform() < m_fraction ? 1 : 0);
     if (n == 0) return Rgb(0.0f);
     double cdf[kWeighedUpTo];
-    const size_t sources = m_lights.size();
     const double* c = m_cdf.data();
     if (sources > 1 && sources <= kWeighedUpTo) {
-        if (!segmentCdf(med, o, d, sMax, cdf)) return Rgb(0.0f);
+        if (!segmentCdf(med, sealed, o, d, sMax, cdf)) return Rgb(0.0f);
         c = cdf;
     }
     // n stratified uniforms (k + xi) / n, each choosing a source and, rescaled inside the source's
@@ -125,7 +172,7 @@ Rgb EquiangularScattering::estimate(MediumId medium, const Vec3& o, const Vec3& 
         size_t i = sources == 1 ? 0 : size_t(std::upper_bound(c, c + sources, double(u)) - c);
         i = std::min(i, sources - 1);
         const double lo = i > 0 ? c[i - 1] : 0.0, p = c[i] - lo;
-        if (!(p > 0)) continue;
+        if (!(p > 0) || (sealed && parallel(i))) continue;
         const float uDistance = std::min(float((double(u) - lo) / p), 1.0f - 0x1p-24f);
         sum += fromSource(m_lights[i], med, medium, o, d, sMax, std::max(uDistance, 0.0f), rng) * float(1.0 / p);
     }
@@ -204,7 +251,113 @@ bool sampleWeightedEquiangular(const DensityGrid& grid, const Vec3& o, const Vec
     return true;
 }
 
+/// A distance along [0, sMax] of the ray o + t d in a homogeneous medium with pdf proportional to
+/// the camera's transmittance: the mean of the channels' exponentials exp(-sigma_t,c t) truncated
+/// to the segment (one when the medium is grey), the channel chosen by the first part of `u` and
+/// the distance by the rest. Each channel's weight sigma_s,c Tr_c(t) / pdf(t) is then at most 3x
+/// its own exponential's, (1 - exp(-sigma_t,c sMax)) / sigma_t,c. Returns the distance and
+/// 1 / pdf.
+float sampleTransmittanceDistance(const Medium& med, float sMax, float u, double* inversePdf) {
+    const Rgb st = med.sigmaT();
+    const float sigma[3] = {st.r, st.g, st.b};
+    const int channels = st.r == st.g && st.r == st.b ? 1 : 3;
+    const int c = std::min(int(u * float(channels)), channels - 1);
+    const double v = std::clamp(double(u) * channels - c, 0.0, 1.0);
+    // One channel's truncated exponential: its pdf at t, and its inverse cdf (uniform where the
+    // segment's optical depth is negligible).
+    auto depthOf = [&](int k) { return double(sigma[k]) * sMax; };
+    auto pdfOf = [&](int k, double t) {
+        const double depth = depthOf(k);
+        if (!(depth > 1e-6)) return 1.0 / sMax;
+        return double(sigma[k]) * std::exp(-double(sigma[k]) * t) / -std::expm1(-depth);
+    };
+    const double depth = depthOf(c);
+    const double t = depth > 1e-6 ? -std::log1p(v * std::expm1(-depth)) / double(sigma[c]) : v * sMax;
+    const float tf = std::clamp(float(t), 0.0f, sMax);
+    double pdf = 0;
+    for (int k = 0; k < channels; ++k) pdf += pdfOf(k, tf);
+    pdf /= channels;
+    *inversePdf = pdf > 0 ? 1.0 / pdf : 0.0;
+    return tf;
+}
+
+/// A distance along [0, sMax] of the ray o + t d in a grid medium with pdf proportional to
+/// WeightedPieces' weight w(t) (the majorant times a guess of the camera's transmittance): a piece
+/// chosen by its weight times its length, then uniform inside it. Returns false when every piece
+/// is empty. *pieceWeight receives w at t and *total the sum of w times length, so that
+/// density(x) / w(t) x total is density(x) / pdf(t).
+bool sampleWeightedDistance(const DensityGrid& grid, const Vec3& o, const Vec3& d, float sMax, float sigmaT, float u,
+                            float* t, double* pieceWeight, double* total) {
+    const Ray ray{o, d, 0.0f, sMax};
+    double sumAll = 0;
+    {
+        WeightedPieces pieces(grid, ray, 0.0f, sMax, sigmaT);
+        float t0, t1;
+        double w;
+        while (pieces.next(&t0, &t1, &w)) sumAll += w * (double(t1) - t0);
+    }
+    if (!(sumAll > 0)) return false;
+    const double target = double(u) * sumAll;
+    double sum = 0;
+    WeightedPieces pieces(grid, ray, 0.0f, sMax, sigmaT);
+    float t0, t1, last0 = 0, last1 = 0;
+    double w, lastW = 0;
+    bool chosen = false;
+    while (pieces.next(&t0, &t1, &w)) {
+        const double len = double(t1) - t0;
+        if (!(len > 0)) continue;
+        last0 = t0, last1 = t1, lastW = w;
+        if (sum + w * len > target) {
+            chosen = true;
+            break;
+        }
+        sum += w * len;
+    }
+    if (!(lastW > 0)) return false;
+    // Rounding can leave the target past the last piece: then its end.
+    const double at = chosen ? double(last0) + (target - sum) / lastW : double(last1);
+    *t = std::clamp(float(at), last0, last1);
+    *pieceWeight = lastW;
+    *total = sumAll;
+    return true;
+}
+
 }  // namespace
+
+Rgb EquiangularScattering::fromDirectional(int source, const Medium& med, MediumId medium, const Vec3& o,
+                                           const Vec3& d, float sMax, float u, Rng& rng) const {
+    const Light& light = m_rt.scene().lights[size_t(source)];
+    // The distance and sigma_s(x) / pdf: transmittance-proportional in a homogeneous medium; in a
+    // grid, by WeightedPieces' weight, and the density at x over that weight.
+    float t = 0;
+    Rgb scattering;
+    if (med.homogeneous()) {
+        double inversePdf = 0;
+        t = sampleTransmittanceDistance(med, sMax, u, &inversePdf);
+        if (!(inversePdf > 0)) return Rgb(0.0f);
+        scattering = med.sigmaS * float(inversePdf);
+    } else {
+        double pieceWeight = 0, total = 0;
+        if (!sampleWeightedDistance(*med.density, o, d, sMax, med.sigmaT().r, u, &t, &pieceWeight, &total))
+            return Rgb(0.0f);
+        const float density = med.density->density(o + d * t);
+        if (!(density > 0)) return Rgb(0.0f);
+        scattering = med.sigmaS * float(double(density) / pieceWeight * total);
+    }
+    if (scattering.isBlack()) return Rgb(0.0f);
+    DirectLightSample target;
+    target.wi = -light.direction;
+    target.distance = kInfinity;
+    target.source = source;
+    target.incident = light.intensity;
+    target.delta = true;
+    const Rgb trLight = shadowTransmittance(m_rt, o + d * t, target, medium, rng);
+    if (trLight.isBlack()) return Rgb(0.0f);
+    const Rgb trCam = estimateTransmittance(med, Ray{o, d, 0.0f, t}, t, rng);
+    if (trCam.isBlack()) return Rgb(0.0f);
+    const float phase = hgPhase(dot(light.direction, -d), med.g);
+    return scattering * light.intensity * trCam * trLight * phase;
+}
 
 Rgb EquiangularScattering::fromSource(int source, const Medium& med, MediumId medium, const Vec3& o, const Vec3& d,
                                       float sMax, float u, Rng& rng) const {
@@ -231,6 +384,7 @@ Rgb EquiangularScattering::fromSource(int source, const Medium& med, MediumId me
         target.delta = false;
     } else {
         const Light& light = m_rt.scene().lights[size_t(source)];
+        if (light.type == LightType::Directional) return fromDirectional(source, med, medium, o, d, sMax, u, rng);
         if (light.type == LightType::Spot &&
             !clipToCone(o, d, light.position, light.direction, light.cosOuterAngle, &a, &b))
             return Rgb(0.0f);

@@ -1,9 +1,12 @@
 #pragma once
-// Single scattering from point, spot and area lights along a camera segment inside a medium, by
-// equiangular sampling (core/equiangular.h; docs/algorithm.md "Single scattering by equiangular
-// sampling"). For the segment o + s d, s in [0, sMax], and each such source, a light point p is
+// Single scattering from point, spot, area and directional lights along a camera segment inside a
+// medium (docs/algorithm.md "Single scattering by equiangular sampling"). For the segment o + s d,
+// s in [0, sMax], and each such source, one point x = o + s d is drawn and a shadow ray sent from
+// it toward the light.
+//
+// Point, spot and area lights, by equiangular sampling (core/equiangular.h): a light point p is
 // taken (a point or spot light's position; for the area lights, a point on an emissive triangle
-// chosen by power, uniform on it, with area density pdf_A) and one point x = o + s d drawn:
+// chosen by power, uniform on it, with area density pdf_A) and
 //   L = sigma_s(x) p_HG(w_l . -d) E / |x - p|^2 Tr_light(p -> x) Tr_cam(0 -> s) / pdf(s)
 // with E = I F for a point or spot light (intensity, spot falloff) and Le cos_l / pdf_A for an
 // area light (cos_l the emitter's cosine toward x; one-sided: the segment is first clipped to the
@@ -14,12 +17,25 @@
 // 1 / |x - p|^2; in a grid it is that times the majorant along the segment (the majorant grid's
 // pieces, cpu/free_flight.h MajorantPieces), so no sample lands where the grid is empty and
 // sigma_s(x) / pdf(s) stays bounded. For a spot the segment is first clipped to the spot's outer
-// cone. Unbiased for the light that reaches the segment from these lights with no scattering
-// vertex on the way: the light the photon tracer's unscattered first beams carry, which it then
-// leaves out (RenderSettings::equiangular), so nothing counts twice. Directional lights and the
-// environment keep their beams.
+// cone.
 //
-// Sources: each point and spot light of non-zero power, and all area lights together as one.
+// Directional lights (parallel light, no point to aim at), by distance sampling: s is drawn in
+// proportion to the camera's transmittance (homogeneous: the mean of the channels' exponentials
+// truncated to [0, sMax]; in a grid, the same weighted majorant pieces without the inverse square)
+// and
+//   L = sigma_s(x) p_HG(w_l . -d) E Tr_light(x -> sun) Tr_cam(0 -> s) / pdf(s)
+// with E the irradiance and w_l the light's direction. In a medium that such light cannot enter
+// without crossing a surface that blocks shadow rays (not the global medium, bounded only by opaque
+// non-Interface surfaces: the sea under a refracting water surface) the estimate is 0 and is not
+// drawn.
+//
+// Unbiased for the light that reaches the segment from these lights with no scattering vertex on
+// the way: the light the photon tracer's unscattered first beams carry, which it then leaves out
+// (RenderSettings::equiangular), so nothing counts twice. The environment keeps its beams.
+//
+// Sources: each point, spot and directional light of non-zero power, and all area lights together
+// as one.
+//
 // A segment gets N = RenderSettings::resolvedEquiangularSamples() distances in all, whatever the
 // number of sources (a fractional N: floor(N), and one more with probability N - floor(N); the
 // sum divided by N): stratified uniforms (k + xi) / n, k = 0..n-1, each mapped through the
@@ -27,7 +43,9 @@
 // interval is that source's distance uniform), the sample divided by the source's probability.
 // Up to kWeighedUpTo sources the choice follows each source's share of this segment's light,
 // estimated in closed form (segmentWeight: intensity x the inverse square's integral over the
-// segment, clipped to a spot's cone, x the phase function at the foot of the light on it), mixed
+// segment, clipped to a spot's cone, x the phase function at the foot of the light on it; a
+// directional light's irradiance x the integral of the camera's transmittance over the segment x
+// the phase function), mixed
 // with kDefensive of a uniform choice among the sources with a share; beyond, it follows the
 // sources' powers. One source: every sample is its own, as with one light per segment.
 // Randomness only from the caller's stream.
@@ -47,10 +65,12 @@ public:
     /// equiangularSamples says).
     EquiangularScattering(const EmbreeScene& rt, double samples);
 
-    /// True for the lights this estimator stands for (point and spot; area lights too, below):
-    /// their unscattered beams must not be stored when it is used.
-    static bool handles(const Light& light) { return light.type == LightType::Point || light.type == LightType::Spot; }
-    /// True for photons from the lights it stands for: point, spot and area lights.
+    /// True for the lights this estimator stands for (point, spot and directional; area lights
+    /// too, below): their unscattered beams must not be stored when it is used.
+    static bool handles(const Light& light) {
+        return light.type == LightType::Point || light.type == LightType::Spot || light.type == LightType::Directional;
+    }
+    /// True for photons from the lights it stands for: point, spot, directional and area lights.
     static bool handles(const Scene& scene, const EmittedPhoton& photon);
     /// False when the scene has no such light of non-zero power (nothing to estimate).
     bool any() const { return !m_lights.empty(); }
@@ -59,6 +79,7 @@ public:
     /// [0, sMax], inside `medium`, before the camera path's throughput. Draws from `rng`: one
     /// uniform for the fraction's extra sample (a fractional count only); per sample, one uniform
     /// (three more for an area light's point), then the transmittance estimates' (grid media only).
+    /// A directional light's sample draws nothing more than its uniform in a homogeneous medium.
     Rgb estimate(MediumId medium, const Vec3& o, const Vec3& d, float sMax, Rng& rng) const;
 
     /// The sources' choice for the segment, as a cdf over sources() (the last entry 1); false when
@@ -76,8 +97,17 @@ public:
 
 private:
     /// The estimated light of source `i` (an index into m_lights) along the segment, up to the
-    /// factors all sources share (sigma_s, the camera's transmittance); 0 when it cannot light it.
-    double segmentWeight(size_t i, float g, const Vec3& o, const Vec3& d, float sMax) const;
+    /// factors all sources share (sigma_s; the camera's transmittance, except a directional
+    /// light's, whose share along the segment is nothing else); 0 when it cannot light it.
+    double segmentWeight(size_t i, const Medium& med, const Vec3& o, const Vec3& d, float sMax) const;
+    /// segmentCdf, with the parallel sources left out in a sealed medium.
+    bool segmentCdf(const Medium& med, bool sealed, const Vec3& o, const Vec3& d, float sMax, double* cdf) const;
+    /// True when source `i` sends parallel light (a directional light).
+    bool parallel(size_t i) const;
+    /// One sample of the directional light `light`, its distance drawn from `u` in proportion to
+    /// the camera's transmittance.
+    Rgb fromDirectional(int light, const Medium& med, MediumId medium, const Vec3& o, const Vec3& d, float sMax,
+                        float u, Rng& rng) const;
     /// One sample of the source `source` (an index into Scene::lights, or kAreaLights), its
     /// distance drawn from the uniform `u`.
     Rgb fromSource(int source, const Medium& med, MediumId medium, const Vec3& o, const Vec3& d, float sMax, float u,
@@ -91,12 +121,16 @@ private:
     float m_fraction;
     std::vector<int> m_lights;  ///< indices into Scene::lights, and kAreaLights when they emit
     std::vector<double> m_cdf;  ///< over the luminance of their powers, normalised
-    std::vector<double> m_intensity;  ///< luminance: a light's intensity; the area lights' power / pi
+    /// luminance: a light's intensity (a directional light's irradiance); the area lights' power / pi
+    std::vector<double> m_intensity;
     /// The area lights as one point for segmentWeight: their bounds' centre, and the distance
     /// below which the inverse square is flattened (the bounds' half diagonal).
     Vec3 m_areaCentre;
     float m_areaReach = 0;
     std::unique_ptr<LightSampler> m_areaLights;  ///< the emitters' choice by power, when they emit
+    /// Per medium: true where parallel light cannot arrive unscattered (bounded only by surfaces
+    /// that block shadow rays; not the global medium), so its sources are not drawn there.
+    std::vector<bool> m_sealed;
 };
 
 }  // namespace tyndall

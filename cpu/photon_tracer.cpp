@@ -159,8 +159,9 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
     // A photon from a medium is neither: no shadow ray carries a medium's light.
     bool deltaPath = !fromMedium && e.light >= 0;
     bool direct = !fromMedium;
-    // --equiangular on: the camera paths estimate the single scattering of point, spot and area
-    // lights (cpu/equiangular.h), so such a path's beams are not stored while it is still direct.
+    // --equiangular on: the camera paths estimate the single scattering of point, spot,
+    // directional and area lights (cpu/equiangular.h), so such a path's beams are not stored while
+    // it is still direct (no scattering vertex, no mirror, glass or other surface but Interfaces).
     const bool equiangularLight =
         m_settings.equiangular && !fromMedium && EquiangularScattering::handles(m_scene, e);
     // Path distance from the light at o (the photon cone, cpu/beam_cone.h).

@@ -17,7 +17,12 @@
 //    choice's shares, and an estimate's variance against its sample count.
 // 4. The variance law: with the path length capped at 2 (single scattering only: every photon beam
 //    of such a path is a direct one and left out), a pixel's variance over seeds falls as 1/passes
-//    (two lamps of unequal power, one sample per segment).
+//    (two lamps of unequal power, one sample per segment; a sun through an index-matched hull).
+// 5. Directional lights (the sun), by distance sampling: against the closed form in a homogeneous
+//    slab (chromatic extinction, isotropic and forward HG), against quadrature through a density
+//    grid's fog layer, sharing the samples with a point light; PPB against the path tracer with a
+//    sun over fog inside an index-matched hull (its direct beams left out) and inside a rough
+//    dielectric hull (the refracted photons' beams kept, the shadow rays blocked).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -498,6 +503,245 @@ TEST(EquiangularPpb, SingleScatteringVarianceFallsAsOneOverPasses) {
     // The estimate of a variance from 48 seeds is within ~20% (one standard deviation of each), so
     // the slope over a factor of 4 within ~0.2.
     EXPECT_NEAR(test::varianceSlopeOverPasses(scene, ps, seeds, 100), -1.0, 0.3);
+}
+
+// ---- 5. Directional lights: distance sampling and a shadow ray toward the sun ----
+
+/// A slab of fog (the global medium over the scene bounds x, z in [-10, 10], y in [-1, 1], set by
+/// two small markers in far corners) with nothing above it: sunlight enters through its top.
+Scene sunSlab(const std::vector<Light>& lights, Rgb sigmaS, Rgb sigmaA, float g, float top = 1.0f) {
+    Scene s;
+    s.name = "sun-slab";
+    s.source = "<test>";
+    Material white;
+    white.name = "white";
+    white.albedo = Rgb(0.5f);
+    s.materials.push_back(white);
+    s.meshes.push_back(makeQuad("marker low", {-10, -1, -10}, {0.01f, 0, 0}, {0, 0, 0.01f}, 0));
+    s.meshes.push_back(makeQuad("marker high", {10, top, 10}, {-0.01f, 0, 0}, {0, 0, -0.01f}, 0));
+    Medium m;
+    m.name = "fog";
+    m.sigmaS = sigmaS;
+    m.sigmaA = sigmaA;
+    m.g = g;
+    s.media.push_back(m);
+    s.globalMedium = 0;
+    s.lights = lights;
+    s.camera = Camera::lookAt({0, 0, 4}, {0, 0, 0}, {0, 1, 0}, 0.8f);
+    return s;
+}
+
+Light sun(Vec3 direction, Rgb irradiance) {
+    Light l;
+    l.name = "sun";
+    l.type = LightType::Directional;
+    l.direction = normalize(direction);
+    l.intensity = irradiance;
+    return l;
+}
+
+/// The mean of n estimates per channel, and the largest standard error relative to its mean.
+struct RgbEstimate {
+    double mean[3] = {0, 0, 0}, standardError[3] = {0, 0, 0};
+};
+RgbEstimate estimateManyRgb(const Scene& scene, Vec3 o, Vec3 d, float sMax, int n, double samples) {
+    EmbreeScene rt(scene);
+    EquiangularScattering eq(rt, samples);
+    double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
+    for (int i = 0; i < n; ++i) {
+        Rng rng = Rng::forKey(3, 0, uint64_t(i), StreamPurpose::Test);
+        const Rgb v = eq.estimate(0, o, d, sMax, rng);
+        const double c[3] = {v.r, v.g, v.b};
+        for (int k = 0; k < 3; ++k) sum[k] += c[k], sum2[k] += c[k] * c[k];
+    }
+    RgbEstimate e;
+    for (int k = 0; k < 3; ++k) {
+        e.mean[k] = sum[k] / n;
+        e.standardError[k] = std::sqrt(std::max(0.0, sum2[k] / n - e.mean[k] * e.mean[k]) / (n - 1));
+    }
+    return e;
+}
+
+TEST(EquiangularSun, HomogeneousSlabAgainstTheClosedForm) {
+    // Sunlight entering the slab's top (y = 1) at cosine mu to the vertical, a camera segment
+    // climbing through the slab: per channel
+    //   L = sigma_s p E exp(-sigma_t (1 - y_o) / mu) (1 - exp(-a sMax)) / a,  a = sigma_t (1 - d_y / mu),
+    // the camera's and the sun's optical depths both linear in s. Chromatic extinction (red 20
+    // times blue's): the distance's pdf mixes the channels' exponentials.
+    const Rgb sigmaS(0.2f, 0.25f, 0.3f), sigmaA(0.4f, 0.1f, 0.02f), E(1.5f, 1.2f, 0.9f);
+    const Light light = sun({0.3f, -1.0f, 0.2f}, E);
+    const float mu = -light.direction.y;
+    const Vec3 o{-2.0f, -0.5f, 0.0f}, d = normalize(Vec3(1.0f, 0.3f, 0.1f));
+    const float sMax = 3.0f;
+    ASSERT_LT(o.y + d.y * sMax, 1.0f);
+    for (float g : {0.0f, 0.6f}) {
+        Scene s = sunSlab({light}, sigmaS, sigmaA, g);
+        s.finalize();
+        const RgbEstimate e = estimateManyRgb(s, o, d, sMax, 20000, 1);
+        const double phase = hgPhase(dot(light.direction, -d), g);
+        const double ss[3] = {sigmaS.r, sigmaS.g, sigmaS.b}, sa[3] = {sigmaA.r, sigmaA.g, sigmaA.b},
+                     irr[3] = {E.r, E.g, E.b};
+        for (int c = 0; c < 3; ++c) {
+            const double st = ss[c] + sa[c], a = st * (1 - d.y / mu);
+            const double expected =
+                ss[c] * phase * irr[c] * std::exp(-st * (1 - o.y) / mu) * -std::expm1(-a * sMax) / a;
+            std::printf("g %.1f, channel %d: closed form %.6f, estimate %.6f +- %.6f\n", g, c, expected, e.mean[c],
+                        e.standardError[c]);
+            EXPECT_LT(e.standardError[c], 0.01 * expected) << "too noisy to test";
+            EXPECT_NEAR(e.mean[c], expected, 4 * e.standardError[c]) << "g " << g << ", channel " << c;
+        }
+    }
+    // A segment in the sun's shadow (a roof over it) gets nothing.
+    Scene roofed = sunSlab({light}, sigmaS, sigmaA, 0.0f);
+    roofed.meshes.push_back(makeQuad("roof", {-9, 0.9f, -9}, {18, 0, 0}, {0, 0, 18}, 0));
+    roofed.finalize();
+    EmbreeScene rt(roofed);
+    EquiangularScattering eq(rt, 4);
+    Rng rng(1, 1);
+    EXPECT_EQ(eq.estimate(0, o, d, sMax, rng).g, 0.0f);
+}
+
+TEST(EquiangularSun, FogLayerInAGridAgainstQuadrature) {
+    // The street-lamp-like fog layer (density 2 (1 - y) for y in [0, 1]) under a low sun, a
+    // segment through the layer and out above it: the distance by the majorant pieces (with and
+    // without a majorant grid), both transmittances by ratio tracking.
+    const Light light = sun({0.6f, -1.0f, -0.3f}, Rgb(2.0f));
+    const Vec3 o{-2.0f, 0.15f, 0.1f}, d = normalize(Vec3(1.0f, 0.35f, -0.05f));
+    const float sMax = 4.0f, g = 0.5f;
+    const double sigmaT = kSigmaS + kSigmaA;
+    auto f = [&](double s) {
+        const Vec3 x = o + d * float(s);
+        const Vec3 out = x - light.direction * 20.0f;  // far above the layer
+        return kSigmaS * FogLayer::profile(x.y) * hgPhase(dot(light.direction, -d), g) * 2.0 *
+               std::exp(-sigmaT * (FogLayer::depth(x, out) + FogLayer::depth(o, x)));
+    };
+    const int n = 200000;
+    const double h = sMax / n;
+    double expected = f(0) + f(sMax);
+    for (int i = 1; i < n; ++i) expected += f(i * h) * (i % 2 ? 4 : 2);
+    expected *= h / 3;
+    for (int cells : {12, 0}) {
+        Scene s = sunSlab({light}, Rgb(kSigmaS), Rgb(kSigmaA), g, 3.0f);
+        s.media[0].density = std::make_shared<FogLayer>(cells);
+        s.finalize();
+        const Estimate e = estimateMany(s, o, d, sMax, 20000, 1);
+        std::printf("sun over the layer, %d majorant cells: quadrature %.6f, estimate %.6f +- %.6f\n", cells,
+                    expected, e.mean, e.standardError);
+        EXPECT_LT(e.standardError, 0.02 * expected) << "too noisy to test";
+        EXPECT_NEAR(e.mean, expected, 4 * e.standardError) << cells;
+    }
+}
+
+TEST(EquiangularSun, SunAndPointLightShareTheSamplesAgainstTheClosedForms) {
+    // A sun and a point light 0.3 from the segment, one budget per segment: the mean is the sum of
+    // both closed forms whatever the budget; the sun's share grows with the segment's distance
+    // from the lamp.
+    const Light light = sun({0.0f, -1.0f, 0.0f}, Rgb(0.8f));
+    const Light lamp = pointLight({0.2f, 0.3f, -0.1f}, 2.0f);
+    const Vec3 o{-2.0f, 0.0f, 0.0f}, d{1.0f, 0.0f, 0.0f};
+    const float sMax = 4.0f, g = 0.3f;
+    Scene s = sunSlab({light, lamp}, Rgb(kSigmaS), Rgb(kSigmaA), g);
+    s.finalize();
+    const double st = kSigmaS + kSigmaA;
+    const double sunPart = kSigmaS * hgPhase(dot(light.direction, -d), g) * 0.8 * std::exp(-st * 1.0) *
+                           -std::expm1(-st * sMax) / st;
+    const double expected = sunPart + quadrature(lamp, o, d, sMax, g);
+    for (double samples : {0.5, 1.0, 3.0}) {
+        const Estimate e = estimateMany(s, o, d, sMax, int(40000 / samples), samples);
+        std::printf("sun and lamp, %.1f samples: closed forms %.6f, estimate %.6f +- %.6f\n", samples, expected,
+                    e.mean, e.standardError);
+        EXPECT_LT(e.standardError, 0.01 * expected) << "too noisy to test";
+        EXPECT_NEAR(e.mean, expected, 4 * e.standardError) << samples << " samples";
+    }
+    EmbreeScene rt(s);
+    const EquiangularScattering eq(rt, 1);
+    ASSERT_EQ(eq.sources(), 2u);
+    double nearLamp[2], farFromLamp[2];
+    ASSERT_TRUE(eq.segmentCdf(s.media[0], {-0.5f, 0.25f, -0.1f}, {1, 0, 0}, 1.0f, nearLamp));
+    ASSERT_TRUE(eq.segmentCdf(s.media[0], {-5.0f, -0.8f, 4.0f}, {0, 0, 1}, 2.0f, farFromLamp));
+    EXPECT_GT(farFromLamp[0], nearLamp[0] + 0.3) << "the sun's share";
+}
+
+/// A sun over two boxes of fog on a floor: the left one's hull an index-matched Interface (the
+/// sun's photons cross it still direct: their first beams are left out and the shadow rays carry
+/// that light), the right one's a rough dielectric (photons refracted into it are no longer
+/// direct: their beams stay, and the shadow rays from inside it are blocked), or only the left one.
+/// The camera looks down on both; a floor wider than 3 fills the rest of the view.
+Scene sunOverFogBoxes(bool refracting, float floorHalf = 3.0f) {
+    Scene s;
+    s.name = "sun-fog-boxes";
+    s.source = "<test scene>";
+    const int floor = test::addMaterial(s, "floor", MaterialType::Diffuse, Rgb(0.15f));
+    const int hull = test::addMaterial(s, "hull", MaterialType::Interface, Rgb(1.0f));
+    const int glass = test::addMaterial(s, "rough water", MaterialType::Dielectric, Rgb(1.0f));
+    s.materials[size_t(glass)].ior = 1.33f;
+    s.materials[size_t(glass)].roughness = 0.7f;
+    s.media.push_back(test::homogeneousMedium(Rgb(0.9f, 0.8f, 0.7f), Rgb(0.3f, 0.4f, 0.5f), 0.5f));
+    s.media.push_back(s.media[0]);  // the right box's: sealed by its hull (no sun sample drawn there)
+    s.meshes.push_back(makeQuad("floor", {-floorHalf, 0, floorHalf}, {2 * floorHalf, 0, 0}, {0, 0, -2 * floorHalf}, floor));
+    TriangleMesh left = makeBox("left fog", {-1.3f, 0.001f, -0.6f}, {-0.1f, 1.0f, 0.6f}, hull);
+    left.interiorMedium = 0;
+    s.meshes.push_back(left);
+    TriangleMesh right = makeBox("right fog", {0.1f, 0.001f, -0.6f}, {1.3f, 1.0f, 0.6f}, glass);
+    right.interiorMedium = 1;
+    if (refracting) s.meshes.push_back(right);
+    s.lights.push_back(sun({0.2f, -0.7f, 0.7f}, Rgb(2.0f, 1.9f, 1.7f)));
+    s.camera = Camera::lookAt({0.0f, 2.4f, 2.6f}, {0.0f, 0.4f, 0.0f}, {0, 1, 0}, 50.0f * kPi / 180.0f);
+    s.finalize();
+    s.validate();
+    return s;
+}
+
+TEST(EquiangularSunPpb, SunOverAnIndexMatchedFogBoxAgreesWithThePathTracer) {
+    // The sun's single scattering by shadow rays through the hull, its first beams left out.
+    const Scene scene = sunOverFogBoxes(false);
+    RenderSettings ps;
+    ps.width = ps.height = 16;
+    ps.photonsPerPass = 8000;
+    ps.seed = 5;
+    ps.equiangular = true;
+    ps.radius = 0.03f;
+    ps.surfaceRadius = 0.06f;
+    ps.radiusOffset = 1000000000000ull;
+    ps.photonAngle = 0;
+    test::expectBatchesAgreeWithThePathTracer(scene, ps, 0.03, 0.02);
+}
+
+TEST(EquiangularSunPpb, SunOverARefractingFogBoxBesideItAgreesWithThePathTracer) {
+    // The rough dielectric box beside it: its photons refract at the hull, so their beams inside
+    // stay; the shadow rays from inside it are blocked.
+    const Scene scene = sunOverFogBoxes(true);
+    RenderSettings ps;
+    ps.width = ps.height = 16;
+    ps.photonsPerPass = 24000;
+    ps.seed = 5;
+    ps.equiangular = true;
+    ps.radius = 0.03f;
+    ps.surfaceRadius = 0.06f;
+    ps.radiusOffset = 1000000000000ull;
+    ps.photonAngle = 0;
+    // The reference's fireflies through the rough hull (roughness 0.7, two refractions toward a
+    // delta light) set the noise bound.
+    test::expectBatchesAgreeWithThePathTracer(scene, ps, 0.07, 0.02);
+}
+
+TEST(EquiangularSunPpb, SunSingleScatteringVarianceFallsAsOneOverPasses) {
+    // Light paths of at most two segments through the index-matched box: the sun's single
+    // scattering (no beam: its first beams are left out) and the floor's direct light. No kernel
+    // remains, so each pass is an independent unbiased estimate and a pixel's variance over seeds
+    // falls as 1/passes.
+    Scene scene = sunOverFogBoxes(false, 8.0f);
+    RenderSettings ps;
+    ps.width = ps.height = 8;
+    ps.photonsPerPass = 16;
+    ps.maxPathLength = 2;
+    ps.equiangular = true;
+    ps.equiangularSamples = 1;
+    ps.radius = 0.03f;
+    ps.surfaceRadius = 0.06f;
+    ps.radiusOffset = 1000000000000ull;
+    ps.photonAngle = 0;
+    EXPECT_NEAR(test::varianceSlopeOverPasses(scene, ps, 48, 100), -1.0, 0.3);
 }
 
 }  // namespace
