@@ -12,6 +12,7 @@
 #include "core/accumulator.h"
 #include "core/error.h"
 #include "core/image_io.h"
+#include "cpu/equiangular_pilot.h"
 #include "cpu/pass_renderer.h"
 #include "cpu/pixel_footprint.h"
 #include "cpu/radius_defaults.h"
@@ -238,6 +239,20 @@ void runQualityStudy(const RenderSettings& settings, const QualityStudyOptions& 
         RenderSettings base = settings;
         base.passes = passes > 0 ? passes : 1;
         base.timeBudget = 0;
+        if ((equalTime || o.pilotOnly) && settings.equiangular) {
+            // What the automatic equiangular count saw (cpu/equiangular_pilot.h), for the open-ended
+            // plan the rows render.
+            RenderSettings open = base;
+            open.plannedPaths = RadiusDefaults::kOpenEndedPathsPerPixel * uint64_t(base.width) * uint64_t(base.height);
+            const EmbreeScene rt(scene);
+            const EquiangularPilot p = runEquiangularPilot(scene, resolveRadiusDefaults(open, rt));
+            std::printf("  %-16s equiangular pilot: V_ea %.4g (%d stratified %.4g: exponent %.2f), V_rest %.4g (pass "
+                        "%.4g), %.0f of %.0f pixels in a medium, %.0f photon paths, C_0/c %.3g: %.4g samples\n",
+                        scene.name.c_str(), p.equiangularVariance, EquiangularAuto::kStratified, p.stratifiedVariance,
+                        equiangularStratificationExponent(p.equiangularVariance, p.stratifiedVariance),
+                        p.restVariance, p.passVariance, p.segments, p.pixels, p.photonPaths, p.costRatio, p.samples);
+        }
+        if (o.pilotOnly) continue;
         Reference ref = loadOrRenderReference(scene, scene.name, base, o.referenceDir, o.referenceSpp);
         std::vector<Curve> curves;
         for (const Variant& v : variantsFor(scene, base, passes, equalTime, o.legacy, o.equiangularSamples))

@@ -54,6 +54,8 @@ struct QualityStudyOptions {
     /// equiangular samples per segment (RenderSettings::equiangularSamples; 0 = auto), to compare
     /// counts in one run.
     std::vector<double> equiangularSamples;
+    /// Only print each scene's equiangular pilot (cpu/equiangular_pilot.h): no references, no rows.
+    bool pilotOnly = false;
 };
 
 /// The LEGACY row's settings: `s` with the scene-relative radii (withSceneRelativeRadii), no photon

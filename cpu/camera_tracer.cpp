@@ -315,12 +315,19 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
             // Keyed only where --equiangular on draws from it (every use is behind m_equiangular).
             Rng equiangularRng =
                 m_equiangular ? Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::Equiangular) : Rng();
+            // The pixel's distances per segment this pass: a fractional count's extra one spread
+            // evenly over its passes (EquiangularScattering::samplesInPass).
+            const int equiangularSamples =
+                m_equiangular && emission
+                    ? m_equiangular->samplesInPass(pass, EquiangularScattering::pixelPhase(m_settings.seed, pixel))
+                    : 0;
             std::optional<Rng> emissionRng;  // keyed at the first later segment in an emitting grid
             const PrimaryRay& pr = primary.segments.rays[pixel];
             if (((m_equiangular && emission) || planeBvh) && (maxLength == 0 || maxLength >= 2) &&
                 pr.medium != kVacuum && pr.tMax > 0) {
                 if (m_equiangular && emission) {
-                    const Rgb single = m_equiangular->estimate(pr.medium, pr.origin, pr.dir, pr.tMax, equiangularRng);
+                    const Rgb single = m_equiangular->estimate(pr.medium, pr.origin, pr.dir, pr.tMax,
+                                                               equiangularSamples, equiangularRng);
                     L += single;
                     LmediaPrimary += single;
                 }
@@ -515,7 +522,8 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                         tls.stats.beamHits += tls.hits.size();
                         emitted += gatherBeams(m_scene, photons, tls.hits, medium, seg.o, seg.d, ff, nff, maxBeamSegment);
                         if (m_equiangular && emission)
-                            emitted += m_equiangular->estimate(medium, seg.o, seg.d, seg.tMax, equiangularRng);
+                            emitted += m_equiangular->estimate(medium, seg.o, seg.d, seg.tMax, equiangularSamples,
+                                                             equiangularRng);
                         if (planeBvh && med.homogeneous())
                             emitted += gatherPlanes(m_rt, *planeBvh, medium, seg.o, seg.d, seg.tMax, maxBeamSegment,
                                                     tls.planes);

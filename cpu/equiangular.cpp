@@ -157,7 +157,33 @@ Rgb EquiangularScattering::estimate(MediumId medium, const Vec3& o, const Vec3& 
     const bool sealed = m_sealed[size_t(medium)];
     if (sealed && sources == 1 && parallel(0)) return Rgb(0.0f);
     const int n = m_whole + (m_fraction > 0 && rng.uniform() < m_fraction ? 1 : 0);
-    if (n == 0) return Rgb(0.0f);
+    return estimate(medium, o, d, sMax, n, rng);
+}
+
+int EquiangularScattering::samplesInPass(uint64_t pass, double phase) const {
+    if (!(m_fraction > 0)) return m_whole;
+    // In double: exact enough for any pass count a render reaches (2^40 passes x a 1/64 step).
+    const double f = double(m_fraction);
+    const double k = double(pass);
+    return m_whole + int(std::floor((k + 1) * f + phase) - std::floor(k * f + phase));
+}
+
+double EquiangularScattering::pixelPhase(uint64_t seed, uint64_t pixel) {
+    // Keyed by a pass index no render reaches, so it is the pixel's for every pass.
+    Rng rng = Rng::forKey(seed, ~uint64_t(0), pixel, StreamPurpose::Equiangular);
+    return double(rng.uniform());
+}
+
+Rgb EquiangularScattering::estimate(MediumId medium, const Vec3& o, const Vec3& d, float sMax, int n,
+                                    Rng& rng) const {
+    if (m_lights.empty() || medium == kVacuum || !(sMax > 0)) return Rgb(0.0f);
+    const Scene& scene = m_rt.scene();
+    const Medium& med = scene.media[medium];
+    if (med.sigmaS.isBlack()) return Rgb(0.0f);
+    const size_t sources = m_lights.size();
+    const bool sealed = m_sealed[size_t(medium)];
+    if (sealed && sources == 1 && parallel(0)) return Rgb(0.0f);
+    if (n <= 0) return Rgb(0.0f);
     double cdf[kWeighedUpTo];
     const double* c = m_cdf.data();
     if (sources > 1 && sources <= kWeighedUpTo) {

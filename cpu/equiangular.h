@@ -37,9 +37,9 @@
 // as one.
 //
 // A segment gets N = RenderSettings::resolvedEquiangularSamples() distances in all, whatever the
-// number of sources (a fractional N: floor(N), and one more with probability N - floor(N); the
-// sum divided by N): stratified uniforms (k + xi) / n, k = 0..n-1, each mapped through the
-// sources' choice for the segment (its cdf; the uniform's place inside the chosen source's
+// number of sources (a fractional N: floor(N), and one more on a share N - floor(N) of the
+// pixel's passes, samplesInPass; the sum divided by N): stratified uniforms (k + xi) / n,
+// k = 0..n-1, each mapped through the sources' choice for the segment (its cdf; the uniform's place inside the chosen source's
 // interval is that source's distance uniform), the sample divided by the source's probability.
 // Up to kWeighedUpTo sources the choice follows each source's share of this segment's light,
 // estimated in closed form (segmentWeight: intensity x the inverse square's integral over the
@@ -77,10 +77,24 @@ public:
 
     /// The single-scattered radiance arriving at `o` along -d from the segment o + s d, s in
     /// [0, sMax], inside `medium`, before the camera path's throughput. Draws from `rng`: one
-    /// uniform for the fraction's extra sample (a fractional count only); per sample, one uniform
+    /// uniform for the fraction's extra sample (a fractional count only: a coin per call; the
+    /// renderer decides it per pixel and pass instead, below); per sample, one uniform
     /// (three more for an area light's point), then the transmittance estimates' (grid media only).
     /// A directional light's sample draws nothing more than its uniform in a homogeneous medium.
     Rgb estimate(MediumId medium, const Vec3& o, const Vec3& d, float sMax, Rng& rng) const;
+    /// The same with `n` distances (samplesInPass's count), still divided by samples(): the
+    /// caller has already decided the fraction's extra sample.
+    Rgb estimate(MediumId medium, const Vec3& o, const Vec3& d, float sMax, int n, Rng& rng) const;
+
+    /// The distances a pixel's segments get in pass `pass`: floor(N) and, for a fraction f =
+    /// N - floor(N), one more in the passes k where floor((k + 1) f + phase) > floor(k f + phase),
+    /// `phase` in [0, 1) the pixel's own (pixelPhase). Over any run of K consecutive passes a pixel
+    /// gets K f extra samples within one, and with the phase uniform each pass has the extra one
+    /// with probability f: unbiased like a random choice per segment, without the random count's
+    /// variance (f (1 - f) of the mean's square per pass; docs/algorithm.md).
+    int samplesInPass(uint64_t pass, double phase) const;
+    /// A pixel's phase for samplesInPass: uniform in [0, 1), from the seed and the pixel alone.
+    static double pixelPhase(uint64_t seed, uint64_t pixel);
 
     /// The sources' choice for the segment, as a cdf over sources() (the last entry 1); false when
     /// none can light it. Public for the tests.
