@@ -72,24 +72,39 @@ LightSampler::LightSampler(const Scene& scene) : m_scene(scene) {
     m_spatialChoice = groups >= 2 && scene.lights.size() <= kMaxSpatialChoiceLights;
 }
 
-double LightSampler::directWeights(const Vec3& x, double* w) const {
+double LightSampler::directWeights(const Vec3& x, double* w, const DirectReceiver* receiver) const {
+    // With a receiver: each light's colour weighted by the receiver's tint (the L2 norm over the
+    // channels), its cosine there; the emitters' and the environment's weights (no one direction)
+    // by the tint's norm alone, as a white light's would be.
+    const double tintNorm = receiver ? double(std::sqrt(lengthSquared(Vec3(receiver->tint.r, receiver->tint.g,
+                                                                           receiver->tint.b))))
+                                     : 1.0;
+    if (receiver && !(tintNorm > 0)) receiver = nullptr;
     double sum = 0;
     for (size_t k = 0; k < m_scene.lights.size(); ++k) {
         const Light& l = m_scene.lights[k];
-        double intensity = std::max(0.0f, l.intensity.luminance());
-        if (l.type == LightType::Directional) {
-            w[k] = intensity;
+        double intensity;
+        if (receiver) {
+            const Rgb c = l.intensity * receiver->tint;
+            intensity = std::sqrt(double(c.r) * c.r + double(c.g) * c.g + double(c.b) * c.b);
         } else {
-            // The falloff exactly as sampleDirect evaluates it, so a light it can light is never
-            // given weight 0.
+            intensity = std::max(0.0f, l.intensity.luminance());
+        }
+        if (l.type == LightType::Directional) {
+            w[k] = intensity * (receiver ? double(receiver->cosine(-l.direction)) : 1.0);
+        } else {
+            // The falloff (and direction) exactly as sampleDirect evaluates it, so a light it can
+            // light is never given weight 0.
             Vec3 toLight = l.position - x;
             float d2 = lengthSquared(toLight);
             if (!(d2 > 0)) {
                 w[k] = 0;
                 continue;
             }
-            float falloff = l.type == LightType::Spot ? l.spotFalloff(dot(-(toLight / std::sqrt(d2)), l.direction)) : 1.0f;
-            w[k] = intensity * double(falloff) / double(d2);
+            const float d = std::sqrt(d2);
+            const Vec3 wi = toLight / d;
+            float falloff = l.type == LightType::Spot ? l.spotFalloff(dot(-wi, l.direction)) : 1.0f;
+            w[k] = intensity * double(falloff) / double(d2) * (receiver ? double(receiver->cosine(wi)) : 1.0);
         }
         sum += w[k];
     }
@@ -99,10 +114,10 @@ double LightSampler::directWeights(const Vec3& x, double* w) const {
         Vec3 lo = m_emitterBounds.lo - x, hi = x - m_emitterBounds.hi;
         Vec3 out(std::max({lo.x, hi.x, 0.0f}), std::max({lo.y, hi.y, 0.0f}), std::max({lo.z, hi.z, 0.0f}));
         double d2 = std::max(double(lengthSquared(out)), m_emitterArea / kPi);
-        group = m_emitterPower / (kPi * std::max(d2, 1e-30));
+        group = tintNorm * m_emitterPower / (kPi * std::max(d2, 1e-30));
     }
-    w[m_scene.lights.size() + 1] = m_environmentWeight;
-    return sum + group + m_environmentWeight;
+    w[m_scene.lights.size() + 1] = tintNorm * m_environmentWeight;
+    return sum + group + w[m_scene.lights.size() + 1];
 }
 
 size_t LightSampler::chooseEmitter(double u) const {
@@ -112,10 +127,10 @@ size_t LightSampler::chooseEmitter(double u) const {
     return e;
 }
 
-float LightSampler::directChoiceProbability(size_t i, const Vec3& x) const {
+float LightSampler::directChoiceProbability(size_t i, const Vec3& x, const DirectReceiver* receiver) const {
     if (!m_spatialChoice) return sourceProbability(i);
     double w[kMaxSpatialChoiceLights + 2];
-    const double sum = directWeights(x, w);
+    const double sum = directWeights(x, w, receiver);
     if (!(sum > 0)) return 0.0f;
     const size_t lights = m_scene.lights.size();
     if (i < lights) return float(w[i] / sum);
@@ -135,9 +150,10 @@ int LightSampler::emitterSource(int mesh, uint32_t triangle) const {
     return it == m_emitterSource.end() ? -1 : it->second;
 }
 
-DirectLightSample LightSampler::sampleDirect(const Vec3& x, Rng& rng) const {
+DirectLightSample LightSampler::sampleDirect(const Vec3& x, Rng& rng, const DirectReceiver* receiver) const {
     DirectLightSample s;
-    const float u = rng.uniform();
+    const float drawn = rng.uniform();
+    const float u = receiver && receiver->choice >= 0.0f ? receiver->choice : drawn;
     float u1 = rng.uniform(), u2 = rng.uniform();
     size_t i = 0;
     float pick = 0;
@@ -147,7 +163,7 @@ DirectLightSample LightSampler::sampleDirect(const Vec3& x, Rng& rng) const {
         pick = sourceProbability(i);
     } else {
         double w[kMaxSpatialChoiceLights + 2];
-        const double sum = directWeights(x, w);
+        const double sum = directWeights(x, w, receiver);
         if (!(sum > 0)) return s;  // no source can reach x
         const size_t lights = m_scene.lights.size();
         double target = double(u) * sum, below = 0;

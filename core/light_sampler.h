@@ -50,6 +50,21 @@ struct DirectLightSample {
     int source = -1;     ///< the chosen source index
 };
 
+/// The diffuse point a shadow ray leaves from, for sampleDirect's choice of source (PPB's diffuse
+/// ends): the side it is seen from (HitSide's nf and nsf) and the colour it reflects. The
+/// contribution of a point, spot or directional light there is tint x incident x cosine(wi).
+struct DirectReceiver {
+    Vec3 nf;   ///< geometric normal on the seen side
+    Vec3 nsf;  ///< shading normal on the same side
+    Rgb tint;  ///< the reflectance's colour (the base colour), weighting the channels
+    /// The uniform in [0, 1) that chooses the source, in place of the stream's first draw (which is
+    /// drawn all the same); negative: the stream's (core/pixel_jitter.h, lightChoiceUniform).
+    float choice = -1.0f;
+    /// The diffuse base's cosine for light along `wi`: max(0, wi . nsf) above the geometric surface,
+    /// else 0 (cpu/direct_light.h's diffuseCosine, the factor the estimate applies).
+    float cosine(const Vec3& wi) const { return dot(wi, nf) > 0 ? std::max(0.0f, dot(wi, nsf)) : 0.0f; }
+};
+
 class LightSampler {
 public:
     /// Throws Error when nothing in the scene emits. A scene lit by emissive media alone (no light,
@@ -80,7 +95,7 @@ public:
 
     /// Next-event estimation from shading point `x`: a source chosen with directChoiceProbability,
     /// then a point on it (uniform over an emissive triangle's area). Draws three uniforms from `rng`.
-    DirectLightSample sampleDirect(const Vec3& x, Rng& rng) const;
+    DirectLightSample sampleDirect(const Vec3& x, Rng& rng, const DirectReceiver* receiver = nullptr) const;
     /// Probability that sampleDirect(x) picks source `i`. With two or more sources of which at
     /// most kMaxSpatialChoiceLights are point, spot or directional lights, the choice follows what
     /// each could send to x unoccluded, the receiver's cosine left out: I falloff / d^2 for point
@@ -92,7 +107,15 @@ public:
     /// (one source, or more lights than that) sourceProbability(i), the power-proportional choice.
     /// The environment's weight is the mean over orientations of the irradiance it sends to a
     /// plane, (1/4) x the integral of its luminance over the sphere (pi L for a constant L).
-    float directChoiceProbability(size_t i, const Vec3& x) const;
+    /// With a `receiver` (a diffuse point, PPB's shadow rays) the weights are what each source sends
+    /// into the receiver's colour: a point, spot or directional light's by the L2 norm over the
+    /// channels of tint x intensity, times the receiver's cosine toward it (0 below the surface,
+    /// where its light adds nothing), the emitters' and the environment's by the tint's L2 norm (their
+    /// luminance-based weights, no cosine). The sum of the channels' variances of a one-sample
+    /// estimate is smallest with each source's probability proportional to the L2 norm of its RGB
+    /// contribution; this is that, but for shadows and the media's transmittance. Without a receiver
+    /// (the reference tracer, whose MIS weights use directPdf) the weights are the ones above.
+    float directChoiceProbability(size_t i, const Vec3& x, const DirectReceiver* receiver = nullptr) const;
     /// Beyond this many point, spot and directional lights the choice is by power (the per-point
     /// weights cost one evaluation per light).
     static constexpr size_t kMaxSpatialChoiceLights = 32;
@@ -129,7 +152,7 @@ private:
 
     /// The spatial choice's weights at x: w[k] for light k, w[lights] for all emitters together,
     /// w[lights + 1] for the environment; returns their sum.
-    double directWeights(const Vec3& x, double* w) const;
+    double directWeights(const Vec3& x, double* w, const DirectReceiver* receiver = nullptr) const;
     /// Emitter `e` (index into Scene::emitters) chosen by power among the emitters from u in [0, 1).
     size_t chooseEmitter(double u) const;
     double emitterShare(size_t e) const { return m_emitterCdf[e] - (e > 0 ? m_emitterCdf[e - 1] : 0.0); }

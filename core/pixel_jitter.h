@@ -30,4 +30,19 @@ inline Vec2 pixelJitter(uint64_t seed, uint64_t pass, uint64_t pixel) {
     return Vec2{std::min(float(u - std::floor(u)), below1), std::min(float(v - std::floor(v)), below1)};
 }
 
+/// The uniform that chooses the light of `pixel`'s first shadow ray in pass `pass` (PPB's direct
+/// light, docs/algorithm.md "Direct light by shadow rays"): the golden-ratio Kronecker sequence
+/// frac(o + (pass + 1) / phi), rotated by a random offset per pixel as the film jitter is. Each pass's
+/// value is uniform (the offset is), so the choice stays unbiased; over any run of passes a light of
+/// probability p is chosen in a share within about 1/passes of p, where independent choices scatter
+/// by sqrt(p (1 - p) / passes): where two lights of different colours light a surface, that
+/// scatter was the surface's noise. 1/phi is independent over the rationals of the film jitter's
+/// 1/g and 1/g^2 (g cubic, phi quadratic), so the choice does not follow the jitter's position.
+inline float lightChoiceUniform(uint64_t seed, uint64_t pass, uint64_t pixel) {
+    constexpr double a = 0.6180339887498949;  // 1 / phi
+    Rng rotation = Rng::forKey(seed, 0, pixel, StreamPurpose::LightChoiceRotation);
+    const double n = double((pass & 0xffffffffull) + 1), u = rotation.uniform() + n * a;
+    return std::min(float(u - std::floor(u)), 0.99999994f);
+}
+
 }  // namespace tyndall

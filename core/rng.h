@@ -19,6 +19,7 @@ enum class StreamPurpose : uint32_t {
     PhotonPlane = 9,  ///< a photon path's plane directions and lengths (core/photon_plane.h)
     MediumEmission = 10,  ///< a camera path's grid-medium emission, primary segment (cpu/segment_emission.h)
     LaterMediumEmission = 11,  ///< the same along its later segments
+    LightChoiceRotation = 12,  ///< a pixel's offset of its shadow rays' light-choice sequence (core/pixel_jitter.h)
     Test = 99,
 };
 

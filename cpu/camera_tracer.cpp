@@ -360,6 +360,9 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
             // stream per path, so a path's shadow-ray vertices (a plastic, then the diffuse end)
             // draw different light samples.
             Rng neeRng = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::DirectLight);
+            // The first shadow ray's light choice from the pixel's sequence over the passes; a
+            // later one (after a plastic's) from the stream.
+            float lightChoice = lightChoiceUniform(m_settings.seed, pass, pixel);
             MediumId medium = ph.medium;
             SurfaceHit hit = ph.hit;
             Vec3 dir = pr.dir;
@@ -422,7 +425,10 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                     // Direct light by a shadow ray (once per pass: with the emission); none toward
                     // a black surface.
                     if (m_direct && emission && !sp.baseColor.isBlack() && shadowRayWithinCap()) {
-                        E += m_direct->diffuse(hit, side, medium, neeRng, false);
+                        // The source chosen by what it sends into this pixel's colour and cosine.
+                        const DirectReceiver receiver{side.nf, side.nsf, throughput * sp.baseColor, lightChoice};
+                        lightChoice = -1.0f;
+                        E += m_direct->diffuse(hit, side, medium, neeRng, false, &receiver);
                     }
                     Rgb density = throughput * sp.baseColor * kInvPi * E;
                     L += density;
@@ -455,9 +461,14 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                         return coverage ? photonWeight(p) / (*coverage)(p.radius) : photonWeight(p);
                     });
                     if (m_direct && emission && !sp.baseColor.isBlack() && shadowRayWithinCap()) {
-                        coated += throughput * m_direct->reflected(hit, side, medium, neeRng, [&](const DirectLightSample& ls) {
-                            return bsdf.f(ls.wi, kLobeDiffuse) * diffuseCosine(side, ls.wi);
-                        });
+                        const DirectReceiver receiver{side.nf, side.nsf, throughput * sp.baseColor, lightChoice};
+                        lightChoice = -1.0f;
+                        coated += throughput * m_direct->reflected(
+                                                   hit, side, medium, neeRng,
+                                                   [&](const DirectLightSample& ls) {
+                                                       return bsdf.f(ls.wi, kLobeDiffuse) * diffuseCosine(side, ls.wi);
+                                                   },
+                                                   &receiver);
                     }
                     L += coated;
                     Lsurface += coated;

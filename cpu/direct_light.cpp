@@ -63,12 +63,15 @@ Rgb shadowTransmittance(const EmbreeScene& rt, const Vec3& origin, const DirectL
 }
 
 Rgb DirectLight::diffuse(const SurfaceHit& hit, const HitSide& side, MediumId medium, Rng& rng,
-                         bool misWithCosineSampling) const {
-    return reflected(hit, side, medium, rng, [&](const DirectLightSample& ls) {
-        const float cosine = diffuseCosine(side, ls.wi);
-        const float mis = ls.delta || !misWithCosineSampling ? 1.0f : powerHeuristic(ls.pdf, cosine * kInvPi);
-        return Rgb(cosine > 0 ? cosine * mis : 0.0f);
-    });
+                         bool misWithCosineSampling, const DirectReceiver* receiver) const {
+    return reflected(
+        hit, side, medium, rng,
+        [&](const DirectLightSample& ls) {
+            const float cosine = diffuseCosine(side, ls.wi);
+            const float mis = ls.delta || !misWithCosineSampling ? 1.0f : powerHeuristic(ls.pdf, cosine * kInvPi);
+            return Rgb(cosine > 0 ? cosine * mis : 0.0f);
+        },
+        receiver);
 }
 
 }  // namespace tyndall

@@ -59,17 +59,20 @@ public:
     /// `misWithCosineSampling`: area-light samples are weighted by the power heuristic against
     /// cosine sampling of the direction (the reference tracer, which also reaches area lights by
     /// hitting them); false: weight 1 (PPB's camera path ends at the diffuse vertex).
-    Rgb diffuse(const SurfaceHit& hit, const HitSide& side, MediumId medium, Rng& rng,
-                bool misWithCosineSampling) const;
+    Rgb diffuse(const SurfaceHit& hit, const HitSide& side, MediumId medium, Rng& rng, bool misWithCosineSampling,
+                const DirectReceiver* receiver = nullptr) const;
 
     /// One-sample estimate of incident x Tr x weight(sample) / pdf at `hit`, `weight` the caller's
     /// BSDF x cosine (x a MIS weight where the path also reaches the light by sampling) for the
     /// light sample (DirectLightSample: wi, pdf, delta). Draws sampleDirect's three uniforms from
     /// `rng`, then the shadow ray's only when the weight is not black. `diffuse` is this with the
     /// diffuse base's cosine.
+    /// `receiver`: the source is chosen by what it sends into the receiver's colour and cosine
+    /// (LightSampler::directChoiceProbability); nullptr: by what it sends to the point.
     template <class Weight>
-    Rgb reflected(const SurfaceHit& hit, const HitSide& side, MediumId medium, Rng& rng, Weight&& weight) const {
-        const DirectLightSample ls = m_lights.sampleDirect(hit.p, rng);
+    Rgb reflected(const SurfaceHit& hit, const HitSide& side, MediumId medium, Rng& rng, Weight&& weight,
+                  const DirectReceiver* receiver = nullptr) const {
+        const DirectLightSample ls = m_lights.sampleDirect(hit.p, rng, receiver);
         if (!(ls.pdf > 0) || ls.incident.isBlack()) return Rgb(0.0f);
         const Rgb w = weight(ls);
         if (w.isBlack()) return Rgb(0.0f);
