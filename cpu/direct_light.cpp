@@ -12,8 +12,12 @@ constexpr int kMaxShadowRayCrossings = 256;
 }  // namespace
 
 Rgb shadowTransmittance(const EmbreeScene& rt, const Vec3& origin, const DirectLightSample& light, MediumId medium,
-                        Rng& rng) {
+                        Rng& rng, GridTransmittance estimator) {
     const Scene& scene = rt.scene();
+    auto transmittance = [&](const Medium& m, const Ray& seg) {
+        return estimator == GridTransmittance::Ratio ? ratioTrackingTransmittance(m, seg, seg.tMax, rng)
+                                                     : estimateTransmittance(m, seg, seg.tMax, rng);
+    };
     const Vec3 d = light.wi;
     const bool finite = std::isfinite(light.distance);
     // Stop just short of an emissive triangle so the shadow ray does not hit the light itself; where
@@ -36,7 +40,7 @@ Rgb shadowTransmittance(const EmbreeScene& rt, const Vec3& origin, const DirectL
         if (rt.occluded(ray)) return Rgb(0.0f);
         Ray seg;
         if (medium != kVacuum && rt.mediumSegment(ray.o, d, ray.tMax, &seg))
-            tr *= estimateTransmittance(scene.media[medium], seg, seg.tMax, rng);
+            tr *= transmittance(scene.media[medium], seg);
         return tr;
     }
     for (int crossing = 0; crossing <= kMaxShadowRayCrossings; ++crossing) {
@@ -47,7 +51,7 @@ Rgb shadowTransmittance(const EmbreeScene& rt, const Vec3& origin, const DirectL
         if (medium != kVacuum) {
             Ray seg;
             if (rt.mediumSegment(ray.o, d, tEnd, &seg)) {
-                tr *= estimateTransmittance(scene.media[medium], seg, seg.tMax, rng);
+                tr *= transmittance(scene.media[medium], seg);
                 if (tr.isBlack()) return tr;
             }
         }

@@ -8,8 +8,9 @@
 //   - a shadow ray toward it that passes through Interface surfaces (switching medium) and through
 //     alpha-masked or blended geometry as EmbreeScene's occlusion filter decides, and is blocked by
 //     every other surface;
-//   - the transmittance of every medium on the way: analytic in homogeneous media, ratio tracking
-//     (unbiased) in density-grid media (estimateTransmittance).
+//   - the transmittance of every medium on the way: analytic in homogeneous media, residual ratio
+//     tracking (unbiased) in density-grid media (estimateTransmittance; the reference path tracer
+//     keeps plain ratio tracking, ratioTrackingTransmittance, as an independent check).
 // Randomness comes only from the caller's keyed stream.
 #include "core/light_sampler.h"
 #include "core/rng.h"
@@ -31,24 +32,32 @@ inline float diffuseCosine(const HitSide& side, const Vec3& wi) {
     return dot(wi, side.nf) > 0 ? std::max(0.0f, dot(wi, side.nsf)) : 0.0f;
 }
 
+/// Which estimate of a grid medium's transmittance shadow rays use (cpu/free_flight.h).
+enum class GridTransmittance {
+    Residual,  ///< residual ratio tracking against a density comb (estimateTransmittance)
+    Ratio,     ///< plain ratio tracking (ratioTrackingTransmittance): the reference path tracer's
+};
+
 /// Light arriving at `origin` along `light`'s direction, starting in `medium`: the product of the
-/// transmittances of the medium segments on the way (analytic in homogeneous media, ratio tracking
+/// transmittances of the medium segments on the way (analytic in homogeneous media, `estimator`
 /// in grid media: draws from `rng` only there), or 0 when a surface other than an Interface blocks
 /// it. Stops just short of an emissive triangle. DirectLight's shadow rays and the equiangular
 /// estimator's (cpu/equiangular.h). In a scene where every surface blocks (EmbreeScene::
 /// everySurfaceBlocks), toward a light that is no emissive triangle, through vacuum or a
 /// homogeneous medium: one occluded query instead of the closest hit, with the same result.
 Rgb shadowTransmittance(const EmbreeScene& rt, const Vec3& origin, const DirectLightSample& light, MediumId medium,
-                        Rng& rng);
+                        Rng& rng, GridTransmittance estimator = GridTransmittance::Residual);
 
 class DirectLight {
 public:
     /// Keeps references to both: they must outlive this.
-    DirectLight(const EmbreeScene& rt, const LightSampler& lights) : m_rt(rt), m_lights(lights) {}
+    DirectLight(const EmbreeScene& rt, const LightSampler& lights,
+                GridTransmittance estimator = GridTransmittance::Residual)
+        : m_rt(rt), m_lights(lights), m_estimator(estimator) {}
 
     /// tyndall::shadowTransmittance in this scene.
     Rgb shadowTransmittance(const Vec3& origin, const DirectLightSample& light, MediumId medium, Rng& rng) const {
-        return tyndall::shadowTransmittance(m_rt, origin, light, medium, rng);
+        return tyndall::shadowTransmittance(m_rt, origin, light, medium, rng, m_estimator);
     }
 
     /// One-sample estimate of the cosine-weighted light arriving at the diffuse point `hit` seen
@@ -85,6 +94,7 @@ public:
 private:
     const EmbreeScene& m_rt;
     const LightSampler& m_lights;
+    GridTransmittance m_estimator;
 };
 
 }  // namespace tyndall

@@ -189,11 +189,67 @@ Rgb estimateEmission(const Medium& medium, const Ray& ray, float tEnd, Rng& rng)
     return sum;
 }
 
-Rgb estimateTransmittance(const Medium& medium, const Ray& ray, float tEnd, Rng& rng) {
+Rgb ratioTrackingTransmittance(const Medium& medium, const Ray& ray, float tEnd, Rng& rng) {
     if (medium.homogeneous()) return medium.transmittance(tEnd);
     if (!(medium.sigmaT().r > 0)) return Rgb(1.0f);
     const float tr = ratioTrack(medium, ray, tEnd, rng, [](const Vec3&, float, float, float) {});
     return Rgb(std::max(tr, 0.0f));
+}
+
+float combPointsPerUnit(const DensityGrid& grid, const Ray& ray, float tEnd) {
+    const MajorantGrid* mg = grid.majorantGrid();
+    if (!mg) return float(kMaxCombPoints) / tEnd;
+    const Vec3 v = mg->worldToCell().vector(ray.d);
+    return kCombPointsPerCell * std::max(std::abs(v.x), std::max(std::abs(v.y), std::abs(v.z)));
+}
+
+float residualTransmittance(const Medium& medium, const Ray& ray, float tEnd, Rng& rng) {
+    const DensityGrid& grid = *medium.density;
+    const float sigmaT = medium.sigmaT().r;
+    if (!(sigmaT > 0) || !(tEnd > 0)) return 1.0f;
+    const float combPerUnit = combPointsPerUnit(grid, ray, tEnd);
+    float offset = -1.0f;  // the comb's offset, drawn at the first piece that has one
+    double depth = 0;      // sigma_t times the control's integral over the pieces passed
+    float residual = 1.0f;
+    float comb[kMaxCombPoints];
+    MajorantPieces pieces(grid, ray, tEnd);
+    float t0, t1, maj;
+    while (residual > 0 && pieces.next(&t0, &t1, &maj)) {
+        const float mu = maj * sigmaT, length = t1 - t0;
+        if (!(mu > 0 && length > 0)) continue;
+        auto step = [&]() { return -std::log(1.0f - rng.uniform()) / mu; };
+        if (mu * length < kMinCombDepth) {
+            for (float t = t0 + step(); residual > 0 && t < t1; t += step())
+                residual *= 1.0f - grid.density(ray.at(t)) / maj;
+            continue;
+        }
+        if (offset < 0) offset = rng.uniform();
+        const int m = clampValue(int(std::ceil(std::min(length * combPerUnit, kCombPointsPerDepth * mu * length))), 1,
+                                 kMaxCombPoints);
+        const float h = length / float(m);
+        double integral = 0;
+        for (int j = 0; j < m; ++j) {
+            comb[j] = grid.density(ray.at(t0 + (float(j) + offset) * h));
+            if (j > 0) integral += 0.5 * double(h) * (double(comb[j - 1]) + comb[j]);
+        }
+        integral += double(offset) * h * comb[0] + (1.0 - double(offset)) * h * comb[m - 1];
+        depth += double(sigmaT) * integral;
+        auto control = [&](float t) {
+            const float x = (t - t0) / h - offset;
+            if (!(x > 0)) return comb[0];
+            const int j = int(x);
+            if (j >= m - 1) return comb[m - 1];
+            return comb[j] + (x - float(j)) * (comb[j + 1] - comb[j]);
+        };
+        for (float t = t0 + step(); residual > 0 && t < t1; t += step())
+            residual *= 1.0f - (grid.density(ray.at(t)) - control(t)) / maj;
+    }
+    return std::max(residual, 0.0f) * float(std::exp(-depth));
+}
+
+Rgb estimateTransmittance(const Medium& medium, const Ray& ray, float tEnd, Rng& rng) {
+    if (medium.homogeneous()) return medium.transmittance(tEnd);
+    return Rgb(residualTransmittance(medium, ray, tEnd, rng));
 }
 
 }  // namespace tyndall

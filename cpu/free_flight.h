@@ -100,8 +100,44 @@ Rgb homogeneousEmission(const Medium& medium, float d);
 /// 1 - sigma_t(x) / sigma_majorant(x)). Zero for media that do not emit, drawing nothing.
 Rgb estimateEmission(const Medium& medium, const Ray& ray, float tEnd, Rng& rng);
 
-/// Transmittance estimate over [0, tEnd]: analytic for homogeneous media, a ratio-tracking
-/// estimate (unbiased) for grid media.
+/// Transmittance estimate over [0, tEnd]: analytic for homogeneous media; for grid media residual
+/// ratio tracking (Novak et al. 2014) against a density comb (residualTransmittance), unbiased.
+/// Shadow rays, the equiangular estimator's legs and the camera paths' segments use it.
 Rgb estimateTransmittance(const Medium& medium, const Ray& ray, float tEnd, Rng& rng);
+
+/// Plain ratio tracking over [0, tEnd] of a grid medium (the running product of
+/// 1 - density / majorant at tentative collisions at rate sigma_t majorant): the reference path
+/// tracer's estimate, and the baseline the tests compare residualTransmittance's variance with.
+/// Analytic for homogeneous media.
+Rgb ratioTrackingTransmittance(const Medium& medium, const Ray& ray, float tEnd, Rng& rng);
+
+/// Comb points per majorant cell along the ray's dominant cell axis: the controls of residual
+/// tracking (here and cpu/segment_emission.h) sample the density this densely at most.
+constexpr float kCombPointsPerCell = 4.0f;
+/// Most comb points on one majorant piece.
+constexpr int kMaxCombPoints = 64;
+/// Comb points per unit length along `ray` for a piece of a grid's majorant grid:
+/// kCombPointsPerCell per cell crossed along the ray's dominant cell axis (two voxels of an
+/// OpenVDB grid's 8-voxel cells); kMaxCombPoints over [0, tEnd] without a majorant grid.
+float combPointsPerUnit(const DensityGrid& grid, const Ray& ray, float tEnd);
+
+/// Most comb points per unit of a piece's majorant optical depth (sigma_t majorant length).
+constexpr float kCombPointsPerDepth = 16.0f;
+/// Majorant pieces thinner than this (sigma_t majorant length) get no comb in
+/// residualTransmittance: plain ratio tracking's relative variance there is below it.
+constexpr float kMinCombDepth = 1.0f / 256.0f;
+
+/// The grid-medium estimate of estimateTransmittance: on each piece of the majorant grid along
+/// the ray (MajorantPieces) a control c(t): the density at m points, length x combPointsPerUnit
+/// but at most kCombPointsPerDepth x the piece's majorant depth (at least 1, at most
+/// kMaxCombPoints; t0 + (j + u) h, h = length / m, one uniform u for the ray), linear between them and constant beyond the first and last. T = exp(-sigma_t C) R with C
+/// the control's integral (closed form) and R the product over tentative collisions x at rate
+/// sigma_t majorant of 1 - (density(x) - c(x)) / majorant, each factor in [0, 2]
+/// (0 <= c, density <= majorant). Pieces thinner than kMinCombDepth take c = 0 (plain ratio
+/// tracking). Its relative variance is exp(sigma_t integral of (density - c)^2 / majorant) - 1
+/// against plain ratio tracking's exp(sigma_t integral of density^2 / majorant) - 1: near 0 where
+/// the comb follows the density (docs/performance.md "Transmittance in grid media" measures it).
+/// Draws one uniform for the comb (at the first piece with one) and one per tentative collision.
+float residualTransmittance(const Medium& medium, const Ray& ray, float tEnd, Rng& rng);
 
 }  // namespace tyndall

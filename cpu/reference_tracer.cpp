@@ -53,7 +53,7 @@ ReferenceTracer::ReferenceTracer(const EmbreeScene& rt, const ReferenceSettings&
       m_maxVertices(settings.maxPathLength > 0 ? std::min(settings.maxDepth, settings.maxPathLength - 1)
                                                : settings.maxDepth),
       m_lights(rt.scene()),
-      m_direct(rt, m_lights),
+      m_direct(rt, m_lights, GridTransmittance::Ratio),
       m_cameraMedium(rt.mediumAt(rt.scene().camera.position)) {
     m_settings.validate();
 }
@@ -287,7 +287,7 @@ Rgb ReferenceTracer::pointLightInScattering(const Ray& seg, MediumId medium, Rng
     ls.incident = light.intensity * (falloff / d2);
     ls.pdf = m_lights.sourceProbability(source);
 
-    Rgb trCamera = estimateTransmittance(med, seg, t, rng);
+    Rgb trCamera = ratioTrackingTransmittance(med, seg, t, rng);
     if (trCamera.isBlack()) return Rgb(0.0f);
     Rgb trLight = m_direct.shadowTransmittance(x, ls, medium, rng);
     float phase = hgPhase(dot(seg.d, ls.wi), med.g);

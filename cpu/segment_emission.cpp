@@ -58,20 +58,6 @@ float EmissionImportance::at(const Vec3& p) const {
     return m_cells[(size_t(idx[2]) * m_res[1] + idx[1]) * m_res[0] + idx[0]];
 }
 
-namespace {
-constexpr int kMaxCombPoints = 64;
-
-/// Comb points per unit length along `ray`: four per majorant cell crossed along the ray's
-/// dominant cell axis (two voxels of an OpenVDB grid's 8-voxel cells); 64 over the whole segment
-/// without a majorant grid (at most kMaxCombPoints per piece either way).
-float combPointsPerUnit(const DensityGrid& grid, const Ray& ray, float tEnd) {
-    const MajorantGrid* mg = grid.majorantGrid();
-    if (!mg) return float(kMaxCombPoints) / tEnd;
-    const Vec3 v = mg->worldToCell().vector(ray.d);
-    return 4.0f * std::max(std::abs(v.x), std::max(std::abs(v.y), std::abs(v.z)));
-}
-}  // namespace
-
 Rgb estimateSegmentEmission(const Medium& medium, const EmissionImportance& importance, const Ray& ray, float tEnd,
                             Rng& rng, int samples) {
     if (!medium.emissive() || samples <= 0 || !(tEnd > 0)) return Rgb(0.0f);

@@ -11,8 +11,9 @@
 // - Kolmogorov-Smirnov on all M distances (batched as the renderer draws them, and one tracker at a
 //   time) against F(t) = 1 - Tr(t) (the atom at +infinity is
 //   "passed"): D < 1.95 / sqrt(M), the 0.1% critical value.
-// - Ratio tracking and the photon free flight (delta tracking): sample means within 4.5 sigma of
-//   Tr(tEnd) and 1 - Tr(tEnd), sigma from the sample variance / binomial formula.
+// - Ratio tracking, residual ratio tracking and the photon free flight (delta tracking): sample
+//   means within 4.5 sigma of Tr(tEnd) and 1 - Tr(tEnd), sigma from the sample variance / binomial
+//   formula; residual tracking's variance at most half ratio tracking's in the denser medium.
 #include "core/transmittance.h"
 
 #include <gtest/gtest.h>
@@ -163,6 +164,37 @@ TEST_P(StoredTransmittance, RatioTrackingIsUnbiased) {
     }
     test::MeanVar mv = test::meanVar(xs);
     EXPECT_NEAR(mv.mean, tr(m_tEnd), 4.5 * std::sqrt(mv.var / kSamples) + 1e-6);
+}
+
+// Residual ratio tracking against the density comb (residualTransmittance, what shadow rays, the
+// equiangular legs and camera segments use): unbiased at the fixture's extinction (where the tight
+// majorant grid's pieces are thin enough for plain ratio tracking on most of them and the global
+// majorant's single piece gets a comb) and at kDense times it (a comb on every piece); there its
+// variance is at most half plain ratio tracking's on the same ray.
+TEST_P(StoredTransmittance, ResidualTrackingIsUnbiasedAndSteadierThanRatioTracking) {
+    constexpr int kSamples = 20000;
+    constexpr float kDense = 3.0f;
+    for (const float scale : {1.0f, kDense}) {
+        Medium medium = m_medium;
+        medium.sigmaS = m_medium.sigmaS * scale;
+        medium.sigmaA = m_medium.sigmaA * scale;
+        const double exact = std::exp(-double(scale) * tau(m_tEnd));
+        std::vector<double> residual, ratio;
+        for (int i = 0; i < kSamples; ++i) {
+            Rng rng = Rng::forKey(14, 0, i, StreamPurpose::Transmittance);
+            const float t = residualTransmittance(medium, m_ray, m_tEnd, rng);
+            ASSERT_GE(t, 0.0f);
+            residual.push_back(t);
+            Rng rng2 = Rng::forKey(15, 0, i, StreamPurpose::Transmittance);
+            ratio.push_back(ratioTrackingTransmittance(medium, m_ray, m_tEnd, rng2).r);
+        }
+        const test::MeanVar r = test::meanVar(residual), p = test::meanVar(ratio);
+        EXPECT_NEAR(r.mean, exact, 4.5 * std::sqrt(r.var / kSamples) + 1e-6) << "extinction x " << scale;
+        EXPECT_NEAR(p.mean, exact, 4.5 * std::sqrt(p.var / kSamples) + 1e-6) << "extinction x " << scale;
+        if (scale == kDense) {
+            EXPECT_LE(r.var, 0.5 * p.var) << "residual " << r.var << " ratio " << p.var;
+        }
+    }
 }
 
 TEST_P(StoredTransmittance, PhotonFreeFlightScattersWithTheRightProbabilityAndWeight) {
