@@ -198,9 +198,9 @@ void addDirectLightOption(CLI::App* cmd, CommonOptions& o) {
                    "on|off: divide the surface photon kernel by the part of its disc that lies on the "
                    "surface, so edges and corners are not darkened; off = the plain kernel (docs/algorithm.md)");
     addOnOffOption(cmd, "--equiangular", o.settings.equiangular,
-                   "on|off: single scattering from point, spot, area and directional lights along camera rays in "
-                   "media by equiangular (directional: distance) sampling; off = those lights' first photon beams "
-                   "(docs/algorithm.md)");
+                   "on|off: single scattering from point, spot, area and directional lights and the environment "
+                   "along camera rays in media by equiangular (directional, environment: distance) sampling; off = "
+                   "those lights' first photon beams (docs/algorithm.md)");
     cmd->add_option_function<std::string>(
            "--equiangular-samples",
            [&o](const std::string& text) {

@@ -43,11 +43,23 @@ EquiangularScattering::EquiangularScattering(const EmbreeScene& rt, double sampl
             m_areaReach = 0.5f * length(bounds.diagonal());
         }
     }
+    // The environment: its power as LightSampler weighs it (its integral over the disc that the
+    // photons leave, pi R^2).
+    if (scene.environment) {
+        if (const double integral = scene.environment->integral().luminance(); integral > 0) {
+            const double r = scene.bounds.empty() ? 1.0 : std::max(0.5 * double(length(scene.bounds.diagonal())), 1e-3);
+            m_lights.push_back(kEnvironment);
+            m_intensity.push_back(integral);
+            total += integral * kPi * r * r;
+            m_cdf.push_back(total);
+        }
+    }
     for (double& c : m_cdf) c /= total;
     // The media that parallel light cannot enter while direct: not the global medium, and bounded
     // only by opaque surfaces that block shadow rays (no Interface, no alpha), like the sea under a
     // refracting water surface. A shadow ray toward the sun from inside one must cross such a
     // surface, so the estimate there is 0 and is not drawn.
+    for (size_t i = 0; i < m_lights.size(); ++i) m_anyParallel = m_anyParallel || parallel(i);
     m_sealed.assign(scene.media.size(), true);
     if (scene.globalMedium >= 0 && size_t(scene.globalMedium) < m_sealed.size()) m_sealed[size_t(scene.globalMedium)] = false;
     for (const TriangleMesh& mesh : scene.meshes) {
@@ -63,12 +75,13 @@ EquiangularScattering::EquiangularScattering(const EmbreeScene& rt, double sampl
 }
 
 bool EquiangularScattering::parallel(size_t i) const {
-    return m_lights[i] >= 0 && m_rt.scene().lights[size_t(m_lights[i])].type == LightType::Directional;
+    return m_lights[i] == kEnvironment ||
+           (m_lights[i] >= 0 && m_rt.scene().lights[size_t(m_lights[i])].type == LightType::Directional);
 }
 
 bool EquiangularScattering::handles(const Scene& scene, const EmittedPhoton& photon) {
     if (photon.light >= 0) return handles(scene.lights[size_t(photon.light)]);
-    return photon.emitterMesh >= 0;
+    return photon.emitterMesh >= 0 || (photon.environment && scene.environment);
 }
 
 namespace {
@@ -88,6 +101,8 @@ double transmittanceIntegral(const Medium& med, float sMax) {
 double EquiangularScattering::segmentWeight(size_t i, const Medium& med, const Vec3& o, const Vec3& d,
                                             float sMax) const {
     const float g = med.g;
+    // The environment: its integral over the sphere, the phase function's mean over directions.
+    if (m_lights[i] == kEnvironment) return m_intensity[i] * transmittanceIntegral(med, sMax) * double(kInv4Pi);
     float a = 0, b = sMax, reach = 0;
     Vec3 p = m_areaCentre;
     if (m_lights[i] == kAreaLights) {
@@ -184,6 +199,10 @@ Rgb EquiangularScattering::estimate(MediumId medium, const Vec3& o, const Vec3& 
     const bool sealed = m_sealed[size_t(medium)];
     if (sealed && sources == 1 && parallel(0)) return Rgb(0.0f);
     if (n <= 0) return Rgb(0.0f);
+    // Parallel sources trace one in kParallelThinning of their samples, weighted up: the samples k
+    // with k mod kParallelThinning equal to a random offset (drawn only where there is one).
+    const int offset =
+        m_anyParallel ? std::min(int(rng.uniform() * float(kParallelThinning)), kParallelThinning - 1) : 0;
     double cdf[kWeighedUpTo];
     const double* c = m_cdf.data();
     if (sources > 1 && sources <= kWeighedUpTo) {
@@ -198,9 +217,14 @@ Rgb EquiangularScattering::estimate(MediumId medium, const Vec3& o, const Vec3& 
         size_t i = sources == 1 ? 0 : size_t(std::upper_bound(c, c + sources, double(u)) - c);
         i = std::min(i, sources - 1);
         const double lo = i > 0 ? c[i - 1] : 0.0, p = c[i] - lo;
-        if (!(p > 0) || (sealed && parallel(i))) continue;
+        if (!(p > 0)) continue;
+        double weight = 1.0 / p;
+        if (parallel(i)) {
+            if (sealed || k % kParallelThinning != offset) continue;
+            weight *= kParallelThinning;
+        }
         const float uDistance = std::min(float((double(u) - lo) / p), 1.0f - 0x1p-24f);
-        sum += fromSource(m_lights[i], med, medium, o, d, sMax, std::max(uDistance, 0.0f), rng) * float(1.0 / p);
+        sum += fromSource(m_lights[i], med, medium, o, d, sMax, std::max(uDistance, 0.0f), rng) * float(weight);
     }
     return sum / float(m_samples);
 }
@@ -350,9 +374,8 @@ bool sampleWeightedDistance(const DensityGrid& grid, const Vec3& o, const Vec3& 
 
 }  // namespace
 
-Rgb EquiangularScattering::fromDirectional(int source, const Medium& med, MediumId medium, const Vec3& o,
-                                           const Vec3& d, float sMax, float u, Rng& rng) const {
-    const Light& light = m_rt.scene().lights[size_t(source)];
+Rgb EquiangularScattering::fromDirection(const Vec3& travel, const Rgb& incident, const Medium& med, MediumId medium,
+                                         const Vec3& o, const Vec3& d, float sMax, float u, Rng& rng) const {
     // The distance and sigma_s(x) / pdf: transmittance-proportional in a homogeneous medium; in a
     // grid, by WeightedPieces' weight, and the density at x over that weight.
     float t = 0;
@@ -371,22 +394,29 @@ Rgb EquiangularScattering::fromDirectional(int source, const Medium& med, Medium
         scattering = med.sigmaS * float(double(density) / pieceWeight * total);
     }
     if (scattering.isBlack()) return Rgb(0.0f);
+    // A shadow ray to infinity along -travel (no point to stop at, no emissive triangle to reach:
+    // what shadowTransmittance does for a delta light at infinite distance).
     DirectLightSample target;
-    target.wi = -light.direction;
+    target.wi = -travel;
     target.distance = kInfinity;
-    target.source = source;
-    target.incident = light.intensity;
     target.delta = true;
     const Rgb trLight = shadowTransmittance(m_rt, o + d * t, target, medium, rng);
     if (trLight.isBlack()) return Rgb(0.0f);
     const Rgb trCam = estimateTransmittance(med, Ray{o, d, 0.0f, t}, t, rng);
     if (trCam.isBlack()) return Rgb(0.0f);
-    const float phase = hgPhase(dot(light.direction, -d), med.g);
-    return scattering * light.intensity * trCam * trLight * phase;
+    const float phase = hgPhase(dot(travel, -d), med.g);
+    return scattering * incident * trCam * trLight * phase;
 }
 
 Rgb EquiangularScattering::fromSource(int source, const Medium& med, MediumId medium, const Vec3& o, const Vec3& d,
                                       float sMax, float u, Rng& rng) const {
+    if (source == kEnvironment) {
+        // A direction by the environment's importance sampling (its luminance), then the distance.
+        const float u1 = rng.uniform(), u2 = rng.uniform();
+        const EnvironmentSample es = m_rt.scene().environment->sample(u1, u2);
+        if (!(es.pdf > 0) || es.radiance.isBlack()) return Rgb(0.0f);
+        return fromDirection(-es.wi, es.radiance * (1.0f / es.pdf), med, medium, o, d, sMax, u, rng);
+    }
     float a = 0, b = sMax;
     DirectLightSample target;  // the light point and what the shadow ray needs of it
     if (source == kAreaLights) {
@@ -410,7 +440,8 @@ Rgb EquiangularScattering::fromSource(int source, const Medium& med, MediumId me
         target.delta = false;
     } else {
         const Light& light = m_rt.scene().lights[size_t(source)];
-        if (light.type == LightType::Directional) return fromDirectional(source, med, medium, o, d, sMax, u, rng);
+        if (light.type == LightType::Directional)
+            return fromDirection(light.direction, light.intensity, med, medium, o, d, sMax, u, rng);
         if (light.type == LightType::Spot &&
             !clipToCone(o, d, light.position, light.direction, light.cosOuterAngle, &a, &b))
             return Rgb(0.0f);

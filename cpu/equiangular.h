@@ -29,12 +29,16 @@
 // non-Interface surfaces: the sea under a refracting water surface) the estimate is 0 and is not
 // drawn.
 //
+// The environment, the same way after a direction drawn by its importance sampling (pdf_w), with
+// E = L_env(w) / pdf_w.
+//
 // Unbiased for the light that reaches the segment from these lights with no scattering vertex on
 // the way: the light the photon tracer's unscattered first beams carry, which it then leaves out
-// (RenderSettings::equiangular), so nothing counts twice. The environment keeps its beams.
+// (RenderSettings::equiangular), so nothing counts twice.
 //
-// Sources: each point, spot and directional light of non-zero power, and all area lights together
-// as one.
+// Sources: each point, spot and directional light of non-zero power, all area lights together as
+// one, and the environment. A sample that chooses a parallel source (directional, environment) is
+// traced for one in kParallelThinning of the samples, weighted up.
 //
 // A segment gets N = RenderSettings::resolvedEquiangularSamples() distances in all, whatever the
 // number of sources (a fractional N: floor(N), and one more on a share N - floor(N) of the
@@ -70,7 +74,8 @@ public:
     static bool handles(const Light& light) {
         return light.type == LightType::Point || light.type == LightType::Spot || light.type == LightType::Directional;
     }
-    /// True for photons from the lights it stands for: point, spot, directional and area lights.
+    /// True for photons from the lights it stands for: point, spot, directional and area lights,
+    /// and the environment.
     static bool handles(const Scene& scene, const EmittedPhoton& photon);
     /// False when the scene has no such light of non-zero power (nothing to estimate).
     bool any() const { return !m_lights.empty(); }
@@ -78,9 +83,9 @@ public:
     /// The single-scattered radiance arriving at `o` along -d from the segment o + s d, s in
     /// [0, sMax], inside `medium`, before the camera path's throughput. Draws from `rng`: one
     /// uniform for the fraction's extra sample (a fractional count only: a coin per call; the
-    /// renderer decides it per pixel and pass instead, below); per sample, one uniform
-    /// (three more for an area light's point), then the transmittance estimates' (grid media only).
-    /// A directional light's sample draws nothing more than its uniform in a homogeneous medium.
+    /// renderer decides it per pixel and pass instead, below); per sample, one uniform (three more
+    /// for an area light's point, two for the environment's direction), then the transmittance
+    /// estimates' (grid media only); one more uniform per call where a parallel source exists.
     Rgb estimate(MediumId medium, const Vec3& o, const Vec3& d, float sMax, Rng& rng) const;
     /// The same with `n` distances (samplesInPass's count), still divided by samples(): the
     /// caller has already decided the fraction's extra sample.
@@ -102,6 +107,10 @@ public:
     size_t sources() const { return m_lights.size(); }
     double samples() const { return m_samples; }
 
+    /// A parallel source (directional light, environment) traces one in this many of the samples
+    /// that choose it, weighted by it: its light has no singularity, so a sample's variance is
+    /// low against its shadow ray's cost (docs/performance.md).
+    static constexpr int kParallelThinning = 4;
     /// Sources chosen per segment by their estimated share; beyond, by power.
     static constexpr size_t kWeighedUpTo = 8;
     /// The uniform choice's part in the per-segment mixture: bounds a source's weight 1 / p by
@@ -116,18 +125,22 @@ private:
     double segmentWeight(size_t i, const Medium& med, const Vec3& o, const Vec3& d, float sMax) const;
     /// segmentCdf, with the parallel sources left out in a sealed medium.
     bool segmentCdf(const Medium& med, bool sealed, const Vec3& o, const Vec3& d, float sMax, double* cdf) const;
-    /// True when source `i` sends parallel light (a directional light).
+    /// True when source `i` sends parallel light (a directional light, the environment).
     bool parallel(size_t i) const;
-    /// One sample of the directional light `light`, its distance drawn from `u` in proportion to
-    /// the camera's transmittance.
-    Rgb fromDirectional(int light, const Medium& med, MediumId medium, const Vec3& o, const Vec3& d, float sMax,
-                        float u, Rng& rng) const;
-    /// One sample of the source `source` (an index into Scene::lights, or kAreaLights), its
+    /// One sample of parallel light travelling along `travel` (a directional light's, or the
+    /// environment's from one sampled direction) with `incident` its irradiance (the environment:
+    /// radiance over the direction's pdf), its distance drawn from `u` in proportion to the
+    /// camera's transmittance.
+    Rgb fromDirection(const Vec3& travel, const Rgb& incident, const Medium& med, MediumId medium, const Vec3& o,
+                      const Vec3& d, float sMax, float u, Rng& rng) const;
+    /// One sample of the source `source` (an index into Scene::lights, kAreaLights or
+    /// kEnvironment), its
     /// distance drawn from the uniform `u`.
     Rgb fromSource(int source, const Medium& med, MediumId medium, const Vec3& o, const Vec3& d, float sMax, float u,
                    Rng& rng) const;
 
-    static constexpr int kAreaLights = -1;  ///< all emissive triangles together, as one source
+    static constexpr int kAreaLights = -1;   ///< all emissive triangles together, as one source
+    static constexpr int kEnvironment = -2;  ///< the environment light
 
     const EmbreeScene& m_rt;
     double m_samples;  ///< per segment: m_whole, and one more on a share m_fraction of them
@@ -135,7 +148,8 @@ private:
     float m_fraction;
     std::vector<int> m_lights;  ///< indices into Scene::lights, and kAreaLights when they emit
     std::vector<double> m_cdf;  ///< over the luminance of their powers, normalised
-    /// luminance: a light's intensity (a directional light's irradiance); the area lights' power / pi
+    /// luminance: a light's intensity (a directional light's irradiance); the area lights' power /
+    /// pi; the environment's integral over the sphere
     std::vector<double> m_intensity;
     /// The area lights as one point for segmentWeight: their bounds' centre, and the distance
     /// below which the inverse square is flattened (the bounds' half diagonal).
@@ -145,6 +159,7 @@ private:
     /// Per medium: true where parallel light cannot arrive unscattered (bounded only by surfaces
     /// that block shadow rays; not the global medium), so its sources are not drawn there.
     std::vector<bool> m_sealed;
+    bool m_anyParallel = false;  ///< a directional light or the environment among the sources
 };
 
 }  // namespace tyndall

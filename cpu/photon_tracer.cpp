@@ -160,7 +160,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
     bool deltaPath = !fromMedium && e.light >= 0;
     bool direct = !fromMedium;
     // --equiangular on: the camera paths estimate the single scattering of point, spot,
-    // directional and area lights (cpu/equiangular.h), so such a path's beams are not stored while
+    // directional and area lights and the environment (cpu/equiangular.h), so such a path's beams are not stored while
     // it is still direct (no scattering vertex, no mirror, glass or other surface but Interfaces).
     const bool equiangularLight =
         m_settings.equiangular && !fromMedium && EquiangularScattering::handles(m_scene, e);

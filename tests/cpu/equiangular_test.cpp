@@ -23,6 +23,9 @@
 //    grid's fog layer, sharing the samples with a point light; PPB against the path tracer with a
 //    sun over fog inside an index-matched hull (its direct beams left out) and inside a rough
 //    dielectric hull (the refracted photons' beams kept, the shadow rays blocked).
+// 6. The environment, by a direction from its importance sampling and the same distance sampling:
+//    a constant sky over a slab against its closed form (an integral over the cosine by
+//    quadrature), PPB against the path tracer under a sky with a sun in its map, the variance law.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -577,7 +580,8 @@ TEST(EquiangularSun, HomogeneousSlabAgainstTheClosedForm) {
     for (float g : {0.0f, 0.6f}) {
         Scene s = sunSlab({light}, sigmaS, sigmaA, g);
         s.finalize();
-        const RgbEstimate e = estimateManyRgb(s, o, d, sMax, 20000, 1);
+        // 4 samples: one of them traced (EquiangularScattering::kParallelThinning).
+        const RgbEstimate e = estimateManyRgb(s, o, d, sMax, 20000, 4);
         const double phase = hgPhase(dot(light.direction, -d), g);
         const double ss[3] = {sigmaS.r, sigmaS.g, sigmaS.b}, sa[3] = {sigmaA.r, sigmaA.g, sigmaA.b},
                      irr[3] = {E.r, E.g, E.b};
@@ -624,7 +628,7 @@ TEST(EquiangularSun, FogLayerInAGridAgainstQuadrature) {
         Scene s = sunSlab({light}, Rgb(kSigmaS), Rgb(kSigmaA), g, 3.0f);
         s.media[0].density = std::make_shared<FogLayer>(cells);
         s.finalize();
-        const Estimate e = estimateMany(s, o, d, sMax, 20000, 1);
+        const Estimate e = estimateMany(s, o, d, sMax, 20000, 4);
         std::printf("sun over the layer, %d majorant cells: quadrature %.6f, estimate %.6f +- %.6f\n", cells,
                     expected, e.mean, e.standardError);
         EXPECT_LT(e.standardError, 0.02 * expected) << "too noisy to test";
@@ -731,6 +735,93 @@ TEST(EquiangularSunPpb, SunSingleScatteringVarianceFallsAsOneOverPasses) {
     // remains, so each pass is an independent unbiased estimate and a pixel's variance over seeds
     // falls as 1/passes.
     Scene scene = sunOverFogBoxes(false, 8.0f);
+    RenderSettings ps;
+    ps.width = ps.height = 8;
+    ps.photonsPerPass = 16;
+    ps.maxPathLength = 2;
+    ps.equiangular = true;
+    ps.equiangularSamples = 1;
+    ps.radius = 0.03f;
+    ps.surfaceRadius = 0.06f;
+    ps.radiusOffset = 1000000000000ull;
+    ps.photonAngle = 0;
+    EXPECT_NEAR(test::varianceSlopeOverPasses(scene, ps, 48, 100), -1.0, 0.3);
+}
+
+// ---- 6. The environment: a direction by its importance sampling, the distance as the sun's ----
+
+TEST(EquiangularSky, ConstantSkyOverASlabAgainstTheClosedForm) {
+    // Radiance L0 from every direction over a slab y in [-1, 1] (wide: x, z in [-50, 50]), isotropic
+    // fog, a horizontal segment at height y0: the shadow ray along mu = cos(theta) crosses
+    // (1 - y0) / mu of fog upward and (1 + y0) / |mu| downward, so
+    //   L = sigma_s L0 (1 - exp(-sigma_t S)) / sigma_t x 1/2 [I(sigma_t (1 - y0)) + I(sigma_t (1 + y0))],
+    // I(a) the integral of exp(-a / mu) over mu in (0, 1] (Simpson in the test).
+    const float L0 = 1.3f, y0 = 0.3f, S = 3.0f;
+    Scene s;
+    s.name = "sky-slab";
+    s.source = "<test>";
+    Material white;
+    white.name = "white";
+    white.albedo = Rgb(0.5f);
+    s.materials.push_back(white);
+    s.meshes.push_back(makeQuad("marker low", {-50, -1, -50}, {0.01f, 0, 0}, {0, 0, 0.01f}, 0));
+    s.meshes.push_back(makeQuad("marker high", {50, 1, 50}, {-0.01f, 0, 0}, {0, 0, -0.01f}, 0));
+    s.media.push_back(test::homogeneousMedium(Rgb(kSigmaS), Rgb(kSigmaA), 0.0f));
+    s.globalMedium = 0;
+    s.environment = EnvironmentLight::constant(Rgb(L0));
+    s.camera = Camera::lookAt({0, 0, 4}, {0, 0, 0}, {0, 1, 0}, 0.8f);
+    s.finalize();
+    const double st = kSigmaS + kSigmaA;
+    auto I = [](double a) {
+        const int n = 20000;
+        auto f = [&](double mu) { return mu > 0 ? std::exp(-a / mu) : 0.0; };
+        double sum = f(0) + f(1);
+        for (int i = 1; i < n; ++i) sum += f(double(i) / n) * (i % 2 ? 4 : 2);
+        return sum / n / 3;
+    };
+    const double expected =
+        kSigmaS * L0 * -std::expm1(-st * S) / st * 0.5 * (I(st * (1 - y0)) + I(st * (1 + y0)));
+    const Estimate e = estimateMany(s, {-1.5f, y0, 0.2f}, {1, 0, 0}, S, 40000, 4);
+    std::printf("constant sky: closed form %.6f, estimate %.6f +- %.6f\n", expected, e.mean, e.standardError);
+    EXPECT_LT(e.standardError, 0.01 * expected) << "too noisy to test";
+    EXPECT_NEAR(e.mean, expected, 4 * e.standardError);
+}
+
+/// The index-matched fog box of sunOverFogBoxes under a sky with a small bright sun in its map
+/// (no directional light).
+Scene skyOverFogBox(float floorHalf = 3.0f) {
+    Scene s = sunOverFogBoxes(false, floorHalf);
+    s.lights.clear();
+    Image sky(16, 8);
+    for (int j = 0; j < sky.height; ++j)
+        for (int i = 0; i < sky.width; ++i)
+            sky.at(i, j) = j < 4 ? Rgb(0.25f, 0.35f, 0.6f) * (1.0f - 0.15f * float(j)) : Rgb(0.08f, 0.07f, 0.06f);
+    sky.at(9, 1) = Rgb(40.0f, 37.0f, 32.0f);
+    s.environment = EnvironmentLight::fromImage(sky, "sky with a sun");
+    s.finalize();
+    s.validate();
+    return s;
+}
+
+TEST(EquiangularSkyPpb, SkyOverAnIndexMatchedFogBoxAgreesWithThePathTracer) {
+    // The sky's single scattering by shadow rays through the hull, its first beams left out.
+    const Scene scene = skyOverFogBox();
+    RenderSettings ps;
+    ps.width = ps.height = 16;
+    ps.photonsPerPass = 8000;
+    ps.seed = 5;
+    ps.equiangular = true;
+    ps.radius = 0.03f;
+    ps.surfaceRadius = 0.06f;
+    ps.radiusOffset = 1000000000000ull;
+    ps.photonAngle = 0;
+    test::expectBatchesAgreeWithThePathTracer(scene, ps, 0.03, 0.02);
+}
+
+TEST(EquiangularSkyPpb, SkySingleScatteringVarianceFallsAsOneOverPasses) {
+    // Light paths of at most two segments: the sky's single scattering (no beam) and the floor's
+    // direct light; each pass independent and unbiased.
+    const Scene scene = skyOverFogBox(8.0f);
     RenderSettings ps;
     ps.width = ps.height = 8;
     ps.photonsPerPass = 16;
