@@ -323,7 +323,7 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
             };
             // The primary segment's medium emission (the splatters add its beams) and, with
             // --equiangular on, its single scattering from point, spot, area and directional lights
-            // (a light path of two segments), once per pass like the emission.
+            // and the environment (a light path of two segments), once per pass like the emission.
             if (emission) L = LmediaPrimary = ph.emitted;
             const int maxLength = m_settings.maxPathLength;
             // Keyed only where --equiangular on draws from it (every use is behind m_equiangular).

@@ -18,7 +18,7 @@
 //                                           light that arrives there without scattering; with
 //                                           --equiangular on, every segment in a medium (the
 //                                           primary one too) adds the single scattering of point,
-//                                           spot, area and directional lights
+//                                           spot, area and directional lights and the environment
 //                                           (cpu/equiangular.h); with
 //                                           --photon-planes on, every segment in a homogeneous
 //                                           medium (the primary one too) gathers the batch's
@@ -162,8 +162,8 @@ private:
     std::unique_ptr<DirectLight> m_direct;
     /// --surface-boundary on: the surface kernel's coverage at edges (cpu/surface_boundary.h).
     std::unique_ptr<SurfaceBoundary> m_boundary;
-    /// --equiangular on (and a point, spot, area or directional light): single scattering along
-    /// every camera segment in a medium (cpu/equiangular.h); null otherwise.
+    /// --equiangular on (and a point, spot, area or directional light, or an environment): single
+    /// scattering along every camera segment in a medium (cpu/equiangular.h); null otherwise.
     std::unique_ptr<EquiangularScattering> m_equiangular;
     /// The emission of grid media along every camera segment (cpu/segment_emission.h); null when
     /// no grid medium emits.
