@@ -419,21 +419,19 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                         const bool shading = hasShadingNormal(hit);
                         if (!sp.baseColor.isBlack()) {
                             SurfaceBoundary::AtPoint coverage(*m_boundary, hit.p, hit.ng);
-                            E = surfacePhotons.gather(hit.p, side.nf, [&](const SurfacePhoton& p) {
-                                if (dot(p.normal, side.nf) < SurfaceBoundary::kNormalAgreement || (p.flags & skip) ||
-                                    !photonWithinCap(p))
-                                    return 0.0f;
+                            // The photons on the path's side alone (SurfaceBoundary::kNormalAgreement).
+                            static_assert(SurfaceBoundary::kNormalAgreement == kSurfaceNormalAgreement);
+                            E = surfacePhotons.gatherFacing(hit.p, side.nf, [&](const SurfacePhoton& p) {
+                                if ((p.flags & skip) || !photonWithinCap(p)) return 0.0f;
                                 return (shading ? shadingCosineRatio(side, p.wi) : 1.0f) / coverage(p.radius);
                             });
                         }
                     } else {
                         E = !hasShadingNormal(hit) && skip == 0 && maxLength == 0
                                 ? surfacePhotons.density(hit.p, side.nf)
-                                : surfacePhotons.gather(hit.p, side.nf, [&](const SurfacePhoton& p) {
-                                      return dot(p.normal, side.nf) < kSurfaceNormalAgreement || (p.flags & skip) ||
-                                                     !photonWithinCap(p)
-                                                 ? 0.0f
-                                                 : shadingCosineRatio(side, p.wi);
+                                : surfacePhotons.gatherFacing(hit.p, side.nf, [&](const SurfacePhoton& p) {
+                                      return (p.flags & skip) || !photonWithinCap(p) ? 0.0f
+                                                                                     : shadingCosineRatio(side, p.wi);
                                   });
                     }
                     // Direct light by a shadow ray (once per pass: with the emission); none toward
@@ -470,8 +468,7 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                     // kernel's disc on this surface, as at a diffuse end.
                     std::optional<SurfaceBoundary::AtPoint> coverage;
                     if (m_boundary) coverage.emplace(*m_boundary, hit.p, hit.ng);
-                    Rgb coated = throughput * surfacePhotons.gather(hit.p, side.nf, [&](const SurfacePhoton& p) {
-                        if (dot(p.normal, side.nf) < SurfaceBoundary::kNormalAgreement) return Rgb(0.0f);
+                    Rgb coated = throughput * surfacePhotons.gatherFacing(hit.p, side.nf, [&](const SurfacePhoton& p) {
                         return coverage ? photonWeight(p) / (*coverage)(p.radius) : photonWeight(p);
                     });
                     if (m_direct && emission && !sp.baseColor.isBlack() && shadowRayWithinCap()) {

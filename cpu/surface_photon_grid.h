@@ -39,12 +39,21 @@ public:
     /// n, from either side (|n_p . n| >= kSurfaceNormalAgreement): a glossy vertex evaluates its
     /// BSDF per photon (weight = f(wo, p.wi)), transmission included.
     template <class Weight>
-    Rgb gather(const Vec3& x, const Vec3& n, const Weight& weight) const;
+    Rgb gather(const Vec3& x, const Vec3& n, const Weight& weight) const {
+        return gatherOver<false>(x, n, weight);
+    }
+    /// gather over the photons on the side `n` faces alone (n_p . n >= kSurfaceNormalAgreement), as
+    /// a diffuse end gathers: the same sum, bit for bit, as gather with a weight that returns 0
+    /// where n_p . n < kSurfaceNormalAgreement, one dot product a photon instead of two.
+    template <class Weight>
+    Rgb gatherFacing(const Vec3& x, const Vec3& n, const Weight& weight) const {
+        return gatherOver<true>(x, n, weight);
+    }
 
     /// Calls visit(photon, d2) once for every photon within its own radius of x (d2 = |x - x_p|^2
     /// < r_p^2) and near the plane through x with unit normal n (|(x_p - x).n| <= r_p / 4), in
     /// an order fixed by the photons and x alone (ascending photon order). The query density()
-    /// and gather() share. `visit` must not query a grid (it scans the thread's cached region).
+    /// uses and gather() writes out. `visit` must not query a grid (it scans the thread's cached region).
     template <class Visit>
     void forEachNear(const Vec3& x, const Vec3& n, const Visit& visit) const;
     /// forEachNear without the per-thread cache (the definition the cache must reproduce).
@@ -57,6 +66,12 @@ public:
     }
 
 private:
+    /// gather (kFacing false) and gatherFacing (true). forEachNear's loop written out, its sum a
+    /// local the compiler keeps in registers (a visitor's sum by reference was stored and the
+    /// weight's captures reloaded at every photon); the same photons in the same order.
+    template <bool kFacing, class Weight>
+    Rgb gatherOver(const Vec3& x, const Vec3& n, const Weight& weight) const;
+
     static bool isZeroWeight(float w) { return w == 0.0f; }
     static bool isZeroWeight(const Rgb& w) { return w.isBlack(); }
 
@@ -132,16 +147,25 @@ void SurfacePhotonGrid::forEachNearUncached(const Vec3& x, const Vec3& n, const 
     }
 }
 
-template <class Weight>
-Rgb SurfacePhotonGrid::gather(const Vec3& x, const Vec3& n, const Weight& weight) const {
+template <bool kFacing, class Weight>
+Rgb SurfacePhotonGrid::gatherOver(const Vec3& x, const Vec3& n, const Weight& weight) const {
     Rgb sum;
-    forEachNear(x, n, [&](const SurfacePhoton& p, float d2) {
-        if (std::abs(dot(p.normal, n)) < kSurfaceNormalAgreement) return;
+    if (m_photons.empty()) return sum;
+    Region* r = regionFor(x);
+    if (!r) return sum;
+    const size_t found = scanPhotonCandidates(r->x.data(), r->y.data(), r->z.data(), r->radius.data(),
+                                              r->index.size(), x, n, r->accepted.data(), r->acceptedD2.data());
+    const Vec3 normal = n;
+    for (size_t k = 0; k < found; ++k) {
+        const SurfacePhoton& p = m_sorted[r->index[r->accepted[k]]];
+        const float cosine = dot(p.normal, normal);
+        // Either side (gather) or n's side (gatherFacing; NaN passes both tests, as it did).
+        if (kFacing ? cosine < kSurfaceNormalAgreement : std::abs(cosine) < kSurfaceNormalAgreement) continue;
         const auto w = weight(p);
         // A zero weight adds +-0 (finite powers and kernels): the sum's bits stay as they are.
-        if (isZeroWeight(w)) return;
-        sum += w * p.power * kernel(d2, p.radius);
-    });
+        if (isZeroWeight(w)) continue;
+        sum += w * p.power * kernel(r->acceptedD2[k], p.radius);
+    }
     return sum;
 }
 

@@ -6,6 +6,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <vector>
+
 #include "core/rng.h"
 #include "core/sampling.h"
 #include "tests/test_scenes.h"
@@ -106,6 +111,33 @@ TEST(EmbreeScene, PacketHitsEqualSingleRayHits) {
     EXPECT_GT(compared, 1500);
     EXPECT_GT(misses, 50);
     EXPECT_GT(sphere, 100);
+}
+
+// The ray origin's rounding (offsetOrigin) steps a coordinate one float with nextFloatUp/Down
+// instead of std::nextafter: the same bits for every input, the edges (zeros, subnormals, the
+// largest finite floats, infinities, NaN) and random bit patterns over the whole range.
+TEST(EmbreeScene, NextFloatEqualsNextafterBitForBit) {
+    auto bits = [](float f) {
+        uint32_t u;
+        std::memcpy(&u, &f, sizeof u);
+        return u;
+    };
+    auto same = [&](float a, float b) { return (std::isnan(a) && std::isnan(b)) || bits(a) == bits(b); };
+    const float lim = std::numeric_limits<float>::max(), tiny = std::numeric_limits<float>::denorm_min(),
+                normal = std::numeric_limits<float>::min();
+    std::vector<float> values = {0.0f, -0.0f, tiny, -tiny, normal, -normal, lim, -lim, kInfinity, -kInfinity,
+                                 std::nanf(""), 1.0f, -1.0f, 0x1p-24f, -3.5f, 1e30f};
+    Rng rng(17, 3);
+    for (int i = 0; i < 200000; ++i) {
+        const uint32_t u = rng.nextUInt();
+        float f;
+        std::memcpy(&f, &u, sizeof f);
+        values.push_back(f);
+    }
+    for (float v : values) {
+        ASSERT_TRUE(same(EmbreeScene::nextFloatUp(v), std::nextafter(v, kInfinity))) << v << " " << bits(v);
+        ASSERT_TRUE(same(EmbreeScene::nextFloatDown(v), std::nextafter(v, -kInfinity))) << v << " " << bits(v);
+    }
 }
 
 }  // namespace

@@ -217,3 +217,49 @@ TEST(SurfacePhotonScan, SimdAcceptsExactlyWhatTheScalarTestAccepts) {
         EXPECT_TRUE(std::isnan(d2[2]));
     }
 }
+
+// gather and gatherFacing sum in their own loop: bit for bit what the visitor form summed before
+// them (forEachNear, the normal test |n_p . n| >= 0.7, zero weights skipped), and gatherFacing
+// bit for bit gather with a weight that is 0 where n_p . n < 0.7 (the diffuse end's lambdas), with
+// float and Rgb weights, photons on both sides of their planes, queries on and off them.
+TEST(SurfacePhotonGrid, GatherFacingIsTheOneSidedGatherBitForBit) {
+    const Vec3 centre(3.0f, -1.0f, 0.5f);
+    const std::vector<SurfacePhoton> photons = makePhotons(6000, 0.05f, centre, 7);
+    SurfacePhotonGrid grid(photons);
+    auto visitorGather = [&](const Vec3& x, const Vec3& n, auto weight) {
+        Rgb sum;
+        grid.forEachNear(x, n, [&](const SurfacePhoton& p, float d2) {
+            if (std::abs(dot(p.normal, n)) < kSurfaceNormalAgreement) return;
+            const auto w = weight(p);
+            if (Rgb(w).isBlack()) return;
+            sum += w * p.power * SurfacePhotonGrid::kernel(d2, p.radius);
+        });
+        return sum;
+    };
+    auto same = [](const Rgb& a, const Rgb& b) {
+        return floatBits(a.r) == floatBits(b.r) && floatBits(a.g) == floatBits(b.g) && floatBits(a.b) == floatBits(b.b);
+    };
+    Rng rng(13, 9);
+    int facingOnly = 0, nonZero = 0;
+    for (int q = 0; q < 3000; ++q) {
+        const SurfacePhoton& p0 = photons[std::min(photons.size() - 1, size_t(rng.uniform() * float(photons.size())))];
+        const Vec3 x = p0.position + sampleUniformSphere(rng.uniform(), rng.uniform()) * (p0.radius * 0.5f * rng.uniform());
+        const Vec3 n = q % 5 == 0 ? sampleUniformSphere(rng.uniform(), rng.uniform()) : (q % 2 ? p0.normal : -p0.normal);
+        auto scalar = [](const SurfacePhoton& p) { return p.wi.x > -0.5f ? 0.5f + p.wi.y : 0.0f; };
+        auto colour = [](const SurfacePhoton& p) { return Rgb(1.0f + p.wi.x, 0.25f, p.wi.z > 0 ? 2.0f : 0.0f); };
+        auto oneSided = [&](auto weight) {
+            return [&, weight](const SurfacePhoton& p) { return dot(p.normal, n) < kSurfaceNormalAgreement ? decltype(weight(p))(0.0f) : weight(p); };
+        };
+        ASSERT_TRUE(same(grid.gather(x, n, scalar), visitorGather(x, n, scalar))) << q;
+        ASSERT_TRUE(same(grid.gather(x, n, colour), visitorGather(x, n, colour))) << q;
+        const Rgb facing = grid.gatherFacing(x, n, scalar);
+        ASSERT_TRUE(same(facing, grid.gather(x, n, oneSided(scalar)))) << q;
+        ASSERT_TRUE(same(facing, visitorGather(x, n, oneSided(scalar)))) << q;
+        ASSERT_TRUE(same(grid.gatherFacing(x, n, colour), visitorGather(x, n, oneSided(colour)))) << q;
+        facingOnly += !same(facing, grid.gather(x, n, scalar));
+        nonZero += facing.b > 0;
+    }
+    // Not blind: the other side's photons are often there, and the sums often non-zero.
+    EXPECT_GT(facingOnly, 300);
+    EXPECT_GT(nonZero, 500);
+}
