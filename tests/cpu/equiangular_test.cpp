@@ -421,6 +421,30 @@ TEST(Equiangular, PointAndSpotLightAboveAFogLayerAgainstQuadrature) {
 /// The fixtures' fog box (albedo-0.5 walls, sigma_s 0.5, sigma_a 0.1, g 0.4) round a point light
 /// that the camera sees (or, `inView` false, that lies behind it); `panel`: also a small area light
 /// under the ceiling, facing down.
+// Equiangular sampling on with constant radii (an offset that never shrinks them), so the passes
+// are independent and alike: batches of them are a standard error's worth apart, and a pixel's
+// variance over seeds falls as 1/passes where no kernel remains.
+RenderSettings constantRadii(int size, uint32_t photons) {
+    RenderSettings ps;
+    ps.width = ps.height = size;
+    ps.photonsPerPass = photons;
+    ps.equiangular = true;
+    ps.radius = 0.03f;
+    ps.surfaceRadius = 0.06f;
+    ps.radiusOffset = 1000000000000ull;
+    ps.photonAngle = 0;
+    return ps;
+}
+
+// Light paths of at most two segments, one equiangular sample per segment: every estimate left is
+// unbiased (no kernel), for the variance law over passes.
+RenderSettings singleScatteringOnly(int size) {
+    RenderSettings ps = constantRadii(size, 16);
+    ps.maxPathLength = 2;
+    ps.equiangularSamples = 1;
+    return ps;
+}
+
 Scene fogBoxWithLamp(bool inView, bool panel = false) {
     Scene s = test::makeFogBoxWithLamp(Rgb(0.5f), Rgb(0.1f), 0.4f,
                                        inView ? Vec3(0.2f, 0.25f, -0.3f) : Vec3(0.5f, 0.5f, 0.8f), 1.2f);
@@ -438,17 +462,8 @@ TEST(EquiangularPpb, FogBoxWithTheLampInViewAndAPanelAgreesWithThePathTracer) {
     // beams left out; the reference reaches the panel by its own light sampling and MIS.
     const Scene scene = fogBoxWithLamp(true, true);
     const int size = 16;
-    RenderSettings ps;
-    ps.width = ps.height = size;
-    ps.photonsPerPass = 2000;
+    RenderSettings ps = constantRadii(size, 2000);
     ps.seed = 5;
-    ps.equiangular = true;
-    // Constant radii: the batches of passes are independent and alike, so their spread is the
-    // standard error.
-    ps.radius = 0.03f;
-    ps.surfaceRadius = 0.06f;
-    ps.radiusOffset = 1000000000000ull;
-    ps.photonAngle = 0;
     // The whole image and its four quadrants (the lamp is in the upper right one), within 4
     // standard errors plus 2% for the kernel bias of the scattered light's beams and photons.
     test::expectBatchesAgreeWithThePathTracer(scene, ps, 0.03, 0.02);
@@ -493,16 +508,7 @@ TEST(EquiangularPpb, SingleScatteringVarianceFallsAsOneOverPasses) {
     scene.lights.push_back(pointLight({-0.5f, 0.3f, -0.4f}, 0.3f));
     scene.finalize();
     const int size = 8, seeds = 48;
-    RenderSettings ps;
-    ps.width = ps.height = size;
-    ps.photonsPerPass = 16;
-    ps.maxPathLength = 2;
-    ps.equiangular = true;
-    ps.equiangularSamples = 1;
-    ps.radius = 0.03f;
-    ps.surfaceRadius = 0.06f;
-    ps.radiusOffset = 1000000000000ull;
-    ps.photonAngle = 0;
+    const RenderSettings ps = singleScatteringOnly(size);
     // The estimate of a variance from 48 seeds is within ~20% (one standard deviation of each), so
     // the slope over a factor of 4 within ~0.2.
     EXPECT_NEAR(test::varianceSlopeOverPasses(scene, ps, seeds, 100), -1.0, 0.3);
@@ -699,15 +705,8 @@ Scene sunOverFogBoxes(bool refracting, float floorHalf = 3.0f) {
 TEST(EquiangularSunPpb, SunOverAnIndexMatchedFogBoxAgreesWithThePathTracer) {
     // The sun's single scattering by shadow rays through the hull, its first beams left out.
     const Scene scene = sunOverFogBoxes(false);
-    RenderSettings ps;
-    ps.width = ps.height = 16;
-    ps.photonsPerPass = 8000;
+    RenderSettings ps = constantRadii(16, 8000);
     ps.seed = 5;
-    ps.equiangular = true;
-    ps.radius = 0.03f;
-    ps.surfaceRadius = 0.06f;
-    ps.radiusOffset = 1000000000000ull;
-    ps.photonAngle = 0;
     test::expectBatchesAgreeWithThePathTracer(scene, ps, 0.03, 0.02);
 }
 
@@ -715,15 +714,8 @@ TEST(EquiangularSunPpb, SunOverARefractingFogBoxBesideItAgreesWithThePathTracer)
     // The rough dielectric box beside it: its photons refract at the hull, so their beams inside
     // stay; the shadow rays from inside it are blocked.
     const Scene scene = sunOverFogBoxes(true);
-    RenderSettings ps;
-    ps.width = ps.height = 16;
-    ps.photonsPerPass = 24000;
+    RenderSettings ps = constantRadii(16, 24000);
     ps.seed = 5;
-    ps.equiangular = true;
-    ps.radius = 0.03f;
-    ps.surfaceRadius = 0.06f;
-    ps.radiusOffset = 1000000000000ull;
-    ps.photonAngle = 0;
     // The reference's fireflies through the rough hull (roughness 0.7, two refractions toward a
     // delta light) set the noise bound.
     test::expectBatchesAgreeWithThePathTracer(scene, ps, 0.07, 0.02);
@@ -735,16 +727,7 @@ TEST(EquiangularSunPpb, SunSingleScatteringVarianceFallsAsOneOverPasses) {
     // remains, so each pass is an independent unbiased estimate and a pixel's variance over seeds
     // falls as 1/passes.
     Scene scene = sunOverFogBoxes(false, 8.0f);
-    RenderSettings ps;
-    ps.width = ps.height = 8;
-    ps.photonsPerPass = 16;
-    ps.maxPathLength = 2;
-    ps.equiangular = true;
-    ps.equiangularSamples = 1;
-    ps.radius = 0.03f;
-    ps.surfaceRadius = 0.06f;
-    ps.radiusOffset = 1000000000000ull;
-    ps.photonAngle = 0;
+    const RenderSettings ps = singleScatteringOnly(8);
     EXPECT_NEAR(test::varianceSlopeOverPasses(scene, ps, 48, 100), -1.0, 0.3);
 }
 
@@ -806,15 +789,8 @@ Scene skyOverFogBox(float floorHalf = 3.0f) {
 TEST(EquiangularSkyPpb, SkyOverAnIndexMatchedFogBoxAgreesWithThePathTracer) {
     // The sky's single scattering by shadow rays through the hull, its first beams left out.
     const Scene scene = skyOverFogBox();
-    RenderSettings ps;
-    ps.width = ps.height = 16;
-    ps.photonsPerPass = 8000;
+    RenderSettings ps = constantRadii(16, 8000);
     ps.seed = 5;
-    ps.equiangular = true;
-    ps.radius = 0.03f;
-    ps.surfaceRadius = 0.06f;
-    ps.radiusOffset = 1000000000000ull;
-    ps.photonAngle = 0;
     test::expectBatchesAgreeWithThePathTracer(scene, ps, 0.03, 0.02);
 }
 
@@ -822,16 +798,7 @@ TEST(EquiangularSkyPpb, SkySingleScatteringVarianceFallsAsOneOverPasses) {
     // Light paths of at most two segments: the sky's single scattering (no beam) and the floor's
     // direct light; each pass independent and unbiased.
     const Scene scene = skyOverFogBox(8.0f);
-    RenderSettings ps;
-    ps.width = ps.height = 8;
-    ps.photonsPerPass = 16;
-    ps.maxPathLength = 2;
-    ps.equiangular = true;
-    ps.equiangularSamples = 1;
-    ps.radius = 0.03f;
-    ps.surfaceRadius = 0.06f;
-    ps.radiusOffset = 1000000000000ull;
-    ps.photonAngle = 0;
+    const RenderSettings ps = singleScatteringOnly(8);
     EXPECT_NEAR(test::varianceSlopeOverPasses(scene, ps, 48, 100), -1.0, 0.3);
 }
 
