@@ -83,29 +83,9 @@ TEST(EquiangularAuto, CountIsMonotoneAndBounded) {
 
 // ---- 2. The pilot's variance against a closed form ----
 
-constexpr float kSigmaS = 0.25f, kSigmaA = 0.1f;
+constexpr float kSigmaS = test::kOpenFogSigmaS, kSigmaA = test::kOpenFogSigmaA;
+using test::openFog;
 
-Scene openFog(const std::vector<Light>& lights, float g) {
-    Scene s;
-    s.name = "open-fog";
-    s.source = "<test>";
-    Material white;
-    white.name = "white";
-    white.albedo = Rgb(0.5f);
-    s.materials.push_back(white);
-    s.meshes.push_back(makeQuad("far", {-10, -10, -10}, {20, 0, 0}, {0, 0, 20}, 0));
-    s.meshes.push_back(makeQuad("far-top", {-10, 10, 10}, {20, 0, 0}, {0, 0, -20}, 0));
-    Medium m;
-    m.name = "fog";
-    m.sigmaS = Rgb(kSigmaS);
-    m.sigmaA = Rgb(kSigmaA);
-    m.g = g;
-    s.media.push_back(m);
-    s.globalMedium = 0;
-    s.lights = lights;
-    s.camera = Camera::lookAt({0, 0, 4}, {0, 0, 0}, {0, 1, 0}, 0.8f);
-    return s;
-}
 
 TEST(EquiangularAuto, SegmentVarianceAgainstQuadrature) {
     const Light light = test::pointLight({0.2f, 0.3f, -0.1f}, 2.0f);

@@ -97,31 +97,9 @@ TEST(Equiangular, ConeClipMatchesBruteForce) {
 
 // ---- 2. The estimator against a closed form ----
 
-constexpr float kSigmaS = 0.25f, kSigmaA = 0.1f;
+constexpr float kSigmaS = test::kOpenFogSigmaS, kSigmaA = test::kOpenFogSigmaA;
+using test::openFog;
 
-/// Open space filled with homogeneous fog (extinction 0.35): a marker quad far away sets the scene
-/// bounds (where the global medium exists) to enclose everything the tests use.
-Scene openFog(const std::vector<Light>& lights, float g) {
-    Scene s;
-    s.name = "open-fog";
-    s.source = "<test>";
-    Material white;
-    white.name = "white";
-    white.albedo = Rgb(0.5f);
-    s.materials.push_back(white);
-    s.meshes.push_back(makeQuad("far", {-10, -10, -10}, {20, 0, 0}, {0, 0, 20}, 0));
-    s.meshes.push_back(makeQuad("far-top", {-10, 10, 10}, {20, 0, 0}, {0, 0, -20}, 0));
-    Medium m;
-    m.name = "fog";
-    m.sigmaS = Rgb(kSigmaS);
-    m.sigmaA = Rgb(kSigmaA);
-    m.g = g;
-    s.media.push_back(m);
-    s.globalMedium = 0;
-    s.lights = lights;
-    s.camera = Camera::lookAt({0, 0, 4}, {0, 0, 0}, {0, 1, 0}, 0.8f);
-    return s;
-}
 
 /// Single-scattered radiance reaching o along -d from the segment o + s d, s in [0, sMax], lit by
 /// `light`, by composite Simpson quadrature over n intervals: `density(x)` scales sigma_s at x and
@@ -425,14 +403,11 @@ TEST(Equiangular, PointAndSpotLightAboveAFogLayerAgainstQuadrature) {
 // are independent and alike: batches of them are a standard error's worth apart, and a pixel's
 // variance over seeds falls as 1/passes where no kernel remains.
 RenderSettings constantRadii(int size, uint32_t photons) {
-    RenderSettings ps;
-    ps.width = ps.height = size;
-    ps.photonsPerPass = photons;
-    ps.equiangular = true;
+    const RenderSettings defaults;
+    RenderSettings ps = test::constantRadiusSettings(size, photons, defaults.seed, defaults.directLight, 0.06f);
     ps.radius = 0.03f;
-    ps.surfaceRadius = 0.06f;
-    ps.radiusOffset = 1000000000000ull;
     ps.photonAngle = 0;
+    ps.equiangular = true;
     return ps;
 }
 

@@ -246,6 +246,32 @@ inline double meanOverPixels(const Image& img, const std::vector<int>& classOfPi
     return n ? sum / (3.0 * n) : 0.0;
 }
 
+constexpr float kOpenFogSigmaS = 0.25f, kOpenFogSigmaA = 0.1f;
+
+/// Open space filled with homogeneous fog (extinction 0.35): a marker quad far away sets the scene
+/// bounds (where the global medium exists) to enclose everything the tests use.
+inline Scene openFog(const std::vector<Light>& lights, float g) {
+    Scene s;
+    s.name = "open-fog";
+    s.source = "<test>";
+    Material white;
+    white.name = "white";
+    white.albedo = Rgb(0.5f);
+    s.materials.push_back(white);
+    s.meshes.push_back(makeQuad("far", {-10, -10, -10}, {20, 0, 0}, {0, 0, 20}, 0));
+    s.meshes.push_back(makeQuad("far-top", {-10, 10, 10}, {20, 0, 0}, {0, 0, -20}, 0));
+    Medium m;
+    m.name = "fog";
+    m.sigmaS = Rgb(kOpenFogSigmaS);
+    m.sigmaA = Rgb(kOpenFogSigmaA);
+    m.g = g;
+    s.media.push_back(m);
+    s.globalMedium = 0;
+    s.lights = lights;
+    s.camera = Camera::lookAt({0, 0, 4}, {0, 0, 0}, {0, 1, 0}, 0.8f);
+    return s;
+}
+
 /// PPB settings with constant radii (beam 0.02, surface `surfaceRadius`: a huge schedule offset),
 /// so that passes are independent and alike and the spread of batch means is their standard error.
 inline RenderSettings constantRadiusSettings(int size, uint32_t photons, uint64_t seed, bool directLight,
