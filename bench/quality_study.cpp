@@ -12,7 +12,7 @@
 #include "core/accumulator.h"
 #include "core/error.h"
 #include "core/image_io.h"
-#include "cpu/equiangular_pilot.h"
+#include "bench/equiangular_pilot.h"
 #include "cpu/pass_renderer.h"
 #include "cpu/pixel_footprint.h"
 #include "cpu/radius_defaults.h"
@@ -240,7 +240,7 @@ void runQualityStudy(const RenderSettings& settings, const QualityStudyOptions& 
         base.passes = passes > 0 ? passes : 1;
         base.timeBudget = 0;
         if ((equalTime || o.pilotOnly) && settings.equiangular) {
-            // What the automatic equiangular count saw (cpu/equiangular_pilot.h), for the open-ended
+            // What the automatic equiangular count saw (bench/equiangular_pilot.h), for the open-ended
             // plan the rows render.
             RenderSettings open = base;
             open.plannedPaths = RadiusDefaults::kOpenEndedPathsPerPixel * uint64_t(base.width) * uint64_t(base.height);

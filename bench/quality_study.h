@@ -54,7 +54,7 @@ struct QualityStudyOptions {
     /// equiangular samples per segment (RenderSettings::equiangularSamples; 0 = auto), to compare
     /// counts in one run.
     std::vector<double> equiangularSamples;
-    /// Only print each scene's equiangular pilot (cpu/equiangular_pilot.h): no references, no rows.
+    /// Only print each scene's equiangular pilot (bench/equiangular_pilot.h): no references, no rows.
     bool pilotOnly = false;
 };
 

@@ -777,5 +777,47 @@ TEST(EquiangularSkyPpb, SkySingleScatteringVarianceFallsAsOneOverPasses) {
     EXPECT_NEAR(test::varianceSlopeOverPasses(scene, ps, 48, 100), -1.0, 0.3);
 }
 
+// ---- A fractional count spread over a pixel's passes: exactly K f extra samples within one over
+// any K consecutive passes, and the extra one with probability f in each pass over the phase ----
+
+TEST(EquiangularSpread, FractionalCountIsSpreadEvenlyOverAPixelsPasses) {
+    Scene s = openFog({test::pointLight({0, 0, 0}, 1.0f)}, 0.0f);
+    s.finalize();
+    EmbreeScene rt(s);
+    for (double samples : {0.25, 0.5, 1.25, 2.75, 1.0 / 64}) {
+        EquiangularScattering eq(rt, samples);
+        const double f = samples - std::floor(samples);
+        // Any K consecutive passes from any start: K f extra samples within one.
+        for (double phase : {0.0, 0.137, 0.5, 0.999})
+            for (uint64_t start : {uint64_t(0), uint64_t(3), uint64_t(1000003)})
+                for (int K : {1, 3, 4, 7, 64, 200}) {
+                    int extra = 0;
+                    for (int k = 0; k < K; ++k)
+                        extra += eq.samplesInPass(start + uint64_t(k), phase) - int(std::floor(samples));
+                    EXPECT_LE(std::abs(double(extra) - K * f), 1.0) << samples << " " << phase << " " << K;
+                }
+        // Over the pixels' phases (uniform), each pass has the extra sample with probability f:
+        // the mean count is N, as with a random choice per segment.
+        const int phases = 4096;
+        for (uint64_t pass : {uint64_t(0), uint64_t(1), uint64_t(17), uint64_t(123456)}) {
+            double mean = 0;
+            for (int i = 0; i < phases; ++i) mean += eq.samplesInPass(pass, (i + 0.5) / phases);
+            EXPECT_NEAR(mean / phases, samples, 1.0 / phases) << samples << " pass " << pass;
+        }
+    }
+    // The pixels' phases are uniform: their mean and the share below 1/4.
+    double mean = 0, below = 0;
+    const int pixels = 20000;
+    for (int i = 0; i < pixels; ++i) {
+        const double u = EquiangularScattering::pixelPhase(5, uint64_t(i));
+        ASSERT_GE(u, 0.0);
+        ASSERT_LT(u, 1.0);
+        mean += u / pixels;
+        below += (u < 0.25) / double(pixels);
+    }
+    EXPECT_NEAR(mean, 0.5, 4 * std::sqrt(1.0 / 12 / pixels));
+    EXPECT_NEAR(below, 0.25, 4 * std::sqrt(0.25 * 0.75 / pixels));
+}
+
 }  // namespace
 }  // namespace tyndall

@@ -1,4 +1,4 @@
-#include "cpu/equiangular_pilot.h"
+#include "bench/equiangular_pilot.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,22 +1,20 @@
-// The automatic equiangular sample count (cpu/equiangular_pilot.h; docs/algorithm.md "How many
-// samples, and which light"):
+// The pilot for the equiangular sample count, a bench tool (bench/equiangular_pilot.h; docs/algorithm.md
+// "How many samples, and which light"):
 // 1. The rule: the count minimises the cost model's error at equal time over the powers of two;
 //    it rises with the samples' variance and the rest of the pass's cost, falls with the rest's
 //    variance, and reaches its bounds in the limits.
 // 2. The pilot's per-segment variance against a closed form (a point light in homogeneous fog:
 //    the second moment of the equiangular estimate by quadrature), with the pilot's own number
 //    of draws.
-// 3. A fractional count spread over a pixel's passes: exactly K f extra samples within one over
-//    any K consecutive passes, and the extra one with probability f in each pass over the phase.
-// 4. The pilot is a function of the scene and settings alone (not the render's seed).
+// 3. The pilot is a function of the scene and settings alone (not the render's seed).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 
+#include "bench/equiangular_pilot.h"
 #include "core/phase.h"
 #include "cpu/equiangular.h"
-#include "cpu/equiangular_pilot.h"
 #include "cpu/radius_defaults.h"
 #include "loading/mesh_builders.h"
 #include "tests/cpu/reference_fixtures.h"
@@ -135,48 +133,7 @@ TEST(EquiangularAuto, SegmentVarianceAgainstQuadrature) {
     }
 }
 
-// ---- 3. A fraction spread over the passes ----
-
-TEST(EquiangularAuto, FractionalCountIsSpreadEvenlyOverAPixelsPasses) {
-    Scene s = openFog({test::pointLight({0, 0, 0}, 1.0f)}, 0.0f);
-    s.finalize();
-    EmbreeScene rt(s);
-    for (double samples : {0.25, 0.5, 1.25, 2.75, 1.0 / 64}) {
-        EquiangularScattering eq(rt, samples);
-        const double f = samples - std::floor(samples);
-        // Any K consecutive passes from any start: K f extra samples within one.
-        for (double phase : {0.0, 0.137, 0.5, 0.999})
-            for (uint64_t start : {uint64_t(0), uint64_t(3), uint64_t(1000003)})
-                for (int K : {1, 3, 4, 7, 64, 200}) {
-                    int extra = 0;
-                    for (int k = 0; k < K; ++k)
-                        extra += eq.samplesInPass(start + uint64_t(k), phase) - int(std::floor(samples));
-                    EXPECT_LE(std::abs(double(extra) - K * f), 1.0) << samples << " " << phase << " " << K;
-                }
-        // Over the pixels' phases (uniform), each pass has the extra sample with probability f:
-        // the mean count is N, as with a random choice per segment.
-        const int phases = 4096;
-        for (uint64_t pass : {uint64_t(0), uint64_t(1), uint64_t(17), uint64_t(123456)}) {
-            double mean = 0;
-            for (int i = 0; i < phases; ++i) mean += eq.samplesInPass(pass, (i + 0.5) / phases);
-            EXPECT_NEAR(mean / phases, samples, 1.0 / phases) << samples << " pass " << pass;
-        }
-    }
-    // The pixels' phases are uniform: their mean and the share below 1/4.
-    double mean = 0, below = 0;
-    const int pixels = 20000;
-    for (int i = 0; i < pixels; ++i) {
-        const double u = EquiangularScattering::pixelPhase(5, uint64_t(i));
-        ASSERT_GE(u, 0.0);
-        ASSERT_LT(u, 1.0);
-        mean += u / pixels;
-        below += (u < 0.25) / double(pixels);
-    }
-    EXPECT_NEAR(mean, 0.5, 4 * std::sqrt(1.0 / 12 / pixels));
-    EXPECT_NEAR(below, 0.25, 4 * std::sqrt(0.25 * 0.75 / pixels));
-}
-
-// ---- 4. Deterministic ----
+// ---- 3. Deterministic ----
 
 /// A small fog box lit by a point light above slats that cast shadows through the fog.
 Scene slattedFog() {
