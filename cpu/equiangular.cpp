@@ -258,6 +258,50 @@ private:
     double m_depth = 0;  ///< the majorant's optical depth (at unit extinction) from a
 };
 
+/// The piece of WeightedPieces along [a, b] that a share u of the sum of w x measure(t0, t1) falls
+/// in, where `measure` is a piece's size in the sampled variable (its length, or its angle seen from
+/// a light): two walks, the first for the sum, the second stopping where the running sum passes
+/// u x sum. Returns false when every piece is empty. Rounding can leave the target past the last
+/// piece: then `chosen` is false and the caller takes its end.
+struct WeightedPiece {
+    float t0 = 0, t1 = 0;
+    double w = 0, before = 0, size = 0, total = 0, target = 0;
+    bool chosen = false;
+};
+
+template <class Measure>
+bool chooseWeightedPiece(const DensityGrid& grid, const Ray& ray, float a, float b, float sigmaT, float u,
+                         Measure&& measure, WeightedPiece* piece) {
+    double total = 0;
+    {
+        WeightedPieces pieces(grid, ray, a, b, sigmaT);
+        float t0, t1;
+        double w;
+        while (pieces.next(&t0, &t1, &w)) total += w * measure(t0, t1);
+    }
+    if (!(total > 0)) return false;
+    const double target = double(u) * total;
+    double sum = 0;
+    WeightedPieces pieces(grid, ray, a, b, sigmaT);
+    float t0, t1;
+    double w;
+    WeightedPiece last;
+    while (pieces.next(&t0, &t1, &w)) {
+        const double size = measure(t0, t1);
+        if (!(size > 0)) continue;
+        last.t0 = t0, last.t1 = t1, last.w = w, last.size = size;
+        if (sum + w * size > target) {
+            last.chosen = true;
+            break;
+        }
+        sum += w * size;
+    }
+    if (!(last.w > 0)) return false;
+    last.before = sum, last.total = total, last.target = target;
+    *piece = last;
+    return true;
+}
+
 /// A distance along [a, b] of the ray o + t d in a grid medium (extinction sigmaT at density 1)
 /// with pdf proportional to w(t) / |x(t) - p|^2, w WeightedPieces' weight: a piece chosen by its
 /// weight times its angle, then equiangular inside it. Returns false when every piece is empty.
@@ -266,38 +310,15 @@ private:
 bool sampleWeightedEquiangular(const DensityGrid& grid, const Vec3& o, const Vec3& d, float a, float b, const Vec3& p,
                                float sigmaT, float u, float* t, double* pieceWeight, double* inverseSquareOverPdf) {
     const EquiangularLine line(o, d, a, b, p);
-    const Ray ray{o, d, 0.0f, b};
-    double total = 0;
-    {
-        WeightedPieces pieces(grid, ray, a, b, sigmaT);
-        float t0, t1;
-        double w;
-        while (pieces.next(&t0, &t1, &w)) total += w * (line.angle(t1) - line.angle(t0));
-    }
-    if (!(total > 0)) return false;
-    // The second walk stops in the piece where the running sum passes u * total.
-    const double target = double(u) * total;
-    double sum = 0;
-    WeightedPieces pieces(grid, ray, a, b, sigmaT);
-    float t0, t1, last0 = 0, last1 = 0;
-    double w, lastW = 0, lastTheta0 = 0, lastSpan = 0;
-    bool chosen = false;
-    while (pieces.next(&t0, &t1, &w)) {
-        const double theta0 = line.angle(t0), span = line.angle(t1) - theta0;
-        if (!(span > 0)) continue;
-        last0 = t0, last1 = t1, lastW = w, lastTheta0 = theta0, lastSpan = span;
-        if (sum + w * span > target) {
-            chosen = true;
-            break;
-        }
-        sum += w * span;
-    }
-    if (!(lastW > 0)) return false;
-    // Rounding can leave the target past the last piece: then its end.
-    const double theta = chosen ? lastTheta0 + (target - sum) / lastW : lastTheta0 + lastSpan;
-    *t = std::clamp(line.at(theta), last0, last1);
-    *pieceWeight = lastW;
-    *inverseSquareOverPdf = total / double(line.D);
+    WeightedPiece piece;
+    if (!chooseWeightedPiece(grid, Ray{o, d, 0.0f, b}, a, b, sigmaT, u,
+                             [&](float t0, float t1) { return line.angle(t1) - line.angle(t0); }, &piece))
+        return false;
+    const double theta0 = line.angle(piece.t0);
+    const double theta = piece.chosen ? theta0 + (piece.target - piece.before) / piece.w : theta0 + piece.size;
+    *t = std::clamp(line.at(theta), piece.t0, piece.t1);
+    *pieceWeight = piece.w;
+    *inverseSquareOverPdf = piece.total / double(line.D);
     return true;
 }
 
@@ -338,37 +359,14 @@ float sampleTransmittanceDistance(const Medium& med, float sMax, float u, double
 /// density(x) / w(t) x total is density(x) / pdf(t).
 bool sampleWeightedDistance(const DensityGrid& grid, const Vec3& o, const Vec3& d, float sMax, float sigmaT, float u,
                             float* t, double* pieceWeight, double* total) {
-    const Ray ray{o, d, 0.0f, sMax};
-    double sumAll = 0;
-    {
-        WeightedPieces pieces(grid, ray, 0.0f, sMax, sigmaT);
-        float t0, t1;
-        double w;
-        while (pieces.next(&t0, &t1, &w)) sumAll += w * (double(t1) - t0);
-    }
-    if (!(sumAll > 0)) return false;
-    const double target = double(u) * sumAll;
-    double sum = 0;
-    WeightedPieces pieces(grid, ray, 0.0f, sMax, sigmaT);
-    float t0, t1, last0 = 0, last1 = 0;
-    double w, lastW = 0;
-    bool chosen = false;
-    while (pieces.next(&t0, &t1, &w)) {
-        const double len = double(t1) - t0;
-        if (!(len > 0)) continue;
-        last0 = t0, last1 = t1, lastW = w;
-        if (sum + w * len > target) {
-            chosen = true;
-            break;
-        }
-        sum += w * len;
-    }
-    if (!(lastW > 0)) return false;
-    // Rounding can leave the target past the last piece: then its end.
-    const double at = chosen ? double(last0) + (target - sum) / lastW : double(last1);
-    *t = std::clamp(float(at), last0, last1);
-    *pieceWeight = lastW;
-    *total = sumAll;
+    WeightedPiece piece;
+    if (!chooseWeightedPiece(grid, Ray{o, d, 0.0f, sMax}, 0.0f, sMax, sigmaT, u,
+                             [](float t0, float t1) { return double(t1) - t0; }, &piece))
+        return false;
+    const double at = piece.chosen ? double(piece.t0) + (piece.target - piece.before) / piece.w : double(piece.t1);
+    *t = std::clamp(float(at), piece.t0, piece.t1);
+    *pieceWeight = piece.w;
+    *total = piece.total;
     return true;
 }
 
