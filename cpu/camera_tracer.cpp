@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <optional>
 
 #include "core/beam_estimator.h"
@@ -55,6 +56,8 @@ CameraTracer::CameraTracer(const EmbreeScene& rt, const RenderSettings& settings
         gridEmission |= !m.homogeneous() && m.emissive();
     }
     if (gridEmission) m_segmentEmission = std::make_unique<SegmentEmission>(m_scene);
+    for (const TriangleMesh& mesh : m_scene.meshes)
+        m_nonDiffuseMesh.push_back(m_scene.materials[size_t(mesh.material)].type != MaterialType::Diffuse);
     if (settings.surfaceBoundary) m_boundary = std::make_unique<SurfaceBoundary>(m_scene, m_rt);
     lightsChanged();
     if (settings.directLight) {
@@ -207,7 +210,9 @@ PrimaryPass CameraTracer::tracePrimary(uint64_t pass) const {
     // most of their traversal.
     constexpr int kPacketWidth = EmbreeScene::kPacket / 2;
     const int rowPairs = (region.height + 1) / 2;
+    std::atomic<uint64_t> nonDiffuseHits{0};
     tbb::parallel_for(0, rowPairs, [&](int pair) {
+        uint64_t nonDiffuse = 0;
         const int y0 = region.y + 2 * pair, rows = std::min(2, region.y + region.height - y0);
         for (int x0 = region.x; x0 < region.x + region.width; x0 += kPacketWidth) {
             const int cols = std::min(kPacketWidth, region.x + region.width - x0);
@@ -241,7 +246,10 @@ PrimaryPass CameraTracer::tracePrimary(uint64_t pass) const {
                 ph.throughput = Rgb(1.0f);
                 ph.emitted = Rgb(0.0f);
                 ph.surface = found[k];
-                if (found[k]) ph.hit = surfaceHits[k];
+                if (found[k]) {
+                    ph.hit = surfaceHits[k];
+                    nonDiffuse += m_nonDiffuseMesh[size_t(ph.hit.mesh)];
+                }
                 float tHit = ph.surface ? ph.hit.t : kInfinity;
                 Ray seg;
                 if (cameraMedium != kVacuum && m_rt.mediumSegment(ray.o, ray.d, tHit, &seg)) {
@@ -265,8 +273,10 @@ PrimaryPass CameraTracer::tracePrimary(uint64_t pass) const {
                 }
             }
         }
+        nonDiffuseHits += nonDiffuse;
     });
     out.rays = uint64_t(region.width) * uint64_t(region.height);
+    out.nonDiffuseHits = nonDiffuseHits.load();
     return out;
 }
 

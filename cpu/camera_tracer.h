@@ -97,6 +97,10 @@ struct PrimaryPass {
     PrimarySegments segments;
     PrimaryHitBuffer hits;  ///< per pixel, row-major like segments.rays
     uint64_t rays = 0;      ///< surface rays traced
+    /// Pixels whose camera ray first meets a surface whose material is not diffuse: about the
+    /// secondary stage's beam queries (BeamBvh::piecesFor). Counted while tracing, so no serial
+    /// walk over the hits is needed.
+    uint64_t nonDiffuseHits = 0;
     std::shared_ptr<PrimarySegmentPool> pool;
 
     PrimaryPass() = default;
@@ -157,6 +161,7 @@ private:
     const Scene& m_scene;
     RenderSettings m_settings;
     bool m_anyHeterogeneous = false;
+    std::vector<uint8_t> m_nonDiffuseMesh;  ///< per mesh: its material is not diffuse (PrimaryPass::nonDiffuseHits)
     /// --direct-light on: the light sampler and shadow rays of the diffuse ends; null when off.
     std::unique_ptr<LightSampler> m_lights;
     std::unique_ptr<DirectLight> m_direct;

@@ -59,8 +59,6 @@ PassRenderer::PassRenderer(const Scene& scene, const RenderSettings& settings, B
       m_camera(std::make_unique<CameraTracer>(*m_rt, m_settings)),
       m_rasterizer(scene, m_settings.simd ? SplatKernel::Simd : SplatKernel::Scalar) {
     for (const Material& m : scene.materials) m_anyNonDiffuse |= m.type != MaterialType::Diffuse;
-    for (const TriangleMesh& mesh : scene.meshes)
-        m_nonDiffuseMesh.push_back(scene.materials[size_t(mesh.material)].type != MaterialType::Diffuse);
 }
 
 PhotonMap PassRenderer::tracePhotons(uint64_t pass) const {
@@ -74,13 +72,6 @@ PhotonMap PassRenderer::tracePhotons(uint64_t pass, uint32_t batch) const {
                           " photon paths",
                       (end - begin) * m_memory.bytesPerPath,
                       [&] { return m_photons->traceBatch(pass, uint32_t(begin), uint32_t(end)); });
-}
-
-uint64_t PassRenderer::expectedQueries(const PrimaryPass& primary) const {
-    uint64_t n = 0;
-    for (const PrimaryHit& ph : *primary.hits)
-        n += ph.surface && m_nonDiffuseMesh[size_t(ph.hit.mesh)];
-    return n;
 }
 
 PrimaryPass PassRenderer::tracePrimary(uint64_t pass) const {
@@ -98,7 +89,7 @@ Image PassRenderer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                           // surfaces: without any, no query would ever read the BVH.
                           static const std::vector<PhotonBeam> kNoBeams;
                           const std::vector<PhotonBeam>& beams = m_anyNonDiffuse ? photons.beams : kNoBeams;
-                          const int pieces = beams.empty() ? 1 : BeamBvh::piecesFor(expectedQueries(primary), beams.size());
+                          const int pieces = beams.empty() ? 1 : BeamBvh::piecesFor(primary.nonDiffuseHits, beams.size());
                           BeamBvh bvh(*m_rt->device(), beams, m_bvhKind, 0.0f, pieces);
                           SurfacePhotonGrid grid(photons.surfacePhotons);
                           Image radiance = m_camera->traceSecondary(primary, photons, bvh, grid, stats, layers, emission,

@@ -124,10 +124,6 @@ private:
     MemoryPlan m_memory;
     BeamBvh::Kind m_bvhKind;
     bool m_anyNonDiffuse = false;  // a camera path can have secondary segments
-    std::vector<bool> m_nonDiffuseMesh;  // per mesh: its material is not diffuse
-    /// The pixels whose camera ray first meets a non-diffuse surface: about the secondary stage's
-    /// beam queries (BeamBvh::piecesFor).
-    uint64_t expectedQueries(const PrimaryPass& primary) const;
     std::unique_ptr<PhotonTracer> m_photons;
     std::unique_ptr<CameraTracer> m_camera;
     BeamRasterizer m_rasterizer;

@@ -107,6 +107,35 @@ TEST(Determinism, RecycledPassBuffersCarryNothingOver) {
     for (float f : out.segments.freeFlights) ASSERT_EQ(f, kInfinity);
 }
 
+// The beam BVH's pieces per beam follow the pixels whose camera ray meets a non-diffuse surface
+// first (BeamBvh::piecesFor): tracePrimary counts them while it traces, in parallel; the count
+// must be the hits' own at any thread count, with and without a render region.
+TEST(Determinism, NonDiffuseHitsCountedWhileTracingAreTheHitsCount) {
+    Scene scene = makeDefaultScene();
+    for (bool region : {false, true}) {
+        RenderSettings s;
+        s.width = 96;
+        s.height = 72;
+        s.photonsPerPass = 100;
+        s.seed = 3;
+        if (region) s.region = PixelRegion{13, 9, 50, 31};
+        PassRenderer renderer(scene, s);
+        for (int threads : {1, 2, 4}) {
+            tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+            const PrimaryPass primary = renderer.tracePrimary(uint64_t(threads));
+            uint64_t want = 0, surface = 0;
+            for (const PrimaryHit& ph : *primary.hits) {
+                surface += ph.surface;
+                want += ph.surface && scene.materials[size_t(scene.meshes[size_t(ph.hit.mesh)].material)].type !=
+                                          MaterialType::Diffuse;
+            }
+            EXPECT_GT(want, 50u) << "the glass sphere fills part of the image";
+            EXPECT_LT(want, surface) << "the box's diffuse walls do not count";
+            EXPECT_EQ(primary.nonDiffuseHits, want) << threads << " threads, region " << region;
+        }
+    }
+}
+
 // The viewer edits lights in place and calls sceneChanged(): the next pass must be the pass of a
 // renderer built on the edited scene, shadow rays included (their light choice follows the powers;
 // a sampler built once never picks a light edited up from zero power). Explicit radii: the
