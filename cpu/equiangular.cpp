@@ -163,72 +163,6 @@ bool EquiangularScattering::segmentCdf(const Medium& med, bool sealed, const Vec
     return true;
 }
 
-Rgb EquiangularScattering::estimate(MediumId medium, const Vec3& o, const Vec3& d, float sMax, Rng& rng) const {
-    if (m_lights.empty() || medium == kVacuum || !(sMax > 0)) return Rgb(0.0f);
-    const Scene& scene = m_rt.scene();
-    const Medium& med = scene.media[medium];
-    if (med.sigmaS.isBlack()) return Rgb(0.0f);
-    const size_t sources = m_lights.size();
-    const bool sealed = m_sealed[size_t(medium)];
-    if (sealed && sources == 1 && parallel(0)) return Rgb(0.0f);
-    const int n = m_whole + (m_fraction > 0 && rng.uniform() < m_fraction ? 1 : 0);
-    return estimate(medium, o, d, sMax, n, rng);
-}
-
-int EquiangularScattering::samplesInPass(uint64_t pass, double phase) const {
-    if (!(m_fraction > 0)) return m_whole;
-    // In double: exact enough for any pass count a render reaches (2^40 passes x a 1/64 step).
-    const double f = double(m_fraction);
-    const double k = double(pass);
-    return m_whole + int(std::floor((k + 1) * f + phase) - std::floor(k * f + phase));
-}
-
-double EquiangularScattering::pixelPhase(uint64_t seed, uint64_t pixel) {
-    // Keyed by a pass index no render reaches, so it is the pixel's for every pass.
-    Rng rng = Rng::forKey(seed, ~uint64_t(0), pixel, StreamPurpose::Equiangular);
-    return double(rng.uniform());
-}
-
-Rgb EquiangularScattering::estimate(MediumId medium, const Vec3& o, const Vec3& d, float sMax, int n,
-                                    Rng& rng) const {
-    if (m_lights.empty() || medium == kVacuum || !(sMax > 0)) return Rgb(0.0f);
-    const Scene& scene = m_rt.scene();
-    const Medium& med = scene.media[medium];
-    if (med.sigmaS.isBlack()) return Rgb(0.0f);
-    const size_t sources = m_lights.size();
-    const bool sealed = m_sealed[size_t(medium)];
-    if (sealed && sources == 1 && parallel(0)) return Rgb(0.0f);
-    if (n <= 0) return Rgb(0.0f);
-    // Parallel sources trace one in kParallelThinning of their samples, weighted up: the samples k
-    // with k mod kParallelThinning equal to a random offset (drawn only where there is one).
-    const int offset =
-        m_anyParallel ? std::min(int(rng.uniform() * float(kParallelThinning)), kParallelThinning - 1) : 0;
-    double cdf[kWeighedUpTo];
-    const double* c = m_cdf.data();
-    if (sources > 1 && sources <= kWeighedUpTo) {
-        if (!segmentCdf(med, sealed, o, d, sMax, cdf)) return Rgb(0.0f);
-        c = cdf;
-    }
-    // n stratified uniforms (k + xi) / n, each choosing a source and, rescaled inside the source's
-    // interval of the cdf, its distance; the sum over N (n's mean).
-    Rgb sum;
-    for (int k = 0; k < n; ++k) {
-        const float u = (float(k) + rng.uniform()) / float(n);
-        size_t i = sources == 1 ? 0 : size_t(std::upper_bound(c, c + sources, double(u)) - c);
-        i = std::min(i, sources - 1);
-        const double lo = i > 0 ? c[i - 1] : 0.0, p = c[i] - lo;
-        if (!(p > 0)) continue;
-        double weight = 1.0 / p;
-        if (parallel(i)) {
-            if (sealed || k % kParallelThinning != offset) continue;
-            weight *= kParallelThinning;
-        }
-        const float uDistance = std::min(float((double(u) - lo) / p), 1.0f - 0x1p-24f);
-        sum += fromSource(m_lights[i], med, medium, o, d, sMax, std::max(uDistance, 0.0f), rng) * float(weight);
-    }
-    return sum / float(m_samples);
-}
-
 namespace {
 
 /// The pieces of [a, b] along a ray through a grid medium on which the distance is sampled, each
@@ -302,18 +236,130 @@ bool chooseWeightedPiece(const DensityGrid& grid, const Ray& ray, float a, float
     return true;
 }
 
+}  // namespace
+
+/// WeightedPieces along the whole segment [0, sMax], walked once for all of the segment's samples
+/// (its first use builds it), with the sizes of the pieces in the last sampled variable: their
+/// lengths, and their angles seen from the last light point. chooseWeightedPiece walks the
+/// majorant grid twice and takes two arctangents per piece for every sample; from here each
+/// sample of a point or spot light or of parallel light reads sums made once per segment, the same
+/// numbers in the same order, so the samples are those of the walks bit for bit. More than
+/// kMaxPieces pieces: unusable, the samples walk as before.
+class SegmentPieces {
+public:
+    static constexpr int kMaxPieces = 256;
+    /// The segment o + t d, t in [0, sMax], of a grid of extinction sigmaT at density 1; nothing
+    /// kept yet.
+    void reset(const DensityGrid& grid, const Vec3& o, const Vec3& d, float sMax, float sigmaT) {
+        m_grid = &grid, m_o = o, m_d = d, m_sMax = sMax, m_sigmaT = sigmaT;
+        m_built = m_haveLengths = m_haveAngles = false;
+    }
+    float sMax() const { return m_sMax; }
+    /// The piece that a share u of the sum of w x length falls in (chooseWeightedPiece's, with its
+    /// measure the length); false when every piece is empty or the cache is unusable (*usable).
+    bool chooseByLength(float u, WeightedPiece* piece, bool* usable) {
+        if (!(*usable = build())) return false;
+        if (!m_haveLengths) {
+            m_lengthTotal = 0;
+            for (int k = 0; k < m_n; ++k) {
+                m_lengths[k] = double(m_t1[k]) - m_t0[k];
+                m_lengthTotal += m_w[k] * m_lengths[k];
+            }
+            m_haveLengths = true;
+        }
+        return choose(m_lengths, m_lengthTotal, u, piece);
+    }
+    /// The same by the angle seen from p along `line` (built over [0, sMax] for p).
+    bool chooseByAngle(const Vec3& p, const EquiangularLine& line, float u, WeightedPiece* piece, bool* usable) {
+        if (!(*usable = build())) return false;
+        if (!m_haveAngles || !(p.x == m_p.x && p.y == m_p.y && p.z == m_p.z)) {
+            m_angleTotal = 0;
+            float tPrev = 0;
+            double anglePrev = 0;
+            bool havePrev = false;
+            for (int k = 0; k < m_n; ++k) {
+                const double a0 = havePrev && m_t0[k] == tPrev ? anglePrev : line.angle(m_t0[k]);
+                const double a1 = line.angle(m_t1[k]);
+                m_angles[k] = a1 - a0;
+                m_angleTotal += m_w[k] * m_angles[k];
+                tPrev = m_t1[k], anglePrev = a1, havePrev = true;
+            }
+            m_p = p;
+            m_haveAngles = true;
+        }
+        return choose(m_angles, m_angleTotal, u, piece);
+    }
+
+private:
+    bool build() {
+        if (m_built) return m_n >= 0;
+        m_built = true;
+        m_n = 0;
+        WeightedPieces pieces(*m_grid, Ray{m_o, m_d, 0.0f, m_sMax}, 0.0f, m_sMax, m_sigmaT);
+        float t0, t1;
+        double w;
+        while (pieces.next(&t0, &t1, &w)) {
+            if (m_n == kMaxPieces) {
+                m_n = -1;
+                return false;
+            }
+            m_t0[m_n] = t0, m_t1[m_n] = t1, m_w[m_n] = w;
+            ++m_n;
+        }
+        return true;
+    }
+    /// chooseWeightedPiece's second walk over the kept pieces.
+    bool choose(const double* sizes, double total, float u, WeightedPiece* piece) const {
+        if (!(total > 0)) return false;
+        const double target = double(u) * total;
+        double sum = 0;
+        WeightedPiece last;
+        for (int k = 0; k < m_n; ++k) {
+            const double size = sizes[k], w = m_w[k];
+            if (!(size > 0)) continue;
+            last.t0 = m_t0[k], last.t1 = m_t1[k], last.w = w, last.size = size;
+            if (sum + w * size > target) {
+                last.chosen = true;
+                break;
+            }
+            sum += w * size;
+        }
+        if (!(last.w > 0)) return false;
+        last.before = sum, last.total = total, last.target = target;
+        *piece = last;
+        return true;
+    }
+
+    const DensityGrid* m_grid = nullptr;
+    Vec3 m_o, m_d, m_p;
+    float m_sMax = 0, m_sigmaT = 0;
+    bool m_built = false, m_haveLengths = false, m_haveAngles = false;
+    int m_n = 0;  ///< pieces kept; -1 when there were more than kMaxPieces
+    float m_t0[kMaxPieces], m_t1[kMaxPieces];
+    double m_w[kMaxPieces], m_lengths[kMaxPieces], m_angles[kMaxPieces];
+    double m_lengthTotal = 0, m_angleTotal = 0;
+};
+
+namespace {
+
 /// A distance along [a, b] of the ray o + t d in a grid medium (extinction sigmaT at density 1)
 /// with pdf proportional to w(t) / |x(t) - p|^2, w WeightedPieces' weight: a piece chosen by its
 /// weight times its angle, then equiangular inside it. Returns false when every piece is empty.
 /// *pieceWeight receives w at t and *inverseSquareOverPdf 1 / (|x(t) - p|^2 pdf(t)) times it, so
 /// that density(x) / w(t) (at most 1 / kMinAttenuation) times that is the geometric factor.
+/// `cache` (or nullptr): the segment's pieces, used where [a, b] is the whole segment.
 bool sampleWeightedEquiangular(const DensityGrid& grid, const Vec3& o, const Vec3& d, float a, float b, const Vec3& p,
-                               float sigmaT, float u, float* t, double* pieceWeight, double* inverseSquareOverPdf) {
+                               float sigmaT, float u, SegmentPieces* cache, float* t, double* pieceWeight,
+                               double* inverseSquareOverPdf) {
     const EquiangularLine line(o, d, a, b, p);
     WeightedPiece piece;
-    if (!chooseWeightedPiece(grid, Ray{o, d, 0.0f, b}, a, b, sigmaT, u,
-                             [&](float t0, float t1) { return line.angle(t1) - line.angle(t0); }, &piece))
+    bool usable = false;
+    const bool whole = cache && a == 0.0f && b == cache->sMax();
+    const bool found = whole && cache->chooseByAngle(p, line, u, &piece, &usable);
+    if (!usable && !chooseWeightedPiece(grid, Ray{o, d, 0.0f, b}, a, b, sigmaT, u,
+                                        [&](float t0, float t1) { return line.angle(t1) - line.angle(t0); }, &piece))
         return false;
+    if (usable && !found) return false;
     const double theta0 = line.angle(piece.t0);
     const double theta = piece.chosen ? theta0 + (piece.target - piece.before) / piece.w : theta0 + piece.size;
     *t = std::clamp(line.at(theta), piece.t0, piece.t1);
@@ -357,12 +403,16 @@ float sampleTransmittanceDistance(const Medium& med, float sMax, float u, double
 /// chosen by its weight times its length, then uniform inside it. Returns false when every piece
 /// is empty. *pieceWeight receives w at t and *total the sum of w times length, so that
 /// density(x) / w(t) x total is density(x) / pdf(t).
+/// `cache` (or nullptr): the segment's pieces.
 bool sampleWeightedDistance(const DensityGrid& grid, const Vec3& o, const Vec3& d, float sMax, float sigmaT, float u,
-                            float* t, double* pieceWeight, double* total) {
+                            SegmentPieces* cache, float* t, double* pieceWeight, double* total) {
     WeightedPiece piece;
-    if (!chooseWeightedPiece(grid, Ray{o, d, 0.0f, sMax}, 0.0f, sMax, sigmaT, u,
-                             [](float t0, float t1) { return double(t1) - t0; }, &piece))
+    bool usable = false;
+    const bool found = cache && cache->chooseByLength(u, &piece, &usable);
+    if (!usable && !chooseWeightedPiece(grid, Ray{o, d, 0.0f, sMax}, 0.0f, sMax, sigmaT, u,
+                                        [](float t0, float t1) { return double(t1) - t0; }, &piece))
         return false;
+    if (usable && !found) return false;
     const double at = piece.chosen ? double(piece.t0) + (piece.target - piece.before) / piece.w : double(piece.t1);
     *t = std::clamp(float(at), piece.t0, piece.t1);
     *pieceWeight = piece.w;
@@ -372,8 +422,85 @@ bool sampleWeightedDistance(const DensityGrid& grid, const Vec3& o, const Vec3& 
 
 }  // namespace
 
+Rgb EquiangularScattering::estimate(MediumId medium, const Vec3& o, const Vec3& d, float sMax, Rng& rng) const {
+    if (m_lights.empty() || medium == kVacuum || !(sMax > 0)) return Rgb(0.0f);
+    const Scene& scene = m_rt.scene();
+    const Medium& med = scene.media[medium];
+    if (med.sigmaS.isBlack()) return Rgb(0.0f);
+    const size_t sources = m_lights.size();
+    const bool sealed = m_sealed[size_t(medium)];
+    if (sealed && sources == 1 && parallel(0)) return Rgb(0.0f);
+    const int n = m_whole + (m_fraction > 0 && rng.uniform() < m_fraction ? 1 : 0);
+    return estimate(medium, o, d, sMax, n, rng);
+}
+
+int EquiangularScattering::samplesInPass(uint64_t pass, double phase) const {
+    if (!(m_fraction > 0)) return m_whole;
+    // In double: exact enough for any pass count a render reaches (2^40 passes x a 1/64 step).
+    const double f = double(m_fraction);
+    const double k = double(pass);
+    return m_whole + int(std::floor((k + 1) * f + phase) - std::floor(k * f + phase));
+}
+
+double EquiangularScattering::pixelPhase(uint64_t seed, uint64_t pixel) {
+    // Keyed by a pass index no render reaches, so it is the pixel's for every pass.
+    Rng rng = Rng::forKey(seed, ~uint64_t(0), pixel, StreamPurpose::Equiangular);
+    return double(rng.uniform());
+}
+
+Rgb EquiangularScattering::estimate(MediumId medium, const Vec3& o, const Vec3& d, float sMax, int n,
+                                    Rng& rng) const {
+    if (m_lights.empty() || medium == kVacuum || !(sMax > 0)) return Rgb(0.0f);
+    const Scene& scene = m_rt.scene();
+    const Medium& med = scene.media[medium];
+    if (med.sigmaS.isBlack()) return Rgb(0.0f);
+    const size_t sources = m_lights.size();
+    const bool sealed = m_sealed[size_t(medium)];
+    if (sealed && sources == 1 && parallel(0)) return Rgb(0.0f);
+    if (n <= 0) return Rgb(0.0f);
+    // Parallel sources trace one in kParallelThinning of their samples, weighted up: the samples k
+    // with k mod kParallelThinning equal to a random offset (drawn only where there is one).
+    const int offset =
+        m_anyParallel ? std::min(int(rng.uniform() * float(kParallelThinning)), kParallelThinning - 1) : 0;
+    double cdf[kWeighedUpTo];
+    const double* c = m_cdf.data();
+    if (sources > 1 && sources <= kWeighedUpTo) {
+        if (!segmentCdf(med, sealed, o, d, sMax, cdf)) return Rgb(0.0f);
+        c = cdf;
+    }
+    // n stratified uniforms (k + xi) / n, each choosing a source and, rescaled inside the source's
+    // interval of the cdf, its distance; the sum over N (n's mean).
+    // In a grid the segment's majorant pieces are walked once for all n (SegmentPieces; the
+    // thread's own, as it is large, 8 KiB).
+    thread_local SegmentPieces kept;
+    SegmentPieces* pieces = nullptr;
+    if (!med.homogeneous()) {
+        kept.reset(*med.density, o, d, sMax, med.sigmaT().r);
+        pieces = &kept;
+    }
+    Rgb sum;
+    for (int k = 0; k < n; ++k) {
+        const float u = (float(k) + rng.uniform()) / float(n);
+        size_t i = sources == 1 ? 0 : size_t(std::upper_bound(c, c + sources, double(u)) - c);
+        i = std::min(i, sources - 1);
+        const double lo = i > 0 ? c[i - 1] : 0.0, p = c[i] - lo;
+        if (!(p > 0)) continue;
+        double weight = 1.0 / p;
+        if (parallel(i)) {
+            if (sealed || k % kParallelThinning != offset) continue;
+            weight *= kParallelThinning;
+        }
+        const float uDistance = std::min(float((double(u) - lo) / p), 1.0f - 0x1p-24f);
+        sum += fromSource(m_lights[i], med, medium, o, d, sMax, std::max(uDistance, 0.0f), pieces, rng) *
+               float(weight);
+    }
+    return sum / float(m_samples);
+}
+
+
 Rgb EquiangularScattering::fromDirection(const Vec3& travel, const Rgb& incident, const Medium& med, MediumId medium,
-                                         const Vec3& o, const Vec3& d, float sMax, float u, Rng& rng) const {
+                                         const Vec3& o, const Vec3& d, float sMax, float u, SegmentPieces* pieces,
+                                         Rng& rng) const {
     // The distance and sigma_s(x) / pdf: transmittance-proportional in a homogeneous medium; in a
     // grid, by WeightedPieces' weight, and the density at x over that weight.
     float t = 0;
@@ -385,7 +512,7 @@ Rgb EquiangularScattering::fromDirection(const Vec3& travel, const Rgb& incident
         scattering = med.sigmaS * float(inversePdf);
     } else {
         double pieceWeight = 0, total = 0;
-        if (!sampleWeightedDistance(*med.density, o, d, sMax, med.sigmaT().r, u, &t, &pieceWeight, &total))
+        if (!sampleWeightedDistance(*med.density, o, d, sMax, med.sigmaT().r, u, pieces, &t, &pieceWeight, &total))
             return Rgb(0.0f);
         const float density = med.density->density(o + d * t);
         if (!(density > 0)) return Rgb(0.0f);
@@ -407,13 +534,13 @@ Rgb EquiangularScattering::fromDirection(const Vec3& travel, const Rgb& incident
 }
 
 Rgb EquiangularScattering::fromSource(int source, const Medium& med, MediumId medium, const Vec3& o, const Vec3& d,
-                                      float sMax, float u, Rng& rng) const {
+                                      float sMax, float u, SegmentPieces* pieces, Rng& rng) const {
     if (source == kEnvironment) {
         // A direction by the environment's importance sampling (its luminance), then the distance.
         const float u1 = rng.uniform(), u2 = rng.uniform();
         const EnvironmentSample es = m_rt.scene().environment->sample(u1, u2);
         if (!(es.pdf > 0) || es.radiance.isBlack()) return Rgb(0.0f);
-        return fromDirection(-es.wi, es.radiance * (1.0f / es.pdf), med, medium, o, d, sMax, u, rng);
+        return fromDirection(-es.wi, es.radiance * (1.0f / es.pdf), med, medium, o, d, sMax, u, pieces, rng);
     }
     float a = 0, b = sMax;
     DirectLightSample target;  // the light point and what the shadow ray needs of it
@@ -439,7 +566,7 @@ Rgb EquiangularScattering::fromSource(int source, const Medium& med, MediumId me
     } else {
         const Light& light = m_rt.scene().lights[size_t(source)];
         if (light.type == LightType::Directional)
-            return fromDirection(light.direction, light.intensity, med, medium, o, d, sMax, u, rng);
+            return fromDirection(light.direction, light.intensity, med, medium, o, d, sMax, u, pieces, rng);
         if (light.type == LightType::Spot &&
             !clipToCone(o, d, light.position, light.direction, light.cosOuterAngle, &a, &b))
             return Rgb(0.0f);
@@ -461,7 +588,8 @@ Rgb EquiangularScattering::fromSource(int source, const Medium& med, MediumId me
         scattering = med.sigmaS * s.inverseSquareOverPdf;
     } else {
         double pieceWeight = 0, weighted = 0;
-        if (!sampleWeightedEquiangular(*med.density, o, d, a, b, p, med.sigmaT().r, u, &t, &pieceWeight, &weighted))
+        if (!sampleWeightedEquiangular(*med.density, o, d, a, b, p, med.sigmaT().r, u, pieces, &t, &pieceWeight,
+                                       &weighted))
             return Rgb(0.0f);
         const float density = med.density->density(o + d * t);
         if (!(density > 0)) return Rgb(0.0f);

@@ -62,6 +62,8 @@
 
 namespace tyndall {
 
+class SegmentPieces;  // a grid segment's majorant pieces, kept for its samples (equiangular.cpp)
+
 class EquiangularScattering {
 public:
     /// Keeps a reference to `rt` (it must outlive this); reads the scene's lights now. `samples`:
@@ -132,12 +134,12 @@ private:
     /// radiance over the direction's pdf), its distance drawn from `u` in proportion to the
     /// camera's transmittance.
     Rgb fromDirection(const Vec3& travel, const Rgb& incident, const Medium& med, MediumId medium, const Vec3& o,
-                      const Vec3& d, float sMax, float u, Rng& rng) const;
+                      const Vec3& d, float sMax, float u, SegmentPieces* pieces, Rng& rng) const;
     /// One sample of the source `source` (an index into Scene::lights, kAreaLights or
     /// kEnvironment), its
     /// distance drawn from the uniform `u`.
     Rgb fromSource(int source, const Medium& med, MediumId medium, const Vec3& o, const Vec3& d, float sMax, float u,
-                   Rng& rng) const;
+                   SegmentPieces* pieces, Rng& rng) const;
 
     static constexpr int kAreaLights = -1;   ///< all emissive triangles together, as one source
     static constexpr int kEnvironment = -2;  ///< the environment light

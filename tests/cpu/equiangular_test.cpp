@@ -394,6 +394,24 @@ TEST(Equiangular, PointAndSpotLightAboveAFogLayerAgainstQuadrature) {
     }
 }
 
+TEST(Equiangular, TwoPointLightsAboveAFogLayerShareTheSegmentsPiecesAgainstQuadrature) {
+    // A segment's majorant pieces are walked once for all of its samples, their angles once per
+    // light point (SegmentPieces): two lights at different places must each get their own angles
+    // (reusing the first light's for the second draws its distances from the wrong pdf).
+    const Light near = pointLight({0.3f, 1.6f, -0.2f}, 3.0f), far = pointLight({2.5f, 1.2f, 0.4f}, 2.0f);
+    const Vec3 o{-2.0f, 0.15f, 0.1f}, d = normalize(Vec3(1.0f, 0.35f, -0.05f));
+    const float sMax = 4.0f;
+    Scene s = openFog({near, far}, 0.5f);
+    s.media[0].density = std::make_shared<FogLayer>(12);
+    s.finalize();
+    const double expected = layerQuadrature(near, o, d, sMax, 0.5f) + layerQuadrature(far, o, d, sMax, 0.5f);
+    const Estimate e = estimateMany(s, o, d, sMax, 6000);
+    std::printf("two point lights, 12 majorant cells: quadrature %.6f, equiangular %.6f +- %.6f\n", expected, e.mean,
+                e.standardError);
+    EXPECT_LT(e.standardError, 0.02 * expected) << "too noisy to test";
+    EXPECT_NEAR(e.mean, expected, 4 * e.standardError);
+}
+
 // ---- 3. PPB with equiangular single scattering against the path tracer ----
 
 /// The fixtures' fog box (albedo-0.5 walls, sigma_s 0.5, sigma_a 0.1, g 0.4) round a point light
