@@ -161,6 +161,7 @@ const std::pair<const char*, const char*> kOptionKeys[] = {
     {"--equiangular", "equiangular"},
     {"--equiangular-samples", "equiangular_samples"},
     {"--photon-planes", "photon_planes"},
+    {"--scattered-beam-mfp", "scattered_beam_mfp"},
     {"--max-path-length", "max_path_length"},
     {"--region", "region"}};
 
@@ -226,6 +227,12 @@ void addDirectLightOption(CLI::App* cmd, CommonOptions& o) {
     addOnOffOption(cmd, "--photon-planes", o.settings.photonPlanes,
                    "on|off: photon planes in homogeneous media (a beam swept along its next direction, "
                    "no kernel) instead of the beams after a scattering there; off = beams only (docs/algorithm.md)");
+    cmd->add_option("--scattered-beam-mfp", o.settings.scatteredBeamMfp,
+                    "C: beams that start at a scattering in a medium end the plan with a radius of at least C of "
+                    "its mean free paths there (at most 8 automatic radii), shrinking like every beam; 0 = the "
+                    "automatic radius for every beam (docs/algorithm.md)")
+        ->check(CLI::Range(0.0, RenderSettings::kMaxScatteredBeamMfp).description(""))
+        ->capture_default_str();
 }
 
 void addPathLengthOption(CLI::App* cmd, CommonOptions& o) {

@@ -79,7 +79,8 @@ struct Variant {
 /// The rows of one scene: equal work compares radius choices at `passes`; equal time the legacy
 /// defaults with today's (and, given `passes`, the radii planned for it).
 std::vector<Variant> variantsFor(const Scene& scene, const RenderSettings& base, uint64_t passes, bool equalTime,
-                                 bool legacy, const std::vector<double>& equiangularSamples) {
+                                 bool legacy, const std::vector<double>& equiangularSamples,
+                                 const std::vector<double>& scatteredBeamMfp) {
     std::vector<Variant> variants;
     if (legacy) variants.push_back({"LEGACY", withLegacyDefaults(base, scene)});
     RenderSettings open = base;
@@ -101,6 +102,13 @@ std::vector<Variant> variantsFor(const Scene& scene, const RenderSettings& base,
             else
                 std::snprintf(label, sizeof label, "EQUIANGULAR %g", n);
             variants.push_back({label, counted});
+        }
+        for (double c : scatteredBeamMfp) {
+            RenderSettings widened = open;
+            widened.scatteredBeamMfp = c;
+            char label[64];
+            std::snprintf(label, sizeof label, "SCATTERED BEAMS %g MFP", c);
+            variants.push_back({label, widened});
         }
         if (passes > 0) {
             RenderSettings planned = base;
@@ -255,7 +263,7 @@ void runQualityStudy(const RenderSettings& settings, const QualityStudyOptions& 
         if (o.pilotOnly) continue;
         Reference ref = loadOrRenderReference(scene, scene.name, base, o.referenceDir, o.referenceSpp);
         std::vector<Curve> curves;
-        for (const Variant& v : variantsFor(scene, base, passes, equalTime, o.legacy, o.equiangularSamples))
+        for (const Variant& v : variantsFor(scene, base, passes, equalTime, o.legacy, o.equiangularSamples, o.scatteredBeamMfp))
             curves.push_back(studyRow(scene, v, ref, passes, o));
         panels.push_back({scene.name, std::move(curves)});
     }

@@ -54,6 +54,9 @@ struct QualityStudyOptions {
     /// equiangular samples per segment (RenderSettings::equiangularSamples; 0 = auto), to compare
     /// counts in one run.
     std::vector<double> equiangularSamples;
+    /// Equal time: one more row per entry, today's defaults with this many mean free paths for the
+    /// beams after a scattering (RenderSettings::scatteredBeamMfp; 0 = every beam the schedule's).
+    std::vector<double> scatteredBeamMfp;
     /// Only print each scene's equiangular pilot (bench/equiangular_pilot.h): no references, no rows.
     bool pilotOnly = false;
 };

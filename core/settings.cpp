@@ -60,6 +60,9 @@ void RenderSettings::validate() const {
     if (equiangularSamples != kAutoEquiangularSamples &&
         !(equiangularSamples > 0 && equiangularSamples <= kMaxEquiangularSamples))
         fail("equiangular_samples", "must be a number in (0, 64] or auto (got " + std::to_string(equiangularSamples) + ")");
+    if (!(scatteredBeamMfp >= 0 && scatteredBeamMfp <= kMaxScatteredBeamMfp))
+        fail("scattered_beam_mfp", "must be a number of mean free paths in [0, 10] (0 = off; got " +
+                                       std::to_string(scatteredBeamMfp) + ")");
     if (memoryMiB < 64 || memoryMiB > (uint64_t(1) << 30))
         fail("memory", "must be in 64..2^30 MiB (got " + std::to_string(memoryMiB) + ")");
 }
@@ -91,6 +94,7 @@ nlohmann::json RenderSettings::toJson() const {
             {"equiangular_samples", equiangularSamples == kAutoEquiangularSamples ? nlohmann::json("auto")
                                                                                    : nlohmann::json(equiangularSamples)},
             {"photon_planes", onOffText(photonPlanes)},
+            {"scattered_beam_mfp", scatteredBeamMfp},
             {"transparent", onOffText(transparentFilm)}};
     if (!region.whole()) j["region"] = {region.x, region.y, region.width, region.height};
     return j;
@@ -172,7 +176,7 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
                                   "surface_radius", "radius_offset", "planned_paths", "photon_angle", "seed", "threads",
                                   "max_photon_bounces", "max_camera_bounces", "free_flights", "gpu", "memory", "simd",
                                   "direct_light", "surface_boundary", "max_path_length", "region", "equiangular",
-                                  "equiangular_samples", "photon_planes", "transparent"};
+                                  "equiangular_samples", "photon_planes", "scattered_beam_mfp", "transparent"};
     for (auto it = j.begin(); it != j.end(); ++it) {
         bool known = false;
         for (const char* k : kKeys) known |= it.key() == k;
@@ -204,6 +208,7 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
     read(j, "equiangular", s.equiangular, where);
     readOrAuto(j, "equiangular_samples", s.equiangularSamples, kAutoEquiangularSamples, "a number in (0, 64]", where);
     read(j, "photon_planes", s.photonPlanes, where);
+    read(j, "scattered_beam_mfp", s.scatteredBeamMfp, where);
     read(j, "transparent", s.transparentFilm, where);
     return s;
 }

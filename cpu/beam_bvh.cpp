@@ -97,14 +97,15 @@ int BeamBvh::piecesFor(uint64_t queries, size_t beams) {
 }
 
 BeamBvh::BeamBvh(const EmbreeDevice& device, const std::vector<PhotonBeam>& beams, Kind kind, float pieceLength,
-                 int maxPieces)
+                 int maxPieces, float usualRadius)
     : m_beams(beams), m_kind(kind) {
     // Splitting beyond kMaxPieces gains little on queries but makes the per-pass build dominate
     // once the radius (and so the default piece length) has shrunk by orders of magnitude.
     const float cap = float(std::clamp(maxPieces, 1, kMaxPieces));
     for (const PhotonBeam& b : beams) m_maxRadius = std::max(m_maxRadius, b.radius);
-    if (kind == Kind::FlatCurves) m_reach = kReach * m_maxRadius;
-    if (pieceLength <= 0) pieceLength = 16.0f * m_maxRadius;
+    const float usual = usualRadius > 0 ? std::min(usualRadius, m_maxRadius) : m_maxRadius;
+    if (kind == Kind::FlatCurves) m_reach = kReach * usual;
+    if (pieceLength <= 0) pieceLength = 16.0f * usual;
     for (uint32_t i = 0; i < beams.size(); ++i) {
         const PhotonBeam& b = beams[i];
         uint32_t n = std::isfinite(pieceLength) && pieceLength > 0

@@ -63,8 +63,11 @@ public:
 
     /// Keeps a reference to `beams`: they must outlive the BVH. `pieceLength` <= 0 picks 16x the
     /// largest beam radius; `maxPieces` (clamped to 1..kMaxPieces) caps the pieces of one beam.
+    /// `usualRadius` > 0 stands for the largest beam radius in the reach and the default piece
+    /// length, where a few beams are much wider than the rest (RenderSettings::scatteredBeamMfp):
+    /// the cache's margin and the pieces then follow the usual beams, never what a query finds.
     BeamBvh(const EmbreeDevice& device, const std::vector<PhotonBeam>& beams, Kind kind = Kind::FlatCurves,
-            float pieceLength = 0.0f, int maxPieces = kMaxPieces);
+            float pieceLength = 0.0f, int maxPieces = kMaxPieces, float usualRadius = 0.0f);
 
     static constexpr int kMaxPieces = 8;
     /// The piece cap for a pass expected to make `queries` queries (its secondary segments: about
@@ -87,7 +90,7 @@ public:
     /// segment, else tracing one and caching it (flat curves only; user geometry ignores `cache`).
     void query(const Vec3& o, const Vec3& d, float sMax, std::vector<BeamHitRecord>& hits,
                BeamQueryCache& cache) const;
-    /// The margin the flat curves are widened by (twice the largest beam radius).
+    /// The margin the flat curves are widened by (twice the largest beam radius, or the usual one).
     float reach() const { return m_reach; }
 
     Kind kind() const { return m_kind; }

@@ -90,7 +90,10 @@ Image PassRenderer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                           static const std::vector<PhotonBeam> kNoBeams;
                           const std::vector<PhotonBeam>& beams = m_anyNonDiffuse ? photons.beams : kNoBeams;
                           const int pieces = beams.empty() ? 1 : BeamBvh::piecesFor(primary.nonDiffuseHits, beams.size());
-                          BeamBvh bvh(*m_rt->device(), beams, m_bvhKind, 0.0f, pieces);
+                          // Wider beams after a scattering: the cache and pieces follow the others.
+                          const float usual =
+                              m_radii.scatteredPerMfp > 0 ? m_radii.beamRadiusOf(photons.firstPath) : 0.0f;
+                          BeamBvh bvh(*m_rt->device(), beams, m_bvhKind, 0.0f, pieces, usual);
                           SurfacePhotonGrid grid(photons.surfacePhotons);
                           Image radiance = m_camera->traceSecondary(primary, photons, bvh, grid, stats, layers, emission,
                                                                    emission ? alpha : nullptr);

@@ -28,6 +28,11 @@ RadiusSetup RadiusSetup::resolve(const RenderSettings& settings, const Scene& sc
     r.schedule = RadiusSchedule(settings.alpha, offset);
     // An automatic angle left unresolved is off (the scene-relative defaults had no cone).
     if (settings.photonAngle > 0) r.coneReach = double(r.beamRadius) / double(settings.photonAngle);
+    if (settings.scatteredBeamMfp > 0) {
+        // The plan's end radius (where the automatic radii sit at kBeamEndFootprints footprints).
+        const double end = double(r.beamRadius) * r.schedule.beamFactor(plannedPhotonPaths(settings));
+        if (end > 0) r.scatteredPerMfp = settings.scatteredBeamMfp / end;
+    }
     return r;
 }
 
@@ -180,6 +185,9 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
     Rng planeRng = m_settings.photonPlanes ? Rng::forKey(m_settings.seed, pass, pathInPass, StreamPurpose::PhotonPlane)
                                            : Rng();
     bool coveredByPlane = false;
+    // The radius factor of the next beam: > 1 only for a beam that starts at a scattering in a
+    // medium (RadiusSetup::scatteredScale), reset where a beam leaves a surface.
+    float scatteredScale = 1.0f;
     for (int bounce = 0; bounce < m_settings.maxPhotonBounces; ++bounce) {
         if (m_maxSegments >= 0 && segment > m_maxSegments) return;
         const bool covered = coveredByPlane;
@@ -217,7 +225,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
                 beam.origin = seg.o;
                 beam.tMax = seg.tMax;
                 beam.dir = seg.d;
-                beam.radius = beamRadius;
+                beam.radius = beamRadius * scatteredScale;
                 beam.power = power;
                 beam.medium = medium;
                 if (const int n = out.freeFlightsPerBeam; n > 0) {
@@ -248,6 +256,10 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
                 if (!(rng.uniform() < q)) return;
                 power *= 1.0f / q;
                 Vec3 x = seg.at(ff.t);
+                if (m_radii.scatteredPerMfp > 0) {
+                    const float st = med.sigmaT().maxComponent() * (med.homogeneous() ? 1.0f : med.density->density(x));
+                    scatteredScale = m_radii.scatteredScale(st);
+                }
                 d = sampleHg(d, med.g, rng.uniform(), rng.uniform());
                 travelled += double(t0) + double(ff.t);
                 o = x;
@@ -320,7 +332,10 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
         if (diffuse) away = bsdf.side().nf;
         o = m_rt.offsetOrigin(p, tHit, away, s.wi);
         d = s.wi;
-        if (!bsdf.isPassThrough()) ++segment;
+        if (!bsdf.isPassThrough()) {
+            ++segment;
+            scatteredScale = 1.0f;
+        }
     }
 }
 

@@ -12,6 +12,7 @@
 //
 // Deterministic: path k of pass i draws from Rng::forKey(seed, i, k, PhotonPath) and the output
 // is in path order, whatever the thread count.
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -32,6 +33,19 @@ struct RadiusSetup {
     /// Photon cone (cpu/beam_cone.h): path distance from the light where a beam reaches its full
     /// radius, beamRadius / photonAngle; 0 = no cone.
     double coneReach = 0;
+    /// RenderSettings::scatteredBeamMfp over the beam radius at the plan's end (1 / scene units):
+    /// a beam that starts at a scattering where the largest channel of sigma_t is s gets
+    /// scatteredScale(s) times the schedule's radius; 0 = off.
+    double scatteredPerMfp = 0;
+
+    /// The factor on the schedule's radius for a beam that starts at a scattering where the
+    /// extinction's largest channel is `sigmaT`: max(1, C mfp / end radius), at most
+    /// RenderSettings::kMaxScatteredBeamScale; 1 when off.
+    float scatteredScale(float sigmaT) const {
+        if (!(scatteredPerMfp > 0)) return 1.0f;
+        const double s = sigmaT > 0 ? scatteredPerMfp / double(sigmaT) : RenderSettings::kMaxScatteredBeamScale;
+        return float(std::clamp(s, 1.0, RenderSettings::kMaxScatteredBeamScale));
+    }
 
     static RadiusSetup resolve(const RenderSettings& settings, const Scene& scene);
     float beamRadiusOf(uint64_t path) const { return float(beamRadius * schedule.beamFactor(path)); }
