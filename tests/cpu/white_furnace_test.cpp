@@ -229,6 +229,7 @@ struct Case {
     Texturing textures = Texturing::None;
     /// Closed form in vacuum: 1 (lossless), the rough conductor's albedo or the rough glass sphere.
     enum class Expect { One, RoughMetal, RoughGlass } expect = Expect::One;
+    float ior = 1.5f;  ///< a dielectric's
 };
 
 std::string caseName(const ::testing::TestParamInfo<Case>& info) { return info.param.name; }
@@ -288,6 +289,7 @@ Scene furnaceScene(const Case& c, Fog fog, float density = 1.0f) {
     m.roughness = c.roughness;
     m.metallic = c.metallic;
     m.transmission = c.transmission;
+    m.ior = c.ior;
     if (c.textures != Texturing::None) {
         // One-texel textures of white and of roughness 1 (glTF's G channel): the factors above stay
         // the result, through the textured route.
@@ -386,11 +388,12 @@ struct Render {
     }
 };
 
-Render referenceRender(const Scene& scene, uint32_t spp, uint64_t seed) {
+Render referenceRender(const Scene& scene, uint32_t spp, uint64_t seed, int maxDepth = ReferenceSettings{}.maxDepth) {
     ReferenceSettings rs;
     rs.width = rs.height = kSize;
     rs.samplesPerPixel = spp;
     rs.seed = seed;
+    rs.maxDepth = maxDepth;
     EmbreeScene rt(scene);
     ReferenceImage img = ReferenceTracer(rt, rs).render();
     Render r{std::vector<double>(kSize * kSize), std::vector<double>(kSize * kSize), {}};
@@ -403,13 +406,15 @@ Render referenceRender(const Scene& scene, uint32_t spp, uint64_t seed) {
     return r;
 }
 
-Render ppbRender(const Scene& scene, int passes, uint32_t photons, uint64_t seed) {
+Render ppbRender(const Scene& scene, int passes, uint32_t photons, uint64_t seed,
+                 int maxPhotonBounces = RenderSettings{}.maxPhotonBounces) {
     RenderSettings ps;
     ps.width = ps.height = kSize;
     ps.photonsPerPass = photons;
     ps.seed = seed;
     ps.passes = uint64_t(passes);
     ps.maxCameraBounces = 64;  // paths caught inside rough glass by total internal reflection
+    ps.maxPhotonBounces = maxPhotonBounces;
     PassRenderer renderer(scene, ps);
     Render r{std::vector<double>(kSize * kSize), {}, {}};
     for (int p = 0; p < passes; ++p) {
@@ -562,6 +567,16 @@ TEST_P(RoughWhiteFurnaceInFog, PpbAgreesWithThePathTracer) {
 // has no closed form with fog inside (its loss darkens the fog): PPB is held to the path tracer,
 // the pixels that see the sphere on their own (the camera paths through the rough hull; PPB's
 // kernels blur the fog's light near the hull: the fog slacks).
+// Dense glass (ior 2) holds the light longest: a photon scattered into a direction past the
+// critical angle circles the sphere by total internal reflection until the fog scatters it out
+// of that orbit, every reflection a vertex of its path, and the fog does not absorb, so no
+// roulette ends it: RenderSettings::maxPhotonBounces (32) cuts it. Measured over 128 passes of
+// 6000 paths with constant radii: 0.9525 +- 0.0022 at ior 2 and 0.9860 +- 0.0019 at ior 1.5 with
+// the default 32, whatever the radius (0.005 to 0.08), equiangular sampling or direct light;
+// at ior 2 0.9873 +- 0.0031 with 64, 0.9998 +- 0.0037 with 128, 1.0041 +- 0.0049 with 256
+// (docs/performance.md "Photon paths cut inside glass"). So the dense case renders with 128, and
+// reads 0.9549 +- 0.0038 and fails with the default 32; the path tracer's own cut
+// (ReferenceSettings::maxDepth, 64) loses -1.7% +- 0.3% there, so it renders deeper.
 // Measured: the smooth sphere's mean 0.9986 +- 0.0023 (path tracer) and 0.9902 +- 0.0037 (PPB);
 // the rough one's PPB - path tracer -0.0069 +- 0.0043. Planted bugs: the smooth refraction's eta^2
 // applied to photons as well (Bsdf::sampleDelta in both modes) reads 0.771 and fails; the rough
@@ -575,10 +590,11 @@ TEST_P(WhiteFurnaceFogInGlass, ReadsOneEverywhere) {
     const Case& c = GetParam();
     Scene s = furnaceScene(c, Fog::InsideSphere);
     Expected e = expectedImage(s, nullptr);
-    expectAgrees((std::string(c.name) + ", path tracer, fog inside").c_str(), referenceRender(s, 64, 20),
+    expectAgrees((std::string(c.name) + ", path tracer, fog inside").c_str(), referenceRender(s, 64, 20, 1024),
                  closedForm(e), e.sphereOnly, kVacuumBlockSlack, kVacuumMeanSlack, 0.006);
-    expectAgrees((std::string(c.name) + ", PPB, fog inside").c_str(), ppbRender(s, 32, 6000, 21), closedForm(e),
-                 e.sphereOnly, kFogBlockSlack, kFogMeanSlack, 0.015);
+    const int bounces = c.ior > 1.5f ? 128 : RenderSettings{}.maxPhotonBounces;
+    expectAgrees((std::string(c.name) + ", PPB, fog inside").c_str(), ppbRender(s, 32, 6000, 21, bounces),
+                 closedForm(e), e.sphereOnly, kFogBlockSlack, kFogMeanSlack, 0.015);
 }
 
 TEST_P(RoughWhiteFurnaceFogInGlass, PpbAgreesWithThePathTracer) {
@@ -591,7 +607,9 @@ TEST_P(RoughWhiteFurnaceFogInGlass, PpbAgreesWithThePathTracer) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Lossless, WhiteFurnace, ::testing::ValuesIn(kLossless), caseName);
-const Case kSmoothGlass[] = {{"SmoothGlass", MaterialType::Dielectric}};
+const Case kSmoothGlass[] = {
+    {"SmoothGlass", MaterialType::Dielectric},
+    {"SmoothDenseGlass", MaterialType::Dielectric, 0, 0, 1, Texturing::None, Case::Expect::One, 2.0f}};
 INSTANTIATE_TEST_SUITE_P(Glass, WhiteFurnaceFogInGlass, ::testing::ValuesIn(kSmoothGlass), caseName);
 const Case kRoughGlass[] = {
     {"RoughGlass", MaterialType::Dielectric, 0.3f, 0, 1, Texturing::None, Case::Expect::RoughGlass}};
