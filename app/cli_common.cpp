@@ -160,6 +160,7 @@ const std::pair<const char*, const char*> kOptionKeys[] = {
     {"--surface-boundary", "surface_boundary"},
     {"--equiangular", "equiangular"},
     {"--equiangular-samples", "equiangular_samples"},
+    {"--film-light-sampling", "film_light_sampling"},
     {"--photon-planes", "photon_planes"},
     {"--scattered-beam-mfp", "scattered_beam_mfp"},
     {"--max-path-length", "max_path_length"},
@@ -224,6 +225,10 @@ void addDirectLightOption(CLI::App* cmd, CommonOptions& o) {
            "falling as sqrt(pixels / photon paths), at least 1/4 (docs/algorithm.md)")
         ->type_name("TEXT")
         ->default_str("auto");
+    addOnOffOption(cmd, "--film-light-sampling", o.settings.filmLightSampling,
+                   "on|off: with --equiangular on, pixels near the image of a point or spot light in a medium draw "
+                   "their camera rays partly towards it, weighted (finite variance for the light's glow); off = "
+                   "uniform film positions (docs/algorithm.md)");
     addOnOffOption(cmd, "--photon-planes", o.settings.photonPlanes,
                    "on|off: photon planes in homogeneous media (a beam swept along its next direction, "
                    "no kernel) instead of the beams after a scattering there; off = beams only (docs/algorithm.md)");

@@ -92,6 +92,10 @@ std::vector<Variant> variantsFor(const Scene& scene, const RenderSettings& base,
         RenderSettings switched = open;
         switched.equiangular = !open.equiangular;
         variants.push_back({switched.equiangular ? "EQUIANGULAR ON" : "EQUIANGULAR OFF", switched});
+        // --film-light-sampling switched, where it acts (with the equiangular estimator).
+        RenderSettings film = open.equiangular ? open : switched;
+        film.filmLightSampling = !film.filmLightSampling;
+        variants.push_back({film.filmLightSampling ? "FILM LIGHT ON" : "FILM LIGHT OFF", film});
         for (double n : equiangularSamples) {
             RenderSettings counted = open;
             counted.equiangular = true;
@@ -178,11 +182,11 @@ Curve studyRow(const Scene& scene, const Variant& v, const Reference& ref, uint6
     PixelFootprint fp = measurePixelFootprint(renderer.rayTracer(), scene.camera, r.width, r.height);
     double rEnd = renderer.radii().beamRadiusOf(runs.back().passesDone * r.photonsPerPass);
     std::printf("  %-16s %-18s %7.0f %8.1f %8.2f%% %8.2f%% %+8.2f%% %8.2f   (radius %.4g, surface %.4g, offset %llu, "
-                "photon angle %.3g, direct light %s, boundary %s, equiangular %s, %.4g samples)\n",
+                "photon angle %.3g, direct light %s, boundary %s, equiangular %s, %.4g samples, film light %s)\n",
                 scene.name.c_str(), v.label.c_str(), passesDone, cpu, 100 * e.relRmse, 100 * e.relRmse99,
                 100 * e.relBias, rEnd / fp.beam(1.0), r.radius, r.surfaceRadius, (unsigned long long)r.radiusOffset,
                 r.photonAngle, onOffText(r.directLight), onOffText(r.surfaceBoundary), onOffText(r.equiangular),
-                r.equiangularSamples);
+                r.equiangularSamples, onOffText(r.filmLightSampling));
     std::fflush(stdout);
     return curve;
 }

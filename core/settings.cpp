@@ -93,6 +93,7 @@ nlohmann::json RenderSettings::toJson() const {
             {"equiangular", onOffText(equiangular)},
             {"equiangular_samples", equiangularSamples == kAutoEquiangularSamples ? nlohmann::json("auto")
                                                                                    : nlohmann::json(equiangularSamples)},
+            {"film_light_sampling", onOffText(filmLightSampling)},
             {"photon_planes", onOffText(photonPlanes)},
             {"scattered_beam_mfp", scatteredBeamMfp},
             {"transparent", onOffText(transparentFilm)}};
@@ -176,7 +177,7 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
                                   "surface_radius", "radius_offset", "planned_paths", "photon_angle", "seed", "threads",
                                   "max_photon_bounces", "max_camera_bounces", "free_flights", "gpu", "memory", "simd",
                                   "direct_light", "surface_boundary", "max_path_length", "region", "equiangular",
-                                  "equiangular_samples", "photon_planes", "scattered_beam_mfp", "transparent"};
+                                  "equiangular_samples", "film_light_sampling", "photon_planes", "scattered_beam_mfp", "transparent"};
     for (auto it = j.begin(); it != j.end(); ++it) {
         bool known = false;
         for (const char* k : kKeys) known |= it.key() == k;
@@ -207,6 +208,7 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
     read(j, "surface_boundary", s.surfaceBoundary, where);
     read(j, "equiangular", s.equiangular, where);
     readOrAuto(j, "equiangular_samples", s.equiangularSamples, kAutoEquiangularSamples, "a number in (0, 64]", where);
+    read(j, "film_light_sampling", s.filmLightSampling, where);
     read(j, "photon_planes", s.photonPlanes, where);
     read(j, "scattered_beam_mfp", s.scatteredBeamMfp, where);
     read(j, "transparent", s.transparentFilm, where);

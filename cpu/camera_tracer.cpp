@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "core/beam_estimator.h"
+#include "core/film_light_sampler.h"
 #include "core/pixel_jitter.h"
 #include "core/transmittance.h"
 #include "cpu/direct_light.h"
@@ -75,6 +76,16 @@ void CameraTracer::lightsChanged() {
     if (m_settings.equiangular && !m_scene.media.empty()) {
         m_equiangular = std::make_unique<EquiangularScattering>(m_rt, m_settings.resolvedEquiangularSamples());
         if (!m_equiangular->any()) m_equiangular.reset();
+    }
+    m_filmLights.clear();
+    if (m_equiangular && m_settings.filmLightSampling) {
+        for (const Light& light : m_scene.lights) {
+            if (!(light.type == LightType::Point || light.type == LightType::Spot) || !(light.intensity.average() > 0))
+                continue;
+            const MediumId medium = m_rt.mediumAt(light.position);
+            if (medium == kVacuum || !(m_scene.media[medium].sigmaS.maxComponent() > 0)) continue;
+            m_filmLights.push_back(FilmLight{light.position, double(light.intensity.average())});
+        }
     }
     if (!m_settings.directLight) return;
     m_direct.reset();
@@ -203,6 +214,64 @@ PrimaryPass CameraTracer::tracePrimary(uint64_t pass) const {
     std::vector<PrimaryHit>& hits = *out.hits;
 
     const Camera::RayGenerator generateRay(camera, w, h);
+
+    // --film-light-sampling: the pixels within FilmLightMixture::kReach of a light's image (with a
+    // lens, of any of its images over the aperture), sorted by pixel, each with the light.
+    struct FilmImage {
+        Vec3 position;
+        float depth;  // along the camera's forward axis
+        double share;
+    };
+    std::vector<FilmImage> filmImages;
+    std::vector<std::pair<uint64_t, uint32_t>> filmPixels;
+    for (const FilmLight& light : m_filmLights) {
+        float fx, fy, depth;
+        if (!camera.project(light.position, w, h, &fx, &fy, &depth)) continue;
+        // The images over the lens: the pinhole image moved by up to this many pixels.
+        const double confusion =
+            camera.lensRadius > 0.0f
+                ? double(camera.lensRadius) * std::abs(1.0 - double(camera.focusDistance) / depth) * double(h) /
+                      (2.0 * double(camera.focusDistance) * std::tan(0.5 * double(camera.yFov)))
+                : 0.0;
+        const double reach = confusion + FilmLightMixture::kReach;
+        const double x0 = std::max(0.0, std::floor(fx - reach - 1.0)), x1 = std::min(double(w - 1), std::floor(fx + reach));
+        const double y0 = std::max(0.0, std::floor(fy - reach - 1.0)), y1 = std::min(double(h - 1), std::floor(fy + reach));
+        if (x0 > x1 || y0 > y1 || (x1 - x0 + 1) * (y1 - y0 + 1) > 65536.0) continue;  // off the film, or a blur too wide
+        const uint32_t index = uint32_t(filmImages.size());
+        filmImages.push_back(FilmImage{light.position, depth, light.intensity / depth});
+        for (int y = int(y0); y <= int(y1); ++y)
+            for (int x = int(x0); x <= int(x1); ++x) filmPixels.emplace_back(uint64_t(y) * w + x, index);
+    }
+    std::sort(filmPixels.begin(), filmPixels.end());
+    if (!filmPixels.empty()) primary.weights.assign(size_t(w) * h, 1.0f);
+    // The film position of `pixel` (at x, y) from its jitter `film`, and its weight in `weights`.
+    auto filmPosition = [&](uint64_t pixel, int x, int y, Vec2 film, Vec2 lens) {
+        auto it = std::lower_bound(filmPixels.begin(), filmPixels.end(), std::make_pair(pixel, uint32_t(0)));
+        if (it == filmPixels.end() || it->first != pixel) return film;
+        FilmLightMixture mixture;
+        for (; it != filmPixels.end() && it->first == pixel; ++it) {
+            const FilmImage& image = filmImages[it->second];
+            float fx, fy, depth;
+            if (camera.lensRadius > 0.0f) {
+                // Through this lens point: where the ray from it to the light meets the plane in
+                // focus, projected (the film position whose ray passes through the light).
+                const Vec2 disk = sampleConcentricDisk(lens.x, lens.y);
+                const Vec3 o = camera.position + camera.right * (disk.x * camera.lensRadius) +
+                               camera.up * (disk.y * camera.lensRadius);
+                const Vec3 focus = o + (image.position - o) * (camera.focusDistance / image.depth);
+                if (!camera.project(focus, w, h, &fx, &fy, &depth)) continue;
+            } else if (!camera.project(image.position, w, h, &fx, &fy, &depth)) {
+                continue;
+            }
+            const double px = double(fx) - x, py = double(fy) - y;
+            if (FilmLightMixture::reaches(px, py)) mixture.add(px, py, image.share);
+        }
+        if (mixture.empty()) return film;
+        Rng redraw = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::FilmLight);
+        Vec2 position;
+        primary.weights[pixel] = float(mixture.sample(film, redraw, &position));
+        return position;
+    };
     // The pixel's keyed stream feeds the lens sample and a grid medium's stored distances: a
     // pinhole camera in a scene without grid media draws nothing from it.
     const bool jitterStream = camera.lensRadius > 0.0f || nff > 0;
@@ -232,7 +301,8 @@ PrimaryPass CameraTracer::tracePrimary(uint64_t pass) const {
                         jitters[n] = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::PixelJitter);
                         lens = Vec2{jitters[n].uniform(), jitters[n].uniform()};
                     }
-                    const Vec2 film = pixelJitter(m_settings.seed, pass, pixel);
+                    Vec2 film = pixelJitter(m_settings.seed, pass, pixel);
+                    if (!filmPixels.empty()) film = filmPosition(pixel, x, y, film, lens);
                     rays[n] = generateRay(float(x) + film.x, float(y) + film.y, lens);
                 }
             }
@@ -321,14 +391,16 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
             const PrimaryHit& ph = (*primary.hits)[pixel];
             Rgb throughput = ph.throughput, L, Lmedia, Lsurface, LmediaPrimary;
             float clear = 0;  // the share of this path that reached the background (transparent film)
+            // The path's film weight (--film-light-sampling; 1 for a uniform film position).
+            const float weight = primary.segments.weights.empty() ? 1.0f : primary.segments.weights[pixel];
             auto store = [&]() {
                 if (!keep) return;
-                radiance.at(x, y) = L;
-                if (alpha) alpha->at(x, y) = Rgb(1.0f - clear);
+                radiance.at(x, y) = L * weight;
+                if (alpha) alpha->at(x, y) = Rgb(weight * (1.0f - clear));
                 if (layers) {
-                    layers->media.at(x, y) = Lmedia;
-                    layers->surface.at(x, y) = Lsurface;
-                    layers->mediaPrimary.at(x, y) = LmediaPrimary;
+                    layers->media.at(x, y) = Lmedia * weight;
+                    layers->surface.at(x, y) = Lsurface * weight;
+                    layers->mediaPrimary.at(x, y) = LmediaPrimary * weight;
                 }
             };
             // The primary segment's medium emission (the splatters add its beams) and, with

@@ -170,6 +170,14 @@ private:
     /// --equiangular on (and a point, spot, area or directional light, or an environment): single
     /// scattering along every camera segment in a medium (cpu/equiangular.h); null otherwise.
     std::unique_ptr<EquiangularScattering> m_equiangular;
+    /// --film-light-sampling on (with m_equiangular): the point and spot lights inside a
+    /// scattering medium, whose images draw the film positions of the pixels near them
+    /// (core/film_light_sampler.h), with their intensities' means.
+    struct FilmLight {
+        Vec3 position;
+        double intensity = 0;
+    };
+    std::vector<FilmLight> m_filmLights;
     /// The emission of grid media along every camera segment (cpu/segment_emission.h); null when
     /// no grid medium emits.
     std::unique_ptr<SegmentEmission> m_segmentEmission;

@@ -17,6 +17,7 @@ TEST(Settings, TypedSwitchesRoundTripThroughTheirText) {
     s.directLight = true;
     s.surfaceBoundary = false;
     s.equiangular = true;
+    s.filmLightSampling = false;
     s.photonPlanes = true;
     s.transparentFilm = true;
     nlohmann::json j = s.toJson();
@@ -25,6 +26,7 @@ TEST(Settings, TypedSwitchesRoundTripThroughTheirText) {
     EXPECT_EQ(j.at("direct_light"), "on");
     EXPECT_EQ(j.at("surface_boundary"), "off");
     EXPECT_EQ(j.at("equiangular"), "on");
+    EXPECT_EQ(j.at("film_light_sampling"), "off");
     EXPECT_EQ(j.at("photon_planes"), "on");
     EXPECT_EQ(j.at("transparent"), "on");
     RenderSettings back = RenderSettings::fromJson(j, "test");
@@ -33,6 +35,7 @@ TEST(Settings, TypedSwitchesRoundTripThroughTheirText) {
     EXPECT_TRUE(back.directLight);
     EXPECT_FALSE(back.surfaceBoundary);
     EXPECT_TRUE(back.equiangular);
+    EXPECT_FALSE(back.filmLightSampling);
     EXPECT_TRUE(back.photonPlanes);
     EXPECT_TRUE(back.transparentFilm);
     EXPECT_FALSE(RenderSettings::fromJson(nlohmann::json{{"transparent", false}}, "test").transparentFilm);
