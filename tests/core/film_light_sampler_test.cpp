@@ -97,7 +97,9 @@ TEST(FilmLightSampler, MixtureSamplesFollowItsDensity) {
         // Where the first image draws, the variance of the weighted 1 / distance is bounded
         // (it is infinite for a uniform position; 27 measured here with the image left out of the
         // mixture): measured 0.30 with the image alone, 0.88 sharing the mixture with another.
-        if (images != 1) EXPECT_LT(varF, 2.0);
+        if (images != 1) {
+            EXPECT_LT(varF, 2.0);
+        }
     }
 }
 

@@ -221,7 +221,9 @@ TEST(FilmLight, ThinLensAgreesWithUniformFilmPositions) {
         // against 1.3-2.2% with the mixture).
         EXPECT_LT(std::sqrt(a.var / double(on.means[i].size())), 0.03 * a.mean) << "too noisy to test";
         EXPECT_NEAR(a.mean, b.mean, 4 * se) << pixels[i].first << ", " << pixels[i].second;
-        if (pixels[i] == std::pair{4, 4}) EXPECT_LT(a.var, 0.5 * b.var) << "the lamp's pixel";
+        if (pixels[i] == std::pair{4, 4}) {
+            EXPECT_LT(a.var, 0.5 * b.var) << "the lamp's pixel";
+        }
     }
 }
 
