@@ -21,6 +21,7 @@ enum class StreamPurpose : uint32_t {
     LaterMediumEmission = 11,  ///< the same along its later segments
     LightChoiceRotation = 12,  ///< a pixel's offset of its shadow rays' light-choice sequence (core/pixel_jitter.h)
     FilmLight = 13,  ///< a pixel's film position redrawn towards a light's image (core/film_light_sampler.h)
+    PrimaryTransmittance = 14,  ///< a camera path's transmittance through its primary grid segment (cpu/camera_tracer.cpp)
     Test = 99,
 };
 

@@ -161,12 +161,17 @@ void keep(std::vector<std::vector<T>>& kept, std::vector<T>& v) {
 constexpr float kTransmittanceRoulette = 0.25f;
 
 /// The transmittance a camera path carries through the grid segment `seg`: residual ratio
-/// tracking's estimate T (estimateTransmittance), and below kTransmittanceRoulette Russian
+/// tracking's estimate T (residualTransmittanceAlong), and below kTransmittanceRoulette Russian
 /// roulette: kTransmittanceRoulette with probability T / kTransmittanceRoulette, else 0 (the path
 /// ends). Unbiased; a path through thick smoke ends about as often as when all of the 4 stored
-/// trackers stopped in it (the estimate this replaces), so it costs no more rays.
-Rgb gridSegmentTransmittance(const Medium& med, const Ray& seg, Rng& rng) {
-    const float t = estimateTransmittance(med, seg, seg.tMax, rng).r;
+/// trackers stopped in it (the estimate this replaces), so it costs no more rays. The same tracker
+/// is read at the segment's equiangular samples (`legs`, when there are any): their camera
+/// transmittances, whose sum (their single scattering) goes to *single. Its draws do not depend on
+/// the reads, so the path's stream is the same with and without them.
+Rgb gridSegmentTransmittance(const Medium& med, const Ray& seg, Rng& rng, const EquiangularLegs& legs, Rgb* single) {
+    float reads[EquiangularLegs::kMax];
+    const float t = residualTransmittanceAlong(med, seg, seg.tMax, legs.t, legs.n, reads, rng);
+    *single = legs.sum(reads);
     if (t >= kTransmittanceRoulette) return Rgb(t);
     return Rgb(rng.uniform() * kTransmittanceRoulette < t ? kTransmittanceRoulette : 0.0f);
 }
@@ -314,6 +319,7 @@ PrimaryPass CameraTracer::tracePrimary(uint64_t pass) const {
                 if (nff > 0) std::fill_n(&primary.freeFlights[pixel * nff], nff, kInfinity);  // none stored
                 ph.medium = cameraMedium;
                 ph.throughput = Rgb(1.0f);
+                ph.gridPending = false;
                 ph.emitted = Rgb(0.0f);
                 ph.surface = found[k];
                 if (found[k]) {
@@ -331,7 +337,9 @@ PrimaryPass CameraTracer::tracePrimary(uint64_t pass) const {
                     } else {
                         float* ff = &primary.freeFlights[pixel * nff];
                         sampleCollisionDistances(med, seg, seg.tMax, jitters[k], nff, ff);
-                        ph.throughput = gridSegmentTransmittance(med, seg, jitters[k]);
+                        // ph.throughput: traceSecondary's, from the tracker its equiangular
+                        // samples read (gridSegmentTransmittance).
+                        ph.gridPending = true;
                         if (m_segmentEmission && med.emissive()) {
                             Rng emissionRng = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::MediumEmission);
                             ph.emitted =
@@ -388,7 +396,9 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
             if (x >= region.x + region.width || y >= region.y + region.height) continue;
             const bool keep = stored.contains(x, y);
             const uint64_t pixel = uint64_t(y) * w + x;
-            const PrimaryHit& ph = (*primary.hits)[pixel];
+            // Written only for a grid's primary transmittance (PrimaryHit::throughput): by this
+            // pixel's own task, while no other batch of the pass runs.
+            PrimaryHit& ph = (*primary.hits)[pixel];
             Rgb throughput = ph.throughput, L, Lmedia, Lsurface, LmediaPrimary;
             float clear = 0;  // the share of this path that reached the background (transparent film)
             // The path's film weight (--film-light-sampling; 1 for a uniform film position).
@@ -419,11 +429,16 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                     : 0;
             std::optional<Rng> emissionRng;  // keyed at the first later segment in an emitting grid
             const PrimaryRay& pr = primary.segments.rays[pixel];
+            // Through a grid the primary segment's transmittance is estimated here, by one tracker
+            // that its equiangular samples read too (their camera legs), from its own stream.
+            const bool primaryGrid =
+                pr.medium != kVacuum && pr.tMax > 0 && !m_scene.media[pr.medium].homogeneous();
+            EquiangularLegs legs;
             if (((m_equiangular && emission) || planeBvh) && (maxLength == 0 || maxLength >= 2) &&
                 pr.medium != kVacuum && pr.tMax > 0) {
                 if (m_equiangular && emission) {
-                    const Rgb single = m_equiangular->estimate(pr.medium, pr.origin, pr.dir, pr.tMax,
-                                                               equiangularSamples, equiangularRng);
+                    const Rgb single = m_equiangular->estimate(pr.medium, pr.origin, pr.dir, pr.tMax, equiangularSamples,
+                                                               equiangularRng, primaryGrid ? &legs : nullptr);
                     L += single;
                     LmediaPrimary += single;
                 }
@@ -435,6 +450,18 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                     L += planes;
                     LmediaPrimary += planes;
                 }
+            }
+            // Its own keyed stream, so every batch of the pass would get the same estimate: it is
+            // made once, in the emission batch (which reads it at the equiangular samples) or at
+            // the first call, and kept for the others.
+            if (primaryGrid && (emission || ph.gridPending)) {
+                Rng trackerRng = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::PrimaryTransmittance);
+                Rgb single;
+                ph.throughput = throughput = gridSegmentTransmittance(
+                    m_scene.media[pr.medium], Ray{pr.origin, pr.dir, 0.0f, pr.tMax}, trackerRng, legs, &single);
+                ph.gridPending = false;
+                L += single;
+                LmediaPrimary += single;
             }
             if (!ph.surface) {
                 // Straight from the camera to the environment: its visible background (on a
@@ -606,6 +633,7 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                     const Medium& med = m_scene.media[medium];
                     float* ff = tls.freeFlights.data();
                     Rgb emitted;  // the segment's medium emission, with the pass's emission only
+                    EquiangularLegs legs;  // its equiangular samples' camera legs, in a grid
                     if (!med.homogeneous()) {
                         sampleCollisionDistances(med, seg, seg.tMax, rng, nff, ff);
                         if (emission && m_segmentEmission && med.emissive()) {
@@ -627,16 +655,25 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                         emitted += gatherBeams(m_scene, photons, tls.hits, medium, seg.o, seg.d, ff, nff, maxBeamSegment);
                         if (m_equiangular && emission)
                             emitted += m_equiangular->estimate(medium, seg.o, seg.d, seg.tMax, equiangularSamples,
-                                                             equiangularRng);
+                                                               equiangularRng, med.homogeneous() ? nullptr : &legs);
                         if (planeBvh && med.homogeneous())
                             emitted += gatherPlanes(m_rt, *planeBvh, medium, seg.o, seg.d, seg.tMax, maxBeamSegment,
                                                     tls.planes);
                     }
+                    // The segment's transmittance, and in a grid its equiangular legs' from the
+                    // same tracker.
+                    Rgb transmittance;
+                    if (med.homogeneous()) {
+                        transmittance = med.transmittance(seg.tMax);
+                    } else {
+                        Rgb single;
+                        transmittance = gridSegmentTransmittance(med, seg, rng, legs, &single);
+                        emitted += single;
+                    }
                     Rgb media = throughput * emitted;
                     L += media;
                     Lmedia += media;
-                    throughput *= med.homogeneous() ? med.transmittance(seg.tMax)
-                                                    : gridSegmentTransmittance(med, seg, rng);
+                    throughput *= transmittance;
                 }
                 if (!surface) {
                     // Left the scene: the environment (hidden from straight paths when not visible

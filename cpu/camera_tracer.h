@@ -63,10 +63,14 @@ struct CameraPassStats {
 /// Where a pixel's primary segment ended, for the secondary stage (CPU only, not uploaded).
 struct PrimaryHit {
     SurfaceHit hit;
-    Rgb throughput;             ///< transmittance of the primary segment
+    /// Transmittance of the primary segment. Through a grid traceSecondary estimates it (its
+    /// emission batch, or the first call to find `gridPending`) and keeps it here for the pass's
+    /// other batches.
+    Rgb throughput;
     Rgb emitted;                ///< the medium's emission along it (estimate; cpu/free_flight.h)
     MediumId medium = kVacuum;  ///< the medium the camera ray ran through
     bool surface = false;       ///< false: the ray left the scene
+    bool gridPending = false;   ///< a grid's `throughput` not estimated yet
 };
 
 /// Per-pixel primary hits, taken from and given back to the CameraTracer's pool: a 1080p pass's

@@ -448,8 +448,9 @@ double EquiangularScattering::pixelPhase(uint64_t seed, uint64_t pixel) {
     return double(rng.uniform());
 }
 
-Rgb EquiangularScattering::estimate(MediumId medium, const Vec3& o, const Vec3& d, float sMax, int n,
-                                    Rng& rng) const {
+Rgb EquiangularScattering::estimate(MediumId medium, const Vec3& o, const Vec3& d, float sMax, int n, Rng& rng,
+                                    EquiangularLegs* out) const {
+    if (out) out->n = 0;
     if (m_lights.empty() || medium == kVacuum || !(sMax > 0)) return Rgb(0.0f);
     const Scene& scene = m_rt.scene();
     const Medium& med = scene.media[medium];
@@ -478,6 +479,12 @@ Rgb EquiangularScattering::estimate(MediumId medium, const Vec3& o, const Vec3& 
         kept.reset(*med.density, o, d, sMax, med.sigmaT().r);
         pieces = &kept;
     }
+    // In a grid the samples' camera legs share one residual tracker, run after them to the
+    // farthest sample's distance and read at each (residualTransmittanceAlong).
+    const bool shareLegs = pieces && n <= kMaxSharedLegs;
+    float legT[kMaxSharedLegs];
+    Rgb legValue[kMaxSharedLegs];
+    int legs = 0;
     Rgb sum;
     for (int k = 0; k < n; ++k) {
         const float u = (float(k) + rng.uniform()) / float(n);
@@ -491,8 +498,37 @@ Rgb EquiangularScattering::estimate(MediumId medium, const Vec3& o, const Vec3& 
             weight *= kParallelThinning;
         }
         const float uDistance = std::min(float((double(u) - lo) / p), 1.0f - 0x1p-24f);
-        sum += fromSource(m_lights[i], med, medium, o, d, sMax, std::max(uDistance, 0.0f), pieces, rng) *
-               float(weight);
+        if (!shareLegs) {
+            sum += fromSource(m_lights[i], med, medium, o, d, sMax, std::max(uDistance, 0.0f), pieces, nullptr, rng) *
+                   float(weight);
+            continue;
+        }
+        float t = -1.0f;
+        const Rgb value =
+            fromSource(m_lights[i], med, medium, o, d, sMax, std::max(uDistance, 0.0f), pieces, &t, rng) * float(weight);
+        if (t >= 0 && !value.isBlack()) {
+            legT[legs] = t;
+            legValue[legs++] = value;
+        }
+    }
+    if (legs > 0) {
+        // Sorted by distance (insertion: a handful), then one tracker for all (the caller's when
+        // it takes them).
+        for (int i = 1; i < legs; ++i)
+            for (int j = i; j > 0 && legT[j] < legT[j - 1]; --j) {
+                std::swap(legT[j], legT[j - 1]);
+                std::swap(legValue[j], legValue[j - 1]);
+            }
+        if (out) {
+            out->n = legs;
+            const float scale = 1.0f / float(m_samples);
+            for (int i = 0; i < legs; ++i) out->t[i] = legT[i], out->value[i] = legValue[i] * scale;
+            return sum / float(m_samples);
+        }
+        float tr[kMaxSharedLegs];
+        const float tEnd = legT[legs - 1];
+        residualTransmittanceAlong(med, Ray{o, d, 0.0f, tEnd}, tEnd, legT, legs, tr, rng);
+        for (int i = 0; i < legs; ++i) sum += legValue[i] * tr[i];
     }
     return sum / float(m_samples);
 }
@@ -500,7 +536,7 @@ Rgb EquiangularScattering::estimate(MediumId medium, const Vec3& o, const Vec3& 
 
 Rgb EquiangularScattering::fromDirection(const Vec3& travel, const Rgb& incident, const Medium& med, MediumId medium,
                                          const Vec3& o, const Vec3& d, float sMax, float u, SegmentPieces* pieces,
-                                         Rng& rng) const {
+                                         float* tCam, Rng& rng) const {
     // The distance and sigma_s(x) / pdf: transmittance-proportional in a homogeneous medium; in a
     // grid, by WeightedPieces' weight, and the density at x over that weight.
     float t = 0;
@@ -527,20 +563,24 @@ Rgb EquiangularScattering::fromDirection(const Vec3& travel, const Rgb& incident
     target.delta = true;
     const Rgb trLight = shadowTransmittance(m_rt, o + d * t, target, medium, rng);
     if (trLight.isBlack()) return Rgb(0.0f);
+    const float phase = hgPhase(dot(travel, -d), med.g);
+    if (tCam) {  // the caller reads the camera's transmittance to t from the segment's tracker
+        *tCam = t;
+        return scattering * incident * trLight * phase;
+    }
     const Rgb trCam = estimateTransmittance(med, Ray{o, d, 0.0f, t}, t, rng);
     if (trCam.isBlack()) return Rgb(0.0f);
-    const float phase = hgPhase(dot(travel, -d), med.g);
     return scattering * incident * trCam * trLight * phase;
 }
 
 Rgb EquiangularScattering::fromSource(int source, const Medium& med, MediumId medium, const Vec3& o, const Vec3& d,
-                                      float sMax, float u, SegmentPieces* pieces, Rng& rng) const {
+                                      float sMax, float u, SegmentPieces* pieces, float* tCam, Rng& rng) const {
     if (source == kEnvironment) {
         // A direction by the environment's importance sampling (its luminance), then the distance.
         const float u1 = rng.uniform(), u2 = rng.uniform();
         const EnvironmentSample es = m_rt.scene().environment->sample(u1, u2);
         if (!(es.pdf > 0) || es.radiance.isBlack()) return Rgb(0.0f);
-        return fromDirection(-es.wi, es.radiance * (1.0f / es.pdf), med, medium, o, d, sMax, u, pieces, rng);
+        return fromDirection(-es.wi, es.radiance * (1.0f / es.pdf), med, medium, o, d, sMax, u, pieces, tCam, rng);
     }
     float a = 0, b = sMax;
     DirectLightSample target;  // the light point and what the shadow ray needs of it
@@ -566,7 +606,7 @@ Rgb EquiangularScattering::fromSource(int source, const Medium& med, MediumId me
     } else {
         const Light& light = m_rt.scene().lights[size_t(source)];
         if (light.type == LightType::Directional)
-            return fromDirection(light.direction, light.intensity, med, medium, o, d, sMax, u, pieces, rng);
+            return fromDirection(light.direction, light.intensity, med, medium, o, d, sMax, u, pieces, tCam, rng);
         if (light.type == LightType::Spot &&
             !clipToCone(o, d, light.position, light.direction, light.cosOuterAngle, &a, &b))
             return Rgb(0.0f);
@@ -615,10 +655,14 @@ Rgb EquiangularScattering::fromSource(int source, const Medium& med, MediumId me
     target.distance = dist;
     const Rgb trLight = shadowTransmittance(m_rt, x, target, medium, rng);
     if (trLight.isBlack()) return Rgb(0.0f);
-    // The camera's transmittance to x: analytic, or ratio tracking in a grid.
+    const float phase = hgPhase(dot(-wi, -d), med.g);
+    if (tCam) {  // the caller reads the camera's transmittance to t from the segment's tracker
+        *tCam = t;
+        return scattering * target.incident * trLight * (phase * emitted);
+    }
+    // The camera's transmittance to x: analytic, or residual ratio tracking in a grid.
     const Rgb trCam = estimateTransmittance(med, Ray{o, d, 0.0f, t}, t, rng);
     if (trCam.isBlack()) return Rgb(0.0f);
-    const float phase = hgPhase(dot(-wi, -d), med.g);
     return scattering * target.incident * trCam * trLight * (phase * emitted);
 }
 

@@ -13,7 +13,9 @@
 // half-space in front of the triangle), w_l the light's travel direction (p -> x), Tr_light a shadow
 // ray's transmittance (cpu/direct_light.h: analytic, or ratio tracking through grid media on the
 // way, through Interfaces, blocked by every other surface) and Tr_cam the segment's own (analytic,
-// or ratio tracking in a grid). In a homogeneous medium pdf(s) is equiangular, proportional to
+// or residual ratio tracking in a grid: one tracker for all of a segment's samples, the camera
+// tracer's for the segment's own transmittance where it takes them as EquiangularLegs). In a
+// homogeneous medium pdf(s) is equiangular, proportional to
 // 1 / |x - p|^2; in a grid it is that times the majorant along the segment (the majorant grid's
 // pieces, cpu/free_flight.h MajorantPieces), so no sample lands where the grid is empty and
 // sigma_s(x) / pdf(s) stays bounded. For a spot the segment is first clipped to the spot's outer
@@ -64,6 +66,22 @@ namespace tyndall {
 
 class SegmentPieces;  // a grid segment's majorant pieces, kept for its samples (equiangular.cpp)
 
+/// A grid segment's equiangular samples with the camera's transmittance left out, for the caller
+/// to read from the tracker it runs through the segment anyway (its path's throughput): each
+/// sample's distance, ascending, and its value (already divided by the samples' mean count).
+struct EquiangularLegs {
+    static constexpr int kMax = 64;  ///< more samples per segment: each tracks its own leg
+    int n = 0;
+    float t[kMax];
+    Rgb value[kMax];
+    /// Sum of value[i] x read[i], the tracker's reads at t[i].
+    Rgb sum(const float* read) const {
+        Rgb s;
+        for (int i = 0; i < n; ++i) s += value[i] * read[i];
+        return s;
+    }
+};
+
 class EquiangularScattering {
 public:
     /// Keeps a reference to `rt` (it must outlive this); reads the scene's lights now. `samples`:
@@ -86,12 +104,18 @@ public:
     /// [0, sMax], inside `medium`, before the camera path's throughput. Draws from `rng`: one
     /// uniform for the fraction's extra sample (a fractional count only: a coin per call; the
     /// renderer decides it per pixel and pass instead, below); per sample, one uniform (three more
-    /// for an area light's point, two for the environment's direction), then the transmittance
-    /// estimates' (grid media only); one more uniform per call where a parallel source exists.
+    /// for an area light's point, two for the environment's direction), then its shadow ray's
+    /// transmittance estimate (grid media only); in a grid, after the samples, one residual
+    /// tracker for the camera's transmittance to all of them (to each its own where n >
+    /// kMaxSharedLegs); one more uniform per call where a parallel source exists.
     Rgb estimate(MediumId medium, const Vec3& o, const Vec3& d, float sMax, Rng& rng) const;
     /// The same with `n` distances (samplesInPass's count), still divided by samples(): the
-    /// caller has already decided the fraction's extra sample.
-    Rgb estimate(MediumId medium, const Vec3& o, const Vec3& d, float sMax, int n, Rng& rng) const;
+    /// caller has already decided the fraction's extra sample. In a grid with `legs` non-null and
+    /// n <= EquiangularLegs::kMax the samples' camera transmittances are left to the caller: the
+    /// samples go to *legs (sorted by distance) and the return is 0; else (legs null, a
+    /// homogeneous medium) the whole estimate.
+    Rgb estimate(MediumId medium, const Vec3& o, const Vec3& d, float sMax, int n, Rng& rng,
+                 EquiangularLegs* legs = nullptr) const;
 
     /// The distances a pixel's segments get in pass `pass`: floor(N) and, for a fraction f =
     /// N - floor(N), one more in the passes k where floor((k + 1) f + phase) > floor(k f + phase),
@@ -119,6 +143,8 @@ public:
     /// kWeighedUpTo / kDefensive where the estimate misjudges its share (shadows, a grid's density
     /// and the transmittances are not in it).
     static constexpr double kDefensive = 0.1;
+    /// Most samples per segment whose camera legs share one tracker in a grid (beyond, each its own).
+    static constexpr int kMaxSharedLegs = EquiangularLegs::kMax;
 
 private:
     /// The estimated light of source `i` (an index into m_lights) along the segment, up to the
@@ -132,14 +158,16 @@ private:
     /// One sample of parallel light travelling along `travel` (a directional light's, or the
     /// environment's from one sampled direction) with `incident` its irradiance (the environment:
     /// radiance over the direction's pdf), its distance drawn from `u` in proportion to the
-    /// camera's transmittance.
+    /// camera's transmittance. `pieces`: the grid segment's (nullptr in a homogeneous medium).
+    /// `tCam` non-null: the camera's transmittance left out, the sample's distance written there
+    /// (left alone when the sample is 0).
     Rgb fromDirection(const Vec3& travel, const Rgb& incident, const Medium& med, MediumId medium, const Vec3& o,
-                      const Vec3& d, float sMax, float u, SegmentPieces* pieces, Rng& rng) const;
+                      const Vec3& d, float sMax, float u, SegmentPieces* pieces, float* tCam, Rng& rng) const;
     /// One sample of the source `source` (an index into Scene::lights, kAreaLights or
-    /// kEnvironment), its
-    /// distance drawn from the uniform `u`.
+    /// kEnvironment), its distance drawn from the uniform `u`; `pieces` and `tCam` as
+    /// fromDirection's.
     Rgb fromSource(int source, const Medium& med, MediumId medium, const Vec3& o, const Vec3& d, float sMax, float u,
-                   SegmentPieces* pieces, Rng& rng) const;
+                   SegmentPieces* pieces, float* tCam, Rng& rng) const;
 
     static constexpr int kAreaLights = -1;   ///< all emissive triangles together, as one source
     static constexpr int kEnvironment = -2;  ///< the environment light

@@ -1,5 +1,6 @@
 #include "cpu/free_flight.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace tyndall {
@@ -203,24 +204,41 @@ float combPointsPerUnit(const DensityGrid& grid, const Ray& ray, float tEnd) {
     return kCombPointsPerCell * std::max(std::abs(v.x), std::max(std::abs(v.y), std::abs(v.z)));
 }
 
-float residualTransmittance(const Medium& medium, const Ray& ray, float tEnd, Rng& rng) {
+float residualTransmittanceAlong(const Medium& medium, const Ray& ray, float tEnd, const float* at, int n, float* out,
+                                 Rng& rng) {
     const DensityGrid& grid = *medium.density;
     const float sigmaT = medium.sigmaT().r;
-    if (!(sigmaT > 0) || !(tEnd > 0)) return 1.0f;
+    int read = 0;  // the reads before `read` are done
+    if (!(sigmaT > 0) || !(tEnd > 0)) {
+        for (; read < n; ++read) out[read] = 1.0f;
+        return 1.0f;
+    }
     const float combPerUnit = combPointsPerUnit(grid, ray, tEnd);
     float offset = -1.0f;  // the comb's offset, drawn at the first piece that has one
     double depth = 0;      // sigma_t times the control's integral over the pieces passed
     float residual = 1.0f;
     float comb[kMaxCombPoints];
+    double prefix[kMaxCombPoints];  // (reads only) the control's integral from t0 to each point
+    // The reads before t (or at it, `through`): the running estimate with the control's depth
+    // `depthAt(t)` on the current piece.
+    auto readBefore = [&](float t, bool through, auto&& depthAt) {
+        for (; read < n && (at[read] < t || (through && at[read] <= t)); ++read)
+            out[read] = std::max(residual, 0.0f) * float(std::exp(-(depth + depthAt(at[read]))));
+    };
+    auto none = [](float) { return 0.0; };
     MajorantPieces pieces(grid, ray, tEnd);
     float t0, t1, maj;
     while (residual > 0 && pieces.next(&t0, &t1, &maj)) {
+        readBefore(t0, true, none);
         const float mu = maj * sigmaT, length = t1 - t0;
         if (!(mu > 0 && length > 0)) continue;
         auto step = [&]() { return -std::log(1.0f - rng.uniform()) / mu; };
         if (mu * length < kMinCombDepth) {
-            for (float t = t0 + step(); residual > 0 && t < t1; t += step())
+            for (float t = t0 + step(); residual > 0 && t < t1; t += step()) {
+                readBefore(t, false, none);
                 residual *= 1.0f - grid.density(ray.at(t)) / maj;
+            }
+            readBefore(t1, true, none);
             continue;
         }
         if (offset < 0) offset = rng.uniform();
@@ -233,7 +251,6 @@ float residualTransmittance(const Medium& medium, const Ray& ray, float tEnd, Rn
             if (j > 0) integral += 0.5 * double(h) * (double(comb[j - 1]) + comb[j]);
         }
         integral += double(offset) * h * comb[0] + (1.0 - double(offset)) * h * comb[m - 1];
-        depth += double(sigmaT) * integral;
         auto control = [&](float t) {
             const float x = (t - t0) / h - offset;
             if (!(x > 0)) return comb[0];
@@ -241,10 +258,34 @@ float residualTransmittance(const Medium& medium, const Ray& ray, float tEnd, Rn
             if (j >= m - 1) return comb[m - 1];
             return comb[j] + (x - float(j)) * (comb[j + 1] - comb[j]);
         };
-        for (float t = t0 + step(); residual > 0 && t < t1; t += step())
+        // sigma_t times the control's integral from t0 to t (closed form: linear between the
+        // points, constant beyond the ends).
+        auto partialDepth = [&](float t) {
+            const double x = std::clamp((double(t) - t0) / h, 0.0, double(m)) - offset;
+            if (!(x > 0)) return double(sigmaT) * (x + offset) * h * comb[0];
+            const int j = int(x);
+            if (j >= m - 1) return double(sigmaT) * (prefix[m - 1] + (x - (m - 1)) * h * comb[m - 1]);
+            const double f = x - j;
+            return double(sigmaT) * (prefix[j] + h * (f * comb[j] + 0.5 * f * f * (double(comb[j + 1]) - comb[j])));
+        };
+        if (read < n) {
+            prefix[0] = double(offset) * h * comb[0];
+            for (int j = 1; j < m; ++j) prefix[j] = prefix[j - 1] + 0.5 * double(h) * (double(comb[j - 1]) + comb[j]);
+        }
+        for (float t = t0 + step(); residual > 0 && t < t1; t += step()) {
+            readBefore(t, false, partialDepth);
             residual *= 1.0f - (grid.density(ray.at(t)) - control(t)) / maj;
+        }
+        readBefore(t1, true, partialDepth);
+        depth += double(sigmaT) * integral;
     }
-    return std::max(residual, 0.0f) * float(std::exp(-depth));
+    const float tr = std::max(residual, 0.0f) * float(std::exp(-depth));
+    for (; read < n; ++read) out[read] = tr;
+    return tr;
+}
+
+float residualTransmittance(const Medium& medium, const Ray& ray, float tEnd, Rng& rng) {
+    return residualTransmittanceAlong(medium, ray, tEnd, nullptr, 0, nullptr, rng);
 }
 
 Rgb estimateTransmittance(const Medium& medium, const Ray& ray, float tEnd, Rng& rng) {

@@ -140,4 +140,13 @@ constexpr float kMinCombDepth = 1.0f / 256.0f;
 /// Draws one uniform for the comb (at the first piece with one) and one per tentative collision.
 float residualTransmittance(const Medium& medium, const Ray& ray, float tEnd, Rng& rng);
 
+/// residualTransmittance's tracker over [0, tEnd] (the same draws and the same return value), read
+/// on the way at the n distances `at` (ascending, in [0, tEnd]; they draw nothing): out[i] its
+/// running estimate at at[i], exp(-sigma_t C(0, at[i])) times the factors of the tentative
+/// collisions before at[i], with C(0, t) the control's integral up to t in closed form. Each is
+/// unbiased for Tr(0, at[i]) (neither the comb nor the collisions depend on where it is read), so
+/// one tracker serves several distances along a ray; they are correlated through it.
+float residualTransmittanceAlong(const Medium& medium, const Ray& ray, float tEnd, const float* at, int n, float* out,
+                                 Rng& rng);
+
 }  // namespace tyndall

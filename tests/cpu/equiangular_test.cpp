@@ -462,6 +462,22 @@ TEST(EquiangularPpb, FogBoxWithTheLampInViewAndAPanelAgreesWithThePathTracer) {
     test::expectBatchesAgreeWithThePathTracer(scene, ps, 0.03, 0.02);
 }
 
+TEST(EquiangularPpb, FogLayerGridRoundTheLampAgreesWithThePathTracer) {
+    // The fog box's fog as a grid (FogLayer: density 2 at y = 0 thinning to 0 at y = 1, clear air
+    // below, a majorant grid of 12 slabs): the camera's transmittance through a primary segment and
+    // its equiangular samples' camera legs are read from one residual tracker
+    // (gridSegmentTransmittance), the path tracer tracks the grid with plain ratio tracking.
+    Scene scene = fogBoxWithLamp(true);
+    scene.media[0].density = std::make_shared<FogLayer>(12);
+    scene.finalize();
+    const int size = 16;
+    RenderSettings ps = constantRadii(size, 2000);
+    ps.seed = 7;
+    // The whole image and its quadrants within 4 standard errors plus 2% (the beams' kernel);
+    // the lamp's quadrant has about 5% noise over the 8 batches.
+    test::expectBatchesAgreeWithThePathTracer(scene, ps, 0.06, 0.02);
+}
+
 TEST(EquiangularPpb, LightsEditedInPlaceGiveTheImageOfAFreshRenderer) {
     // The estimator's lights and their choice by power follow PassRenderer::sceneChanged (a light
     // of zero intensity at first is left out until it is edited).

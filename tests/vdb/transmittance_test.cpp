@@ -197,6 +197,41 @@ TEST_P(StoredTransmittance, ResidualTrackingIsUnbiasedAndSteadierThanRatioTracki
     }
 }
 
+// One residual tracker read at several distances on the way (residualTransmittanceAlong, what the
+// equiangular samples of a grid segment share): each read unbiased for Tr(0, t) at both
+// extinctions, distances inside pieces and at the ray's ends; its end value and draws those of
+// residualTransmittance with the same stream, bit for bit.
+TEST_P(StoredTransmittance, ResidualTrackerReadAlongTheRayIsUnbiasedAtEachDistance) {
+    constexpr int kSamples = 20000, kReads = 7;
+    constexpr float kDense = 3.0f;
+    const float at[kReads] = {0.0f, 0.07f * m_tEnd, 0.23f * m_tEnd, 0.41f * m_tEnd, 0.5f * m_tEnd, 0.83f * m_tEnd,
+                              m_tEnd};
+    for (const float scale : {1.0f, kDense}) {
+        Medium medium = m_medium;
+        medium.sigmaS = m_medium.sigmaS * scale;
+        medium.sigmaA = m_medium.sigmaA * scale;
+        std::vector<double> reads[kReads];
+        for (int i = 0; i < kSamples; ++i) {
+            Rng rng = Rng::forKey(16, 0, i, StreamPurpose::Transmittance), same = rng;
+            float out[kReads];
+            const float end = residualTransmittanceAlong(medium, m_ray, m_tEnd, at, kReads, out, rng);
+            ASSERT_EQ(end, residualTransmittance(medium, m_ray, m_tEnd, same));
+            ASSERT_EQ(rng.uniform(), same.uniform()) << "the reads drew from the stream";
+            ASSERT_EQ(out[kReads - 1], end);
+            for (int k = 0; k < kReads; ++k) {
+                ASSERT_GE(out[k], 0.0f);
+                reads[k].push_back(out[k]);
+            }
+        }
+        for (int k = 0; k < kReads; ++k) {
+            const double exact = std::exp(-double(scale) * tau(at[k]));
+            const test::MeanVar mv = test::meanVar(reads[k]);
+            EXPECT_NEAR(mv.mean, exact, 4.5 * std::sqrt(mv.var / kSamples) + 1e-6)
+                << "extinction x " << scale << ", read at " << at[k] << " of " << m_tEnd;
+        }
+    }
+}
+
 TEST_P(StoredTransmittance, PhotonFreeFlightScattersWithTheRightProbabilityAndWeight) {
     constexpr int kSamples = 40000;
     int scattered = 0;
