@@ -203,25 +203,16 @@ struct WeightedPiece {
     bool chosen = false;
 };
 
-template <class Measure>
-bool chooseWeightedPiece(const DensityGrid& grid, const Ray& ray, float a, float b, float sigmaT, float u,
-                         Measure&& measure, WeightedPiece* piece) {
-    double total = 0;
-    {
-        WeightedPieces pieces(grid, ray, a, b, sigmaT);
-        float t0, t1;
-        double w;
-        while (pieces.next(&t0, &t1, &w)) total += w * measure(t0, t1);
-    }
+/// The second walk: the pieces from `next(&t0, &t1, &w, &size)` (false after the last), stopping
+/// in the one where the running sum of w x size passes u x total.
+template <class NextPiece>
+bool takePieceAt(double total, float u, WeightedPiece* piece, NextPiece&& next) {
     if (!(total > 0)) return false;
     const double target = double(u) * total;
-    double sum = 0;
-    WeightedPieces pieces(grid, ray, a, b, sigmaT);
+    double sum = 0, w, size;
     float t0, t1;
-    double w;
     WeightedPiece last;
-    while (pieces.next(&t0, &t1, &w)) {
-        const double size = measure(t0, t1);
+    while (next(&t0, &t1, &w, &size)) {
         if (!(size > 0)) continue;
         last.t0 = t0, last.t1 = t1, last.w = w, last.size = size;
         if (sum + w * size > target) {
@@ -234,6 +225,24 @@ bool chooseWeightedPiece(const DensityGrid& grid, const Ray& ray, float a, float
     last.before = sum, last.total = total, last.target = target;
     *piece = last;
     return true;
+}
+
+template <class Measure>
+bool chooseWeightedPiece(const DensityGrid& grid, const Ray& ray, float a, float b, float sigmaT, float u,
+                         Measure&& measure, WeightedPiece* piece) {
+    double total = 0;
+    {
+        WeightedPieces pieces(grid, ray, a, b, sigmaT);
+        float t0, t1;
+        double w;
+        while (pieces.next(&t0, &t1, &w)) total += w * measure(t0, t1);
+    }
+    WeightedPieces pieces(grid, ray, a, b, sigmaT);
+    return takePieceAt(total, u, piece, [&](float* t0, float* t1, double* w, double* size) {
+        if (!pieces.next(t0, t1, w)) return false;
+        *size = measure(*t0, *t1);
+        return true;
+    });
 }
 
 }  // namespace
@@ -310,24 +319,13 @@ private:
     }
     /// chooseWeightedPiece's second walk over the kept pieces.
     bool choose(const double* sizes, double total, float u, WeightedPiece* piece) const {
-        if (!(total > 0)) return false;
-        const double target = double(u) * total;
-        double sum = 0;
-        WeightedPiece last;
-        for (int k = 0; k < m_n; ++k) {
-            const double size = sizes[k], w = m_w[k];
-            if (!(size > 0)) continue;
-            last.t0 = m_t0[k], last.t1 = m_t1[k], last.w = w, last.size = size;
-            if (sum + w * size > target) {
-                last.chosen = true;
-                break;
-            }
-            sum += w * size;
-        }
-        if (!(last.w > 0)) return false;
-        last.before = sum, last.total = total, last.target = target;
-        *piece = last;
-        return true;
+        int k = 0;
+        return takePieceAt(total, u, piece, [&](float* t0, float* t1, double* w, double* size) {
+            if (k == m_n) return false;
+            *t0 = m_t0[k], *t1 = m_t1[k], *w = m_w[k], *size = sizes[k];
+            ++k;
+            return true;
+        });
     }
 
     const DensityGrid* m_grid = nullptr;
