@@ -420,14 +420,14 @@ bool sampleWeightedDistance(const DensityGrid& grid, const Vec3& o, const Vec3& 
 
 }  // namespace
 
+bool EquiangularScattering::lit(MediumId medium, float sMax) const {
+    if (m_lights.empty() || medium == kVacuum || !(sMax > 0)) return false;
+    if (m_rt.scene().media[medium].sigmaS.isBlack()) return false;
+    return !(m_sealed[size_t(medium)] && m_lights.size() == 1 && parallel(0));
+}
+
 Rgb EquiangularScattering::estimate(MediumId medium, const Vec3& o, const Vec3& d, float sMax, Rng& rng) const {
-    if (m_lights.empty() || medium == kVacuum || !(sMax > 0)) return Rgb(0.0f);
-    const Scene& scene = m_rt.scene();
-    const Medium& med = scene.media[medium];
-    if (med.sigmaS.isBlack()) return Rgb(0.0f);
-    const size_t sources = m_lights.size();
-    const bool sealed = m_sealed[size_t(medium)];
-    if (sealed && sources == 1 && parallel(0)) return Rgb(0.0f);
+    if (!lit(medium, sMax)) return Rgb(0.0f);
     const int n = m_whole + (m_fraction > 0 && rng.uniform() < m_fraction ? 1 : 0);
     return estimate(medium, o, d, sMax, n, rng);
 }
@@ -449,14 +449,11 @@ double EquiangularScattering::pixelPhase(uint64_t seed, uint64_t pixel) {
 Rgb EquiangularScattering::estimate(MediumId medium, const Vec3& o, const Vec3& d, float sMax, int n, Rng& rng,
                                     EquiangularLegs* out) const {
     if (out) out->n = 0;
-    if (m_lights.empty() || medium == kVacuum || !(sMax > 0)) return Rgb(0.0f);
+    if (n <= 0 || !lit(medium, sMax)) return Rgb(0.0f);
     const Scene& scene = m_rt.scene();
     const Medium& med = scene.media[medium];
-    if (med.sigmaS.isBlack()) return Rgb(0.0f);
     const size_t sources = m_lights.size();
     const bool sealed = m_sealed[size_t(medium)];
-    if (sealed && sources == 1 && parallel(0)) return Rgb(0.0f);
-    if (n <= 0) return Rgb(0.0f);
     // Parallel sources trace one in kParallelThinning of their samples, weighted up: the samples k
     // with k mod kParallelThinning equal to a random offset (drawn only where there is one).
     const int offset =

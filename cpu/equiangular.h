@@ -155,6 +155,9 @@ private:
     bool segmentCdf(const Medium& med, bool sealed, const Vec3& o, const Vec3& d, float sMax, double* cdf) const;
     /// True when source `i` sends parallel light (a directional light, the environment).
     bool parallel(size_t i) const;
+    /// False where a segment gets nothing: no light, vacuum, an empty segment, a medium that does
+    /// not scatter, or a sealed medium whose one source is parallel (no sample is drawn there).
+    bool lit(MediumId medium, float sMax) const;
     /// One sample of parallel light travelling along `travel` (a directional light's, or the
     /// environment's from one sampled direction) with `incident` its irradiance (the environment:
     /// radiance over the direction's pdf), its distance drawn from `u` in proportion to the

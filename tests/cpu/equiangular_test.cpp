@@ -527,25 +527,27 @@ TEST(EquiangularPpb, SingleScatteringVarianceFallsAsOneOverPasses) {
 
 /// A slab of fog (the global medium over the scene bounds x, z in [-10, 10], y in [-1, 1], set by
 /// two small markers in far corners) with nothing above it: sunlight enters through its top.
-Scene sunSlab(const std::vector<Light>& lights, Rgb sigmaS, Rgb sigmaA, float g, float top = 1.0f) {
+/// The global medium `fog` over the box from `low` to `high`, set by two small white markers in
+/// its far corners, nothing else in the scene; the camera at (0, 0, 4) looking at the origin.
+Scene fogBetweenMarkers(const char* name, Vec3 low, Vec3 high, const Medium& fog) {
     Scene s;
-    s.name = "sun-slab";
+    s.name = name;
     s.source = "<test>";
     Material white;
     white.name = "white";
     white.albedo = Rgb(0.5f);
     s.materials.push_back(white);
-    s.meshes.push_back(makeQuad("marker low", {-10, -1, -10}, {0.01f, 0, 0}, {0, 0, 0.01f}, 0));
-    s.meshes.push_back(makeQuad("marker high", {10, top, 10}, {-0.01f, 0, 0}, {0, 0, -0.01f}, 0));
-    Medium m;
-    m.name = "fog";
-    m.sigmaS = sigmaS;
-    m.sigmaA = sigmaA;
-    m.g = g;
-    s.media.push_back(m);
+    s.meshes.push_back(makeQuad("marker low", low, {0.01f, 0, 0}, {0, 0, 0.01f}, 0));
+    s.meshes.push_back(makeQuad("marker high", high, {-0.01f, 0, 0}, {0, 0, -0.01f}, 0));
+    s.media.push_back(fog);
     s.globalMedium = 0;
-    s.lights = lights;
     s.camera = Camera::lookAt({0, 0, 4}, {0, 0, 0}, {0, 1, 0}, 0.8f);
+    return s;
+}
+
+Scene sunSlab(const std::vector<Light>& lights, Rgb sigmaS, Rgb sigmaA, float g, float top = 1.0f) {
+    Scene s = fogBetweenMarkers("sun-slab", {-10, -1, -10}, {10, top, 10}, test::homogeneousMedium(sigmaS, sigmaA, g));
+    s.lights = lights;
     return s;
 }
 
@@ -773,19 +775,9 @@ TEST(EquiangularSky, ConstantSkyOverASlabAgainstTheClosedForm) {
     //   L = sigma_s L0 (1 - exp(-sigma_t S)) / sigma_t x 1/2 [I(sigma_t (1 - y0)) + I(sigma_t (1 + y0))],
     // I(a) the integral of exp(-a / mu) over mu in (0, 1] (Simpson in the test).
     const float L0 = 1.3f, y0 = 0.3f, S = 3.0f;
-    Scene s;
-    s.name = "sky-slab";
-    s.source = "<test>";
-    Material white;
-    white.name = "white";
-    white.albedo = Rgb(0.5f);
-    s.materials.push_back(white);
-    s.meshes.push_back(makeQuad("marker low", {-50, -1, -50}, {0.01f, 0, 0}, {0, 0, 0.01f}, 0));
-    s.meshes.push_back(makeQuad("marker high", {50, 1, 50}, {-0.01f, 0, 0}, {0, 0, -0.01f}, 0));
-    s.media.push_back(test::homogeneousMedium(Rgb(kSigmaS), Rgb(kSigmaA), 0.0f));
-    s.globalMedium = 0;
+    Scene s = fogBetweenMarkers("sky-slab", {-50, -1, -50}, {50, 1, 50},
+                                test::homogeneousMedium(Rgb(kSigmaS), Rgb(kSigmaA), 0.0f));
     s.environment = EnvironmentLight::constant(Rgb(L0));
-    s.camera = Camera::lookAt({0, 0, 4}, {0, 0, 0}, {0, 1, 0}, 0.8f);
     s.finalize();
     const double st = kSigmaS + kSigmaA;
     auto I = [](double a) {
