@@ -18,7 +18,7 @@
 #include "core/accumulator.h"
 #include "cpu/pass_renderer.h"
 #include "cpu/reference_tracer.h"
-#include "loading/mesh_builders.h"
+#include "tests/test_scenes.h"
 
 namespace tyndall {
 namespace {
@@ -37,37 +37,11 @@ constexpr double kFinalBias = 0.0075;
 // (equiangular sampling on, the default; off: +0.54%, +0.61%, +0.51% from 100 passes). That
 // steady +0.5% is these two seeds' noise, not the renderer's: over 8 references (seeds 11-18)
 // and 8 PPB seeds (21-28) the image mean's bias is -0.00% +- 0.17%, -0.03% +- 0.10%, +0.07% +-
-// 0.06% after 100, 400, 1600 passes (DISABLED_ImageMeanBiasOverSeeds below; docs/performance.md
+// 0.06% after 100, 400, 1600 passes (tyndall_measurements' WallsFogBoxBias; docs/performance.md
 // "Is the walls box biased?"); PPB seed 21 reads 0.26% above the PPB seeds' mean after 1600
 // passes (their spread 0.13%) and reference seed 11 0.15% below the references' (0.11%). One
 // pair's bias thus has a standard deviation of about 0.17% after 1600 passes: the test bounds it
 // at 0.75% (kFinalBias) rather than asking it to fall.
-
-Scene wallsFogBox() {
-    Scene s;
-    s.name = "walls-fog-box";
-    s.source = "<test>";
-    Material white;
-    white.name = "white";
-    white.albedo = Rgb(0.6f);
-    s.materials = {white};
-    Medium fog;
-    fog.name = "fog";
-    fog.sigmaS = Rgb(0.1f);
-    s.media = {fog};
-    s.globalMedium = 0;
-    s.meshes.push_back(makeBox("room", Vec3(-1.25f), Vec3(1.25f), 0, true));
-    Light bulb;
-    bulb.name = "bulb";
-    bulb.type = LightType::Point;
-    bulb.position = Vec3(0.3f, 1.05f, 0.6f);
-    bulb.intensity = Rgb(1.0f);
-    s.lights.push_back(bulb);
-    s.camera = Camera::lookAt(Vec3(0, 0, 1.2f), Vec3(0, 0, -1.25f), {0, 1, 0}, 60.0f * kPi / 180.0f);
-    s.finalize();
-    s.validate();
-    return s;
-}
 
 struct Error {
     double relRmse, relBias;
@@ -89,7 +63,7 @@ Error against(const Image& x, const ReferenceImage& ref) {
 
 TEST(DefaultsConvergence, DefaultRadiiConvergeToThePathTracer) {
     const int size = 32;
-    const Scene scene = wallsFogBox();
+    const Scene scene = test::wallsFogBox();
     ReferenceSettings rs;
     rs.width = rs.height = size;
     rs.samplesPerPixel = 4096;
@@ -127,61 +101,6 @@ TEST(DefaultsConvergence, DefaultRadiiConvergeToThePathTracer) {
     EXPECT_LT(std::fabs(errors.back().relBias), kFinalBias) << "bias after " << checkpoints[3] << " passes";
 }
 
-
-// A measurement, not a check (about 4 CPU minutes; run with --gtest_also_run_disabled_tests,
-// docs/performance.md "Is the walls box biased?"): the image mean's bias of the test above over
-// seeds, 8 references (seeds 11-18) against 8 PPB renders (seeds 21-28) with the same settings,
-// after 100, 400 and 1600 passes; the standard errors from the spread over seeds.
-TEST(DefaultsConvergence, DISABLED_ImageMeanBiasOverSeeds) {
-    const int size = 32, seeds = 8;
-    const Scene scene = wallsFogBox();
-    auto mean = [](const Image& img) {
-        double s = 0;
-        for (const Rgb& p : img.pixels) s += p.r + p.g + p.b;
-        return s / (3.0 * double(img.pixels.size()));
-    };
-    auto meanAndError = [](const std::vector<double>& v) {
-        double m = 0, var = 0;
-        for (double x : v) m += x / double(v.size());
-        for (double x : v) var += (x - m) * (x - m) / double(v.size() - 1);
-        return std::pair<double, double>{m, std::sqrt(var / double(v.size()))};
-    };
-    EmbreeScene rt(scene);
-    std::vector<double> refs;
-    for (int k = 0; k < seeds; ++k) {
-        ReferenceSettings rs;
-        rs.width = rs.height = size;
-        rs.samplesPerPixel = 4096;
-        rs.seed = 11 + uint64_t(k);
-        refs.push_back(mean(ReferenceTracer(rt, rs).render().mean));
-        std::printf("reference seed %d: %.6f\n", 11 + k, refs.back());
-    }
-    const uint64_t checkpoints[] = {100, 400, 1600};
-    std::vector<double> ppb[3];
-    for (int k = 0; k < seeds; ++k) {
-        RenderSettings ps;
-        ps.width = ps.height = size;
-        ps.photonsPerPass = 1000;
-        ps.timeBudget = 60;
-        ps.seed = 21 + uint64_t(k);
-        PassRenderer renderer(scene, ps);
-        Accumulator acc(size, size);
-        for (uint64_t p = 0, c = 0; p < checkpoints[2]; ++p) {
-            acc.addPass(renderer.renderPass(p));
-            if (p + 1 == checkpoints[c]) ppb[c++].push_back(mean(acc.mean()));
-        }
-        std::printf("PPB seed %d: %.6f, %.6f, %.6f after 100, 400, 1600 passes\n", 21 + k, ppb[0].back(), ppb[1].back(),
-                    ppb[2].back());
-    }
-    const auto [r, seR] = meanAndError(refs);
-    std::printf("references: %.6f +- %.6f\n", r, seR);
-    for (int c = 0; c < 3; ++c) {
-        const auto [m, se] = meanAndError(ppb[c]);
-        const double bias = m / r - 1, seBias = std::hypot(se, seR) / r;
-        std::printf("%4llu passes: PPB %.6f +- %.6f, bias %+.3f%% +- %.3f%% (%.1f se)\n",
-                    (unsigned long long)checkpoints[c], m, se, 100 * bias, 100 * seBias, bias / seBias);
-    }
-}
 
 }  // namespace
 }  // namespace tyndall

@@ -414,30 +414,18 @@ TEST(Equiangular, TwoPointLightsAboveAFogLayerShareTheSegmentsPiecesAgainstQuadr
 
 // ---- 3. PPB with equiangular single scattering against the path tracer ----
 
-/// The fixtures' fog box (albedo-0.5 walls, sigma_s 0.5, sigma_a 0.1, g 0.4) round a point light
-/// that the camera sees (or, `inView` false, that lies behind it); `panel`: also a small area light
-/// under the ceiling, facing down.
-// Equiangular sampling on with constant radii (an offset that never shrinks them), so the passes
-// are independent and alike: batches of them are a standard error's worth apart, and a pixel's
-// variance over seeds falls as 1/passes where no kernel remains.
-RenderSettings constantRadii(int size, uint32_t photons) {
-    const RenderSettings defaults;
-    RenderSettings ps = test::constantRadiusSettings(size, photons, defaults.seed, defaults.directLight, 0.06f);
-    ps.radius = 0.03f;
-    ps.photonAngle = 0;
-    ps.equiangular = true;
-    return ps;
-}
-
 // Light paths of at most two segments, one equiangular sample per segment: every estimate left is
 // unbiased (no kernel), for the variance law over passes.
 RenderSettings singleScatteringOnly(int size) {
-    RenderSettings ps = constantRadii(size, 16);
+    RenderSettings ps = test::equiangularConstantRadii(size, 16);
     ps.maxPathLength = 2;
     ps.equiangularSamples = 1;
     return ps;
 }
 
+/// The fixtures' fog box (albedo-0.5 walls, sigma_s 0.5, sigma_a 0.1, g 0.4) round a point light
+/// that the camera sees (or, `inView` false, that lies behind it); `panel`: also a small area light
+/// under the ceiling, facing down.
 Scene fogBoxWithLamp(bool inView, bool panel = false) {
     Scene s = test::makeFogBoxWithLamp(Rgb(0.5f), Rgb(0.1f), 0.4f,
                                        inView ? Vec3(0.2f, 0.25f, -0.3f) : Vec3(0.5f, 0.5f, 0.8f), 1.2f);
@@ -455,7 +443,7 @@ TEST(EquiangularPpb, FogBoxWithTheLampInViewAndAPanelAgreesWithThePathTracer) {
     // beams left out; the reference reaches the panel by its own light sampling and MIS.
     const Scene scene = fogBoxWithLamp(true, true);
     const int size = 16;
-    RenderSettings ps = constantRadii(size, 2000);
+    RenderSettings ps = test::equiangularConstantRadii(size, 2000);
     ps.seed = 5;
     // The whole image and its four quadrants (the lamp is in the upper right one), within 4
     // standard errors plus 2% for the kernel bias of the scattered light's beams and photons.
@@ -471,7 +459,7 @@ TEST(EquiangularPpb, FogLayerGridRoundTheLampAgreesWithThePathTracer) {
     scene.media[0].density = std::make_shared<FogLayer>(12);
     scene.finalize();
     const int size = 16;
-    RenderSettings ps = constantRadii(size, 2000);
+    RenderSettings ps = test::equiangularConstantRadii(size, 2000);
     ps.seed = 7;
     // The whole image and its quadrants within 4 standard errors plus 2% (the beams' kernel);
     // the lamp's quadrant has about 5% noise over the 8 batches.
@@ -551,15 +539,6 @@ Scene sunSlab(const std::vector<Light>& lights, Rgb sigmaS, Rgb sigmaA, float g,
     return s;
 }
 
-Light sun(Vec3 direction, Rgb irradiance) {
-    Light l;
-    l.name = "sun";
-    l.type = LightType::Directional;
-    l.direction = normalize(direction);
-    l.intensity = irradiance;
-    return l;
-}
-
 /// The mean of n estimates per channel, and the largest standard error relative to its mean.
 struct RgbEstimate {
     double mean[3] = {0, 0, 0}, standardError[3] = {0, 0, 0};
@@ -589,7 +568,7 @@ TEST(EquiangularSun, HomogeneousSlabAgainstTheClosedForm) {
     // the camera's and the sun's optical depths both linear in s. Chromatic extinction (red 20
     // times blue's): the distance's pdf mixes the channels' exponentials.
     const Rgb sigmaS(0.2f, 0.25f, 0.3f), sigmaA(0.4f, 0.1f, 0.02f), E(1.5f, 1.2f, 0.9f);
-    const Light light = sun({0.3f, -1.0f, 0.2f}, E);
+    const Light light = test::sun({0.3f, -1.0f, 0.2f}, E);
     const float mu = -light.direction.y;
     const Vec3 o{-2.0f, -0.5f, 0.0f}, d = normalize(Vec3(1.0f, 0.3f, 0.1f));
     const float sMax = 3.0f;
@@ -626,7 +605,7 @@ TEST(EquiangularSun, FogLayerInAGridAgainstQuadrature) {
     // The street-lamp-like fog layer (density 2 (1 - y) for y in [0, 1]) under a low sun, a
     // segment through the layer and out above it: the distance by the majorant pieces (with and
     // without a majorant grid), both transmittances by ratio tracking.
-    const Light light = sun({0.6f, -1.0f, -0.3f}, Rgb(2.0f));
+    const Light light = test::sun({0.6f, -1.0f, -0.3f}, Rgb(2.0f));
     const Vec3 o{-2.0f, 0.15f, 0.1f}, d = normalize(Vec3(1.0f, 0.35f, -0.05f));
     const float sMax = 4.0f, g = 0.5f;
     const double sigmaT = kSigmaS + kSigmaA;
@@ -657,7 +636,7 @@ TEST(EquiangularSun, SunAndPointLightShareTheSamplesAgainstTheClosedForms) {
     // A sun and a point light 0.3 from the segment, one budget per segment: the mean is the sum of
     // both closed forms whatever the budget; the sun's share grows with the segment's distance
     // from the lamp.
-    const Light light = sun({0.0f, -1.0f, 0.0f}, Rgb(0.8f));
+    const Light light = test::sun({0.0f, -1.0f, 0.0f}, Rgb(0.8f));
     const Light lamp = pointLight({0.2f, 0.3f, -0.1f}, 2.0f);
     const Vec3 o{-2.0f, 0.0f, 0.0f}, d{1.0f, 0.0f, 0.0f};
     const float sMax = 4.0f, g = 0.3f;
@@ -683,40 +662,10 @@ TEST(EquiangularSun, SunAndPointLightShareTheSamplesAgainstTheClosedForms) {
     EXPECT_GT(farFromLamp[0], nearLamp[0] + 0.3) << "the sun's share";
 }
 
-/// A sun over two boxes of fog on a floor: the left one's hull an index-matched Interface (the
-/// sun's photons cross it still direct: their first beams are left out and the shadow rays carry
-/// that light), the right one's a rough dielectric (photons refracted into it are no longer
-/// direct: their beams stay, and the shadow rays from inside it are blocked), or only the left one.
-/// The camera looks down on both; a floor wider than 3 fills the rest of the view.
-Scene sunOverFogBoxes(bool refracting, float floorHalf = 3.0f) {
-    Scene s;
-    s.name = "sun-fog-boxes";
-    s.source = "<test scene>";
-    const int floor = test::addMaterial(s, "floor", MaterialType::Diffuse, Rgb(0.15f));
-    const int hull = test::addMaterial(s, "hull", MaterialType::Interface, Rgb(1.0f));
-    const int glass = test::addMaterial(s, "rough water", MaterialType::Dielectric, Rgb(1.0f));
-    s.materials[size_t(glass)].ior = 1.33f;
-    s.materials[size_t(glass)].roughness = 0.7f;
-    s.media.push_back(test::homogeneousMedium(Rgb(0.9f, 0.8f, 0.7f), Rgb(0.3f, 0.4f, 0.5f), 0.5f));
-    s.media.push_back(s.media[0]);  // the right box's: sealed by its hull (no sun sample drawn there)
-    s.meshes.push_back(makeQuad("floor", {-floorHalf, 0, floorHalf}, {2 * floorHalf, 0, 0}, {0, 0, -2 * floorHalf}, floor));
-    TriangleMesh left = makeBox("left fog", {-1.3f, 0.001f, -0.6f}, {-0.1f, 1.0f, 0.6f}, hull);
-    left.interiorMedium = 0;
-    s.meshes.push_back(left);
-    TriangleMesh right = makeBox("right fog", {0.1f, 0.001f, -0.6f}, {1.3f, 1.0f, 0.6f}, glass);
-    right.interiorMedium = 1;
-    if (refracting) s.meshes.push_back(right);
-    s.lights.push_back(sun({0.2f, -0.7f, 0.7f}, Rgb(2.0f, 1.9f, 1.7f)));
-    s.camera = Camera::lookAt({0.0f, 2.4f, 2.6f}, {0.0f, 0.4f, 0.0f}, {0, 1, 0}, 50.0f * kPi / 180.0f);
-    s.finalize();
-    s.validate();
-    return s;
-}
-
 TEST(EquiangularSunPpb, SunOverAnIndexMatchedFogBoxAgreesWithThePathTracer) {
     // The sun's single scattering by shadow rays through the hull, its first beams left out.
-    const Scene scene = sunOverFogBoxes(false);
-    RenderSettings ps = constantRadii(16, 8000);
+    const Scene scene = test::sunOverFogBoxes(false);
+    RenderSettings ps = test::equiangularConstantRadii(16, 8000);
     ps.seed = 5;
     test::expectBatchesAgreeWithThePathTracer(scene, ps, 0.03, 0.02);
 }
@@ -725,7 +674,7 @@ TEST(EquiangularSunPpb, SunOverARefractingFogBoxBesideItAgreesWithThePathTracer)
     // The rough dielectric box beside it: its photons refract at the hull, so their beams inside
     // stay; the shadow rays from inside it are blocked. The pixels that see the rough box are
     // checked on their own too (a normalisation error through the hull is diluted in the quadrants).
-    // Measured (EquiangularSunPpb.DISABLED_RoughBoxRegionBiasAgainstRadius, docs/performance.md
+    // Measured (tyndall_measurements' RoughFogBoxBias, docs/performance.md
     // "Is the rough box of fog biased?"): in the pixels that see the rough box PPB is below the
     // path tracer by its kernel's bias, linear in the radii (-0.9%, -1.5%, -2.8% at 0.5, 1 and 2 times
     // constantRadii's), and at radius 0 (extrapolated) by -0.25% +- 0.93%: no bias of the
@@ -736,9 +685,9 @@ TEST(EquiangularSunPpb, SunOverARefractingFogBoxBesideItAgreesWithThePathTracer)
     // Planted bug: the rough refraction's importance weight x0.93 (RoughDielectric::eval) reads
     // -5.1% in the upper right quadrant (bound 4.5%) and fails; the old check passed it (-13% and
     // -17% in the right quadrants, within its bounds).
-    const Scene scene = sunOverFogBoxes(true);
+    const Scene scene = test::sunOverFogBoxes(true);
     const int size = 32;
-    RenderSettings ps = constantRadii(size, 4000);
+    RenderSettings ps = test::equiangularConstantRadii(size, 4000);
     ps.seed = 5;
     ps.radius *= 0.5f;
     ps.surfaceRadius *= 0.5f;
@@ -761,7 +710,7 @@ TEST(EquiangularSunPpb, SunSingleScatteringVarianceFallsAsOneOverPasses) {
     // scattering (no beam: its first beams are left out) and the floor's direct light. No kernel
     // remains, so each pass is an independent unbiased estimate and a pixel's variance over seeds
     // falls as 1/passes.
-    Scene scene = sunOverFogBoxes(false, 8.0f);
+    Scene scene = test::sunOverFogBoxes(false, 8.0f);
     const RenderSettings ps = singleScatteringOnly(8);
     EXPECT_NEAR(test::varianceSlopeOverPasses(scene, ps, 48, 100), -1.0, 0.3);
 }
@@ -798,7 +747,7 @@ TEST(EquiangularSky, ConstantSkyOverASlabAgainstTheClosedForm) {
 /// The index-matched fog box of sunOverFogBoxes under a sky with a small bright sun in its map
 /// (no directional light).
 Scene skyOverFogBox(float floorHalf = 3.0f) {
-    Scene s = sunOverFogBoxes(false, floorHalf);
+    Scene s = test::sunOverFogBoxes(false, floorHalf);
     s.lights.clear();
     Image sky(16, 8);
     for (int j = 0; j < sky.height; ++j)
@@ -814,7 +763,7 @@ Scene skyOverFogBox(float floorHalf = 3.0f) {
 TEST(EquiangularSkyPpb, SkyOverAnIndexMatchedFogBoxAgreesWithThePathTracer) {
     // The sky's single scattering by shadow rays through the hull, its first beams left out.
     const Scene scene = skyOverFogBox();
-    RenderSettings ps = constantRadii(16, 8000);
+    RenderSettings ps = test::equiangularConstantRadii(16, 8000);
     ps.seed = 5;
     test::expectBatchesAgreeWithThePathTracer(scene, ps, 0.03, 0.02);
 }
@@ -867,72 +816,6 @@ TEST(EquiangularSpread, FractionalCountIsSpreadEvenlyOverAPixelsPasses) {
     }
     EXPECT_NEAR(mean, 0.5, 4 * std::sqrt(1.0 / 12 / pixels));
     EXPECT_NEAR(below, 0.25, 4 * std::sqrt(0.25 * 0.75 / pixels));
-}
-
-/// The means over the pixels that see each mesh of sunOverFogBoxes(true) (by pixelMeshes), for
-/// each of `images`: their mean and standard error over the images.
-std::vector<test::RegionEstimate> meshRegionMeans(const Scene& scene, const std::vector<int>& meshOfPixel,
-                                                  const std::vector<Image>& images) {
-    std::vector<test::RegionEstimate> out;
-    for (size_t m = 0; m < scene.meshes.size(); ++m) {
-        std::vector<double> v;
-        for (const Image& img : images) v.push_back(test::meanOverPixels(img, meshOfPixel, int(m)));
-        const test::MeanVar mv = test::meanVar(v);
-        out.push_back({mv.mean, std::sqrt(mv.var / double(v.size()))});
-    }
-    return out;
-}
-
-// A measurement, not a check (about 3 CPU minutes; run with --gtest_also_run_disabled_tests,
-// docs/performance.md "Is the rough box of fog biased?"): is PPB biased inside the rough box? Per
-// mesh region at 32 x 32, 8 path-traced references of 4096 spp (independent seeds) against PPB at
-// 0.5, 1 and 2 times the test's constant radii (16 batches of 32 passes of 24000 paths each), and
-// the PPB means extrapolated linearly to radius 0 (least squares over the three radii).
-TEST(EquiangularSunPpb, DISABLED_RoughBoxRegionBiasAgainstRadius) {
-    const Scene scene = sunOverFogBoxes(true);
-    const int size = 32;
-    const std::vector<int> meshOfPixel = test::pixelMeshes(scene, size);
-    EmbreeScene rt(scene);
-    std::vector<Image> refs;
-    for (uint64_t k = 0; k < 8; ++k) {
-        ReferenceSettings rs;
-        rs.width = rs.height = size;
-        rs.samplesPerPixel = 4096;
-        rs.seed = 100 + k;
-        refs.push_back(ReferenceTracer(rt, rs).render().mean);
-    }
-    const std::vector<test::RegionEstimate> ref = meshRegionMeans(scene, meshOfPixel, refs);
-    const float scales[3] = {0.5f, 1.0f, 2.0f};
-    std::vector<std::vector<test::RegionEstimate>> ppb;
-    for (float scale : scales) {
-        std::vector<Image> batches;
-        for (uint64_t seed = 0; seed < 4; ++seed) {
-            RenderSettings ps = constantRadii(size, 24000);
-            ps.radius *= scale;
-            ps.surfaceRadius *= scale;
-            ps.seed = 200 + seed;
-            PassRenderer renderer(scene, ps);
-            for (uint64_t b = 0; b < 4; ++b) batches.push_back(test::renderPpbPasses(renderer, b * 32, 32));
-        }
-        ppb.push_back(meshRegionMeans(scene, meshOfPixel, batches));
-    }
-    for (size_t m = 0; m < scene.meshes.size(); ++m) {
-        std::printf("%s: reference %.5f +- %.5f\n", scene.meshes[m].name.c_str(), ref[m].mean, ref[m].se);
-        // Weighted least squares of mean = a + b scale; a and its standard error.
-        double sw = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
-        for (int r = 0; r < 3; ++r) {
-            const test::RegionEstimate& e = ppb[size_t(r)][m];
-            const double w = 1.0 / (e.se * e.se), x = scales[r], y = e.mean;
-            sw += w, sx += w * x, sy += w * y, sxx += w * x * x, sxy += w * x * y;
-            const double d = y / ref[m].mean - 1, se = std::hypot(e.se, ref[m].se) / ref[m].mean;
-            std::printf("  radii x%.1f: PPB %.5f +- %.5f, PPB / reference - 1 = %+.2f%% +- %.2f%%\n", scales[r], y,
-                        e.se, 100 * d, 100 * se);
-        }
-        const double det = sw * sxx - sx * sx, a = (sxx * sy - sx * sxy) / det, seA = std::sqrt(sxx / det);
-        const double se = std::hypot(seA, ref[m].se) / ref[m].mean;
-        std::printf("  radius 0 (extrapolated): PPB %.5f +- %.5f, PPB / reference - 1 = %+.2f%% +- %.2f%% (%.1f se)\n",
-                    a, seA, 100 * (a / ref[m].mean - 1), 100 * se, (a / ref[m].mean - 1) / se);
-    }
 }
 
 }  // namespace
