@@ -27,11 +27,14 @@ Rgb gatherBeams(const Scene& scene, const PhotonMap& photons, const std::vector<
     auto beyondCap = [&](uint32_t b) { return capped && photons.beamSegments[b] > maxBeamSegment; };
     if (med.homogeneous()) {
         Rgb st = med.sigmaT();
+        // A grey medium (the usual one): one exp a beam, the same values as three.
+        const bool grey = st.r == st.g && st.r == st.b;
         for (const BeamHitRecord& h : hits) {
             const PhotonBeam& beam = photons.beams[h.beam];
             if (beam.medium != medium || beyondCap(h.beam)) continue;
             float s = h.hit.s, t = h.hit.t;
-            Rgb tr = exp(Rgb(-st.r * (s + t), -st.g * (s + t), -st.b * (s + t)));
+            Rgb tr = grey ? Rgb(std::exp(-st.r * (s + t)))
+                          : exp(Rgb(-st.r * (s + t), -st.g * (s + t), -st.b * (s + t)));
             sum += beamRadiance(h.hit, beam, med.sigmaS, med.g, tr, Rgb(1.0f));
         }
         return sum;
