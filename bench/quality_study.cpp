@@ -79,7 +79,7 @@ struct Variant {
 /// The rows of one scene: equal work compares radius choices at `passes`; equal time the legacy
 /// defaults with today's (and, given `passes`, the radii planned for it).
 std::vector<Variant> variantsFor(const Scene& scene, const RenderSettings& base, uint64_t passes, bool equalTime,
-                                 bool legacy, const std::vector<double>& equiangularSamples,
+                                 bool legacy, bool switches, const std::vector<double>& equiangularSamples,
                                  const std::vector<double>& scatteredBeamMfp) {
     std::vector<Variant> variants;
     if (legacy) variants.push_back({"LEGACY", withLegacyDefaults(base, scene)});
@@ -89,13 +89,15 @@ std::vector<Variant> variantsFor(const Scene& scene, const RenderSettings& base,
         // What `tyndall render --time S` resolves (the open-ended plan), then, given a pass
         // count, the same planned for it (`--planned-paths`).
         variants.push_back({"DEFAULTS (--TIME)", open});
-        RenderSettings switched = open;
-        switched.equiangular = !open.equiangular;
-        variants.push_back({switched.equiangular ? "EQUIANGULAR ON" : "EQUIANGULAR OFF", switched});
-        // --film-light-sampling switched, where it acts (with the equiangular estimator).
-        RenderSettings film = open.equiangular ? open : switched;
-        film.filmLightSampling = !film.filmLightSampling;
-        variants.push_back({film.filmLightSampling ? "FILM LIGHT ON" : "FILM LIGHT OFF", film});
+        if (switches) {
+            RenderSettings switched = open;
+            switched.equiangular = !open.equiangular;
+            variants.push_back({switched.equiangular ? "EQUIANGULAR ON" : "EQUIANGULAR OFF", switched});
+            // --film-light-sampling switched, where it acts (with the equiangular estimator).
+            RenderSettings film = open.equiangular ? open : switched;
+            film.filmLightSampling = !film.filmLightSampling;
+            variants.push_back({film.filmLightSampling ? "FILM LIGHT ON" : "FILM LIGHT OFF", film});
+        }
         for (double n : equiangularSamples) {
             RenderSettings counted = open;
             counted.equiangular = true;
@@ -267,7 +269,7 @@ void runQualityStudy(const RenderSettings& settings, const QualityStudyOptions& 
         if (o.pilotOnly) continue;
         Reference ref = loadOrRenderReference(scene, scene.name, base, o.referenceDir, o.referenceSpp);
         std::vector<Curve> curves;
-        for (const Variant& v : variantsFor(scene, base, passes, equalTime, o.legacy, o.equiangularSamples, o.scatteredBeamMfp))
+        for (const Variant& v : variantsFor(scene, base, passes, equalTime, o.legacy, o.switches, o.equiangularSamples, o.scatteredBeamMfp))
             curves.push_back(studyRow(scene, v, ref, passes, o));
         panels.push_back({scene.name, std::move(curves)});
     }

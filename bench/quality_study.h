@@ -50,6 +50,9 @@ struct QualityStudyOptions {
     std::vector<std::string> only;
     /// The LEGACY row (false leaves it out, for studies of today's settings alone).
     bool legacy = true;
+    /// Equal time: the rows of today's defaults with --equiangular and --film-light-sampling switched
+    /// (false leaves them out: the defaults' row alone, as bench/baseline_compare.sh may want).
+    bool switches = true;
     /// Equal time: one more row per entry, today's defaults with --equiangular on and this many
     /// equiangular samples per segment (RenderSettings::equiangularSamples; 0 = auto), to compare
     /// counts in one run.

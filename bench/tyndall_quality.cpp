@@ -57,6 +57,9 @@ void addOptions(CLI::App& cli, Options& o) {
                    "Only the scenes (of --scene and --library) whose file name without .json is this, repeatable "
                    "(default: all)");
     cli.add_flag("!--no-legacy", o.study.legacy, "Leave out the LEGACY row (default: with it)");
+    cli.add_flag("!--no-switch-rows", o.study.switches,
+                 "With --cpu-seconds: leave out the rows with --equiangular and --film-light-sampling switched "
+                 "(default: with them)");
     cli.add_option("--equiangular-rows", o.study.equiangularSamples,
                    "With --cpu-seconds: one more row per value, --equiangular on with this many samples per segment "
                    "(0 = auto), repeatable (default: none)")
