@@ -8,8 +8,12 @@ namespace tyndall {
 
 namespace {
 
-// The margin the ribbons are widened by, in largest beam radii (BeamQueryCache).
-constexpr float kReach = 2.0f;
+// The margin the ribbons are widened by, in largest beam radii (BeamQueryCache). Wider ribbons
+// let more segments reuse a traversal's list and make each list longer (the exact test runs over
+// more candidates): at 1080p (the default scene) 3 halved the traversals of 2 (10.9 k against
+// 23 k a pass) and took 11% fewer of the beam queries' instructions; 4 took fewer than 2 and more
+// than 3, 6 and 8 more than 2 (docs/performance.md, "Where a 1080p pass goes").
+constexpr float kReach = 3.0f;
 
 // Extends Embree's context (first member) with what the callbacks need.
 struct GatherContext {

@@ -14,7 +14,7 @@
 // Thread-safe queries after construction.
 //
 // Neighbouring camera paths' secondary segments (a tile's pixels through a mirror) are nearly the
-// same segment, so the flat curves are widened by a margin `reach` (twice the largest beam radius): one
+// same segment, so the flat curves are widened by a margin `reach` (3 times the largest beam radius): one
 // Embree traversal along a segment S0 finds every beam within its radius plus `reach` of S0 (the
 // candidates), and any segment whose two ends lie within `reach` of S0 (so all of it does) needs
 // only the exact beam x ray test against those candidates (BeamQueryCache). Every query, cached or
@@ -90,7 +90,7 @@ public:
     /// segment, else tracing one and caching it (flat curves only; user geometry ignores `cache`).
     void query(const Vec3& o, const Vec3& d, float sMax, std::vector<BeamHitRecord>& hits,
                BeamQueryCache& cache) const;
-    /// The margin the flat curves are widened by (twice the largest beam radius, or the usual one).
+    /// The margin the flat curves are widened by (3 times the largest beam radius, or the usual one).
     float reach() const { return m_reach; }
 
     Kind kind() const { return m_kind; }
