@@ -115,6 +115,9 @@ struct ThreadScratch {
     std::vector<float> freeFlights;
     std::vector<uint32_t> planes;  // a plane query's candidates
     CameraPassStats stats;
+    // A path's equiangular legs (the primary segment's, a later segment's): 1 KB each, kept here
+    // rather than made (and their values zeroed) for every pixel and segment; `n` set before use.
+    EquiangularLegs primaryLegs, segmentLegs;
 };
 }  // namespace
 
@@ -436,7 +439,8 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
             // that its equiangular samples read too (their camera legs), from its own stream.
             const bool primaryGrid =
                 pr.medium != kVacuum && pr.tMax > 0 && !m_scene.media[pr.medium].homogeneous();
-            EquiangularLegs legs;
+            EquiangularLegs& legs = tls.primaryLegs;
+            legs.n = 0;
             if (((m_equiangular && emission) || planeBvh) && (maxLength == 0 || maxLength >= 2) &&
                 pr.medium != kVacuum && pr.tMax > 0) {
                 if (m_equiangular && emission) {
@@ -636,7 +640,8 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                     const Medium& med = m_scene.media[medium];
                     float* ff = tls.freeFlights.data();
                     Rgb emitted;  // the segment's medium emission, with the pass's emission only
-                    EquiangularLegs legs;  // its equiangular samples' camera legs, in a grid
+                    EquiangularLegs& legs = tls.segmentLegs;  // its equiangular samples' camera legs, in a grid
+                    legs.n = 0;
                     if (!med.homogeneous()) {
                         sampleCollisionDistances(med, seg, seg.tMax, rng, nff, ff);
                         if (emission && m_segmentEmission && med.emissive()) {
