@@ -226,9 +226,10 @@ void addDirectLightOption(CLI::App* cmd, CommonOptions& o) {
         ->type_name("TEXT")
         ->default_str("auto");
     addOnOffOption(cmd, "--film-light-sampling", o.settings.filmLightSampling,
-                   "on|off: with --equiangular on, pixels near the image of a point or spot light in a medium draw "
-                   "their camera rays partly towards it, weighted (finite variance for the light's glow); off = "
-                   "uniform film positions (docs/algorithm.md)");
+                   "on|off: with --equiangular on, pixels near the image of a point or spot light in a medium trace "
+                   "one more camera ray drawn towards it for that light's single scattering, combined with the "
+                   "uniform one by MIS (finite variance for the light's glow); off = uniform film positions alone "
+                   "(docs/algorithm.md)");
     addOnOffOption(cmd, "--photon-planes", o.settings.photonPlanes,
                    "on|off: photon planes in homogeneous media (a beam swept along its next direction, "
                    "no kernel) instead of the beams after a scattering there; off = beams only (docs/algorithm.md)");

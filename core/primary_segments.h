@@ -32,17 +32,6 @@ struct PrimarySegments {
     /// (from `origin`); empty when the scene has no density-grid medium.
     std::vector<float> freeFlights;
     int freeFlightsPerRay = 0;
-    /// Per pixel, the weight of its camera path: the uniform film density over the one its film
-    /// position was drawn from (core/film_light_sampler.h, RenderSettings::filmLightSampling);
-    /// empty when every weight is 1. Everything a pixel's path contributes is multiplied by it.
-    std::vector<float> weights;
 };
-
-/// Multiplies each pixel of `image` (the pass's contribution of `primary`'s camera paths, or a
-/// part of it) by its path's film weight.
-inline void applyFilmWeights(const PrimarySegments& primary, Image& image) {
-    if (primary.weights.empty()) return;
-    for (size_t i = 0; i < image.pixels.size() && i < primary.weights.size(); ++i) image.pixels[i] *= primary.weights[i];
-}
 
 }  // namespace tyndall

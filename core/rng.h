@@ -20,7 +20,7 @@ enum class StreamPurpose : uint32_t {
     MediumEmission = 10,  ///< a camera path's grid-medium emission, primary segment (cpu/segment_emission.h)
     LaterMediumEmission = 11,  ///< the same along its later segments
     LightChoiceRotation = 12,  ///< a pixel's offset of its shadow rays' light-choice sequence (core/pixel_jitter.h)
-    FilmLight = 13,  ///< a pixel's film position redrawn towards a light's image (core/film_light_sampler.h)
+    FilmLight = 13,  ///< a pixel's light-directed camera ray near a light's image: its film position, lens point and path (cpu/camera_tracer.cpp)
     PrimaryTransmittance = 14,  ///< a camera path's transmittance through its primary grid segment (cpu/camera_tracer.cpp)
     Test = 99,
 };

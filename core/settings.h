@@ -108,11 +108,12 @@ struct RenderSettings {
     static constexpr double kAutoEquiangularSamples = 0;
     static constexpr double kMaxEquiangularSamples = 64;
     /// With `equiangular` on: a pixel within a pixel of the image of a point or spot light inside a
-    /// medium draws its camera ray's film position partly towards that image (density falling as
-    /// 1 / distance from it) and weights the path by the uniform density over the one it used
-    /// (core/film_light_sampler.h; docs/algorithm.md, "Camera rays near a light's image"): the
-    /// light's single scattering, growing as 1 / distance from the light, then has finite variance
-    /// in that pixel. false = the film position uniform (the low-discrepancy jitter) everywhere.
+    /// medium traces one more camera ray a pass, its film position drawn towards that image
+    /// (density falling as 1 / distance from it), for that light's single scattering alone,
+    /// combined with the uniform ray's by the balance heuristic (core/film_light_sampler.h;
+    /// docs/algorithm.md, "Camera rays near a light's image"): the light's single scattering,
+    /// growing as 1 / distance from the light, then has finite variance in that pixel, and the
+    /// rest of the pixel keeps its uniform film position. false = the uniform ray alone.
     bool filmLightSampling = true;
     /// Photon planes (core/photon_plane.h) in homogeneous media: every beam there is joined with a
     /// sampled next direction into a plane that every camera segment in a medium gathers without a

@@ -379,7 +379,6 @@ Image BeamRasterizer::rasterize(const PrimarySegments& primary, const PhotonMap&
         tests += localTests;
     });
     if (stats) *stats += RasterStats{tests.load(), binned};
-    applyFilmWeights(primary, out);
     return out;
 }
 
@@ -389,7 +388,6 @@ Image BeamRasterizer::bruteForce(const PrimarySegments& primary, const PhotonMap
         for (uint32_t b = 0; b < photons.beams.size(); ++b)
             out.pixels[pixel] += BeamPixelEvaluator(m_scene, photons, b)(primary, pixel);
     });
-    applyFilmWeights(primary, out);
     return out;
 }
 

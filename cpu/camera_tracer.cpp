@@ -82,12 +82,13 @@ void CameraTracer::lightsChanged() {
     }
     m_filmLights.clear();
     if (m_equiangular && m_settings.filmLightSampling) {
-        for (const Light& light : m_scene.lights) {
+        for (size_t index = 0; index < m_scene.lights.size(); ++index) {
+            const Light& light = m_scene.lights[index];
             if (!(light.type == LightType::Point || light.type == LightType::Spot) || !(light.intensity.average() > 0))
                 continue;
             const MediumId medium = m_rt.mediumAt(light.position);
             if (medium == kVacuum || !(m_scene.media[medium].sigmaS.maxComponent() > 0)) continue;
-            m_filmLights.push_back(FilmLight{light.position, double(light.intensity.average())});
+            m_filmLights.push_back(FilmLight{light.position, double(light.intensity.average()), int(index)});
         }
     }
     if (!m_settings.directLight) return;
@@ -226,12 +227,17 @@ PrimaryPass CameraTracer::tracePrimary(uint64_t pass) const {
 
     const Camera::RayGenerator generateRay(camera, w, h);
 
+    // The pixel's keyed stream feeds the lens sample and a grid medium's stored distances: a
+    // pinhole camera in a scene without grid media draws nothing from it.
+    const bool jitterStream = camera.lensRadius > 0.0f || nff > 0;
+
     // --film-light-sampling: the pixels within FilmLightMixture::kReach of a light's image (with a
     // lens, of any of its images over the aperture), sorted by pixel, each with the light.
     struct FilmImage {
         Vec3 position;
         float depth;  // along the camera's forward axis
         double share;
+        int light;    // index into Scene::lights
     };
     std::vector<FilmImage> filmImages;
     std::vector<std::pair<uint64_t, uint32_t>> filmPixels;
@@ -245,27 +251,26 @@ PrimaryPass CameraTracer::tracePrimary(uint64_t pass) const {
                       (2.0 * double(camera.focusDistance) * std::tan(0.5 * double(camera.yFov)))
                 : 0.0;
         const double reach = confusion + FilmLightMixture::kReach;
-        const double x0 = std::max(0.0, std::floor(fx - reach - 1.0)), x1 = std::min(double(w - 1), std::floor(fx + reach));
-        const double y0 = std::max(0.0, std::floor(fy - reach - 1.0)), y1 = std::min(double(h - 1), std::floor(fy + reach));
+        const double x0 = std::max(double(region.x), std::floor(fx - reach - 1.0));
+        const double x1 = std::min(double(region.x + region.width - 1), std::floor(fx + reach));
+        const double y0 = std::max(double(region.y), std::floor(fy - reach - 1.0));
+        const double y1 = std::min(double(region.y + region.height - 1), std::floor(fy + reach));
         if (x0 > x1 || y0 > y1 || (x1 - x0 + 1) * (y1 - y0 + 1) > 65536.0) continue;  // off the film, or a blur too wide
         const uint32_t index = uint32_t(filmImages.size());
-        filmImages.push_back(FilmImage{light.position, depth, light.intensity / depth});
+        filmImages.push_back(FilmImage{light.position, depth, light.intensity / depth, light.light});
         for (int y = int(y0); y <= int(y1); ++y)
             for (int x = int(x0); x <= int(x1); ++x) filmPixels.emplace_back(uint64_t(y) * w + x, index);
     }
     std::sort(filmPixels.begin(), filmPixels.end());
-    if (!filmPixels.empty()) primary.weights.assign(size_t(w) * h, 1.0f);
-    // The film position of `pixel` (at x, y) from its jitter `film`, and its weight in `weights`.
-    auto filmPosition = [&](uint64_t pixel, int x, int y, Vec2 film, Vec2 lens) {
-        auto it = std::lower_bound(filmPixels.begin(), filmPixels.end(), std::make_pair(pixel, uint32_t(0)));
-        if (it == filmPixels.end() || it->first != pixel) return film;
+    // The mixture q of the images of `lights` (FilmImage indices) that reach pixel (x, y) through
+    // the lens point `lens` (with a lens, the image through it: where the ray from it to the light
+    // meets the plane in focus, projected, the film position whose ray passes through the light).
+    auto mixtureAt = [&](const uint32_t* lights, int count, int x, int y, Vec2 lens) {
         FilmLightMixture mixture;
-        for (; it != filmPixels.end() && it->first == pixel; ++it) {
-            const FilmImage& image = filmImages[it->second];
+        for (int j = 0; j < count; ++j) {
+            const FilmImage& image = filmImages[lights[j]];
             float fx, fy, depth;
             if (camera.lensRadius > 0.0f) {
-                // Through this lens point: where the ray from it to the light meets the plane in
-                // focus, projected (the film position whose ray passes through the light).
                 const Vec2 disk = sampleConcentricDisk(lens.x, lens.y);
                 const Vec3 o = camera.position + camera.right * (disk.x * camera.lensRadius) +
                                camera.up * (disk.y * camera.lensRadius);
@@ -277,15 +282,40 @@ PrimaryPass CameraTracer::tracePrimary(uint64_t pass) const {
             const double px = double(fx) - x, py = double(fy) - y;
             if (FilmLightMixture::reaches(px, py)) mixture.add(px, py, image.share);
         }
-        if (mixture.empty()) return film;
-        Rng redraw = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::FilmLight);
-        Vec2 position;
-        primary.weights[pixel] = float(mixture.sample(film, redraw, &position));
-        return position;
+        return mixture;
     };
-    // The pixel's keyed stream feeds the lens sample and a grid medium's stored distances: a
-    // pinhole camera in a scene without grid media draws nothing from it.
-    const bool jitterStream = camera.lensRadius > 0.0f || nff > 0;
+    // Per pixel: its lights (at most FilmLightMixture::kMaxLights), the balance heuristic's scale
+    // at its uniform film position (its jitter and lens point as the camera ray's below) and the
+    // light-directed ray, from its own stream.
+    for (size_t k = 0; k < filmPixels.size();) {
+        const uint64_t pixel = filmPixels[k].first;
+        uint32_t lights[FilmLightMixture::kMaxLights];
+        int count = 0;
+        for (; k < filmPixels.size() && filmPixels[k].first == pixel; ++k)
+            if (count < FilmLightMixture::kMaxLights) lights[count++] = filmPixels[k].second;
+        const int x = int(pixel % uint64_t(w)), y = int(pixel / uint64_t(w));
+        FilmLightRay film;
+        film.pixel = pixel;
+        for (int j = 0; j < count; ++j) film.uniform.lights[film.uniform.n++] = filmImages[lights[j]].light;
+        Vec2 lens{0.0f, 0.0f};
+        if (jitterStream) {
+            Rng jitter = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::PixelJitter);
+            lens = Vec2{jitter.uniform(), jitter.uniform()};
+        }
+        const Vec2 uniform = pixelJitter(m_settings.seed, pass, pixel);
+        film.uniform.scale = float(mixtureAt(lights, count, x, y, lens).uniformScale(uniform.x, uniform.y));
+        Rng rng = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::FilmLight);
+        Vec2 extraLens{0.0f, 0.0f};
+        if (camera.lensRadius > 0.0f) extraLens = Vec2{rng.uniform(), rng.uniform()};
+        const FilmLightMixture mixture = mixtureAt(lights, count, x, y, extraLens);
+        Vec2 position;
+        if (mixture.sample(rng, &position)) {
+            film.ray = generateRay(float(x) + position.x, float(y) + position.y, extraLens);
+            film.extraScale = float(mixture.extraScale(position.x, position.y));
+            film.rng = rng;
+        }
+        out.filmRays.push_back(film);
+    }
     // Packets of 4 x 2 pixels (EmbreeScene::intersectCoherent): neighbouring camera rays share
     // most of their traversal.
     constexpr int kPacketWidth = EmbreeScene::kPacket / 2;
@@ -312,8 +342,7 @@ PrimaryPass CameraTracer::tracePrimary(uint64_t pass) const {
                         jitters[n] = Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::PixelJitter);
                         lens = Vec2{jitters[n].uniform(), jitters[n].uniform()};
                     }
-                    Vec2 film = pixelJitter(m_settings.seed, pass, pixel);
-                    if (!filmPixels.empty()) film = filmPosition(pixel, x, y, film, lens);
+                    const Vec2 film = pixelJitter(m_settings.seed, pass, pixel);
                     rays[n] = generateRay(float(x) + film.x, float(y) + film.y, lens);
                 }
             }
@@ -364,6 +393,68 @@ PrimaryPass CameraTracer::tracePrimary(uint64_t pass) const {
     return out;
 }
 
+Rgb CameraTracer::filmLightRadiance(const FilmLightRay& film, int samples, Rgb* primary,
+                                    uint64_t* rays) const {
+    // Its stream after the film position and lens point tracePrimary drew from it.
+    Rng rng = film.rng;
+    EquiangularSubset lights = film.uniform;
+    lights.only = true;
+    lights.scale = film.extraScale;
+    const int maxLength = m_settings.maxPathLength;
+    const float spread = pixelSpread(m_scene.camera.yFov, m_settings.height);
+    MediumId medium = m_rt.mediumAt(m_scene.camera.position);
+    Ray ray = film.ray;
+    Rgb throughput(1.0f), L;
+    float pathLength = 0;
+    // As a camera path's: `segment` counts the camera segments (Interface crossings start none);
+    // single scattering along segment k is a light path of k + 1 segments.
+    int segment = 1;
+    for (int depth = 0;;) {
+        if (maxLength > 0 && segment + 1 > maxLength) break;
+        SurfaceHit hit;
+        const bool surface = m_rt.intersect(ray, &hit);
+        ++*rays;
+        if (surface) pathLength += hit.t;
+        Ray seg;
+        if (medium != kVacuum && m_rt.mediumSegment(ray.o, ray.d, surface ? hit.t : kInfinity, &seg)) {
+            const Medium& med = m_scene.media[medium];
+            EquiangularLegs legs;
+            Rgb single = m_equiangular->estimate(medium, seg.o, seg.d, seg.tMax, samples, rng,
+                                                 med.homogeneous() ? nullptr : &legs, &lights);
+            Rgb transmittance;
+            if (med.homogeneous()) {
+                transmittance = med.transmittance(seg.tMax);
+            } else {
+                Rgb read;
+                transmittance = gridSegmentTransmittance(med, seg, rng, legs, &read);
+                single += read;
+            }
+            L += throughput * single;
+            if (segment == 1 && depth == 0) *primary = throughput * single;
+            throughput *= transmittance;
+        }
+        if (!surface || throughput.isBlack()) break;
+        // Through the lobes a camera path follows (mirrors, glass, glossy and a coat's specular
+        // part, with its roulette); a diffuse end ends it.
+        const float footprint = spread * pathLength;
+        applyNormalMap(m_scene, &hit, footprint);
+        const SurfacePoint sp = surfaceAt(m_scene, hit, footprint);
+        const Bsdf bsdf = Bsdf::at(m_scene, hit, sp, ray.d, medium, TransportMode::Radiance, rng);
+        const BsdfLobes lobes = bsdf.lobes();
+        if (!(lobes & (kLobeGlossy | kLobeSpecular))) break;
+        BsdfSample s;
+        if (!bsdf.sample(rng, &throughput, &s, BsdfLobes(kLobesAll & ~kLobeDiffuse), [&](const Rgb&, const Rgb& w) {
+                return (lobes & kLobeDiffuse) ? std::min(1.0f, 4.0f * w.maxComponent()) : kNoRoulette;
+            }))
+            break;
+        if (!bsdf.isPassThrough() && ++segment > maxLength && maxLength > 0) break;
+        medium = s.medium;
+        ray = Ray{m_rt.offsetOrigin(hit.p, hit.t, hit.ng, s.wi), s.wi};
+        if (++depth > m_settings.maxCameraBounces) break;
+    }
+    return L;
+}
+
 Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& photons, const BeamBvh& beams,
                                    const SurfacePhotonGrid& surfacePhotons, CameraPassStats* stats,
                                    SecondaryLayers* layers, bool emission, Image* alpha) const {
@@ -407,16 +498,14 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
             PrimaryHit& ph = (*primary.hits)[pixel];
             Rgb throughput = ph.throughput, L, Lmedia, Lsurface, LmediaPrimary;
             float clear = 0;  // the share of this path that reached the background (transparent film)
-            // The path's film weight (--film-light-sampling; 1 for a uniform film position).
-            const float weight = primary.segments.weights.empty() ? 1.0f : primary.segments.weights[pixel];
             auto store = [&]() {
                 if (!keep) return;
-                radiance.at(x, y) = L * weight;
-                if (alpha) alpha->at(x, y) = Rgb(weight * (1.0f - clear));
+                radiance.at(x, y) = L;
+                if (alpha) alpha->at(x, y) = Rgb(1.0f - clear);
                 if (layers) {
-                    layers->media.at(x, y) = Lmedia * weight;
-                    layers->surface.at(x, y) = Lsurface * weight;
-                    layers->mediaPrimary.at(x, y) = LmediaPrimary * weight;
+                    layers->media.at(x, y) = Lmedia;
+                    layers->surface.at(x, y) = Lsurface;
+                    layers->mediaPrimary.at(x, y) = LmediaPrimary;
                 }
             };
             // The primary segment's medium emission (the splatters add its beams) and, with
@@ -434,6 +523,22 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                     ? m_equiangular->samplesInPass(pass, EquiangularScattering::pixelPhase(m_settings.seed, pixel))
                     : 0;
             std::optional<Rng> emissionRng;  // keyed at the first later segment in an emitting grid
+            // --film-light-sampling: near a light's image, this path's share of that light's single
+            // scattering (FilmLightRay::uniform) and, with the emission, the light-directed ray's.
+            const FilmLightRay* film = nullptr;
+            if (!primary.filmRays.empty()) {
+                auto it = std::lower_bound(primary.filmRays.begin(), primary.filmRays.end(), pixel,
+                                           [](const FilmLightRay& f, uint64_t p) { return f.pixel < p; });
+                if (it != primary.filmRays.end() && it->pixel == pixel) film = &*it;
+            }
+            const EquiangularSubset* filmSubset = film ? &film->uniform : nullptr;
+            if (film && film->extraScale > 0 && equiangularSamples > 0) {
+                Rgb primaryPart;
+                const Rgb extra = filmLightRadiance(*film, equiangularSamples, &primaryPart, &tls.stats.rays);
+                L += extra;
+                LmediaPrimary += primaryPart;
+                Lmedia += extra - primaryPart;
+            }
             const PrimaryRay& pr = primary.segments.rays[pixel];
             // Through a grid the primary segment's transmittance is estimated here, by one tracker
             // that its equiangular samples read too (their camera legs), from its own stream.
@@ -444,8 +549,9 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
             if (((m_equiangular && emission) || planeBvh) && (maxLength == 0 || maxLength >= 2) &&
                 pr.medium != kVacuum && pr.tMax > 0) {
                 if (m_equiangular && emission) {
-                    const Rgb single = m_equiangular->estimate(pr.medium, pr.origin, pr.dir, pr.tMax, equiangularSamples,
-                                                               equiangularRng, primaryGrid ? &legs : nullptr);
+                    const Rgb single =
+                        m_equiangular->estimate(pr.medium, pr.origin, pr.dir, pr.tMax, equiangularSamples,
+                                                equiangularRng, primaryGrid ? &legs : nullptr, filmSubset);
                     L += single;
                     LmediaPrimary += single;
                 }
@@ -663,7 +769,8 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                         emitted += gatherBeams(m_scene, photons, tls.hits, medium, seg.o, seg.d, ff, nff, maxBeamSegment);
                         if (m_equiangular && emission)
                             emitted += m_equiangular->estimate(medium, seg.o, seg.d, seg.tMax, equiangularSamples,
-                                                               equiangularRng, med.homogeneous() ? nullptr : &legs);
+                                                               equiangularRng, med.homogeneous() ? nullptr : &legs,
+                                                               filmSubset);
                         if (planeBvh && med.homogeneous())
                             emitted += gatherPlanes(m_rt, *planeBvh, medium, seg.o, seg.d, seg.tMax, maxBeamSegment,
                                                     tls.planes);

@@ -19,7 +19,10 @@
 //                                           --equiangular on, every segment in a medium (the
 //                                           primary one too) adds the single scattering of point,
 //                                           spot, area and directional lights and the environment
-//                                           (cpu/equiangular.h); with
+//                                           (cpu/equiangular.h), and with
+//                                           --film-light-sampling on a pixel near a point or spot
+//                                           light's image also traces a light-directed ray for
+//                                           that light's single scattering (FilmLightRay); with
 //                                           --photon-planes on, every segment in a homogeneous
 //                                           medium (the primary one too) gathers the batch's
 //                                           photon planes (cpu/plane_bvh.h); a path
@@ -33,7 +36,8 @@
 // low-discrepancy sequence over the passes, core/pixel_jitter.h), draws its lens sample and its
 // primary stored distances from Rng::forKey(seed, i, p, PixelJitter), the rest of its path from (seed, i, p, CameraPath) and
 // its shadow ray from (seed, i, p, DirectLight) and its equiangular samples from (seed, i, p,
-// Equiangular), so the split changes no bit of the image.
+// Equiangular), a pixel near a light's image its light-directed ray from (seed, i, p, FilmLight),
+// so the split changes no bit of the image.
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -92,6 +96,19 @@ private:
     std::vector<std::vector<float>> m_freeFlights;
 };
 
+/// --film-light-sampling: a pixel near the image of point or spot lights in a medium (docs/
+/// algorithm.md "Camera rays near a light's image"). Its camera path keeps its uniform film
+/// position; its estimate of those lights' single scattering is scaled by `uniform.scale`
+/// (1 / (1 + q) at that position), and one more camera ray, from a film position drawn from q,
+/// carries those lights' single scattering alone, scaled by `extraScale` (1 / (1 + q) at its own).
+struct FilmLightRay {
+    uint64_t pixel = 0;
+    EquiangularSubset uniform;  ///< the lights, and the uniform position's scale (not `only`)
+    Ray ray;                    ///< the light-directed camera ray
+    float extraScale = 0;       ///< 0: no such ray this pass (no light's image within reach)
+    Rng rng;                    ///< the ray's stream (seed, pass, pixel, FilmLight) after its position
+};
+
 /// The primary stage of a pass: the splatters' input and where the secondary stage goes on.
 /// Move-only. Its segments' arrays (66 MB of rays at 1080p) go back to the CameraTracer's pool
 /// when it is destroyed, unless they were moved out first, so the next pass reuses them instead
@@ -105,6 +122,8 @@ struct PrimaryPass {
     /// secondary stage's beam queries (BeamBvh::piecesFor). Counted while tracing, so no serial
     /// walk over the hits is needed.
     uint64_t nonDiffuseHits = 0;
+    /// The pixels near a light's image (--film-light-sampling), sorted by pixel.
+    std::vector<FilmLightRay> filmRays;
     std::shared_ptr<PrimarySegmentPool> pool;
 
     PrimaryPass() = default;
@@ -160,6 +179,12 @@ private:
     };
     /// `pixels` hits from the pool (contents stale: tracePrimary overwrites every pixel).
     PrimaryHitBuffer acquireHits(size_t pixels) const;
+    /// The light-directed camera ray of `film`: its lights'
+    /// single scattering (`samples` equiangular distances a segment) along its camera segments
+    /// in media, through mirrors and glass as a camera path goes, scaled by film.extraScale; the
+    /// part along its primary segment also goes to *primary. Draws from film.rng; counts its
+    /// surface rays in *rays.
+    Rgb filmLightRadiance(const FilmLightRay& film, int samples, Rgb* primary, uint64_t* rays) const;
 
     const EmbreeScene& m_rt;
     const Scene& m_scene;
@@ -176,10 +201,11 @@ private:
     std::unique_ptr<EquiangularScattering> m_equiangular;
     /// --film-light-sampling on (with m_equiangular): the point and spot lights inside a
     /// scattering medium, whose images draw the film positions of the pixels near them
-    /// (core/film_light_sampler.h), with their intensities' means.
+    /// (core/film_light_sampler.h), with their intensities' means and indices into Scene::lights.
     struct FilmLight {
         Vec3 position;
         double intensity = 0;
+        int light = 0;
     };
     std::vector<FilmLight> m_filmLights;
     /// The emission of grid media along every camera segment (cpu/segment_emission.h); null when

@@ -447,7 +447,7 @@ double EquiangularScattering::pixelPhase(uint64_t seed, uint64_t pixel) {
 }
 
 Rgb EquiangularScattering::estimate(MediumId medium, const Vec3& o, const Vec3& d, float sMax, int n, Rng& rng,
-                                    EquiangularLegs* out) const {
+                                    EquiangularLegs* out, const EquiangularSubset* subset) const {
     if (out) out->n = 0;
     if (n <= 0 || !lit(medium, sMax)) return Rgb(0.0f);
     const Scene& scene = m_rt.scene();
@@ -463,6 +463,25 @@ Rgb EquiangularScattering::estimate(MediumId medium, const Vec3& o, const Vec3& 
     if (sources > 1 && sources <= kWeighedUpTo) {
         if (!segmentCdf(med, sealed, o, d, sMax, cdf)) return Rgb(0.0f);
         c = cdf;
+    }
+    // EquiangularSubset::only: the subset's sources alone, each with its share of their part of
+    // the segment's choice (`sub` its cdf, `subSource` the sources' indices).
+    double sub[EquiangularSubset::kMax];
+    size_t subSource[EquiangularSubset::kMax];
+    size_t subCount = 0;
+    if (subset && subset->only) {
+        double total = 0;
+        for (size_t i = 0; i < sources; ++i) {
+            if (!subset->contains(m_lights[i]) || subCount == EquiangularSubset::kMax) continue;
+            const double p = c[i] - (i > 0 ? c[i - 1] : 0.0);
+            if (!(p > 0)) continue;
+            total += p;
+            sub[subCount] = total;
+            subSource[subCount++] = i;
+        }
+        if (!(total > 0)) return Rgb(0.0f);
+        for (size_t j = 0; j < subCount; ++j) sub[j] /= total;
+        sub[subCount - 1] = 1.0;
     }
     // n stratified uniforms (k + xi) / n, each choosing a source and, rescaled inside the source's
     // interval of the cdf, its distance; the sum over N (n's mean).
@@ -483,11 +502,23 @@ Rgb EquiangularScattering::estimate(MediumId medium, const Vec3& o, const Vec3& 
     Rgb sum;
     for (int k = 0; k < n; ++k) {
         const float u = (float(k) + rng.uniform()) / float(n);
-        size_t i = sources == 1 ? 0 : size_t(std::upper_bound(c, c + sources, double(u)) - c);
-        i = std::min(i, sources - 1);
-        const double lo = i > 0 ? c[i - 1] : 0.0, p = c[i] - lo;
+        size_t i;
+        double lo, p;
+        if (subCount > 0) {
+            size_t j = size_t(std::upper_bound(sub, sub + subCount, double(u)) - sub);
+            j = std::min(j, subCount - 1);
+            i = subSource[j];
+            lo = j > 0 ? sub[j - 1] : 0.0;
+            p = sub[j] - lo;
+        } else {
+            i = sources == 1 ? 0 : size_t(std::upper_bound(c, c + sources, double(u)) - c);
+            i = std::min(i, sources - 1);
+            lo = i > 0 ? c[i - 1] : 0.0;
+            p = c[i] - lo;
+        }
         if (!(p > 0)) continue;
         double weight = 1.0 / p;
+        if (subset && (subset->only || subset->contains(m_lights[i]))) weight *= subset->scale;
         if (parallel(i)) {
             if (sealed || k % kParallelThinning != offset) continue;
             weight *= kParallelThinning;

@@ -82,6 +82,24 @@ struct EquiangularLegs {
     }
 };
 
+/// Some of the point and spot lights (indices into Scene::lights), for the camera rays near a
+/// light's image (docs/algorithm.md "Camera rays near a light's image"): a segment's samples that
+/// choose one of them are scaled by `scale` (the uniform film position's share of their light), or
+/// with `only` the segment's samples are drawn among them alone (their choice the segment's, over
+/// their part of it), scaled the same.
+struct EquiangularSubset {
+    static constexpr int kMax = 4;
+    int n = 0;
+    int lights[kMax];
+    float scale = 1.0f;
+    bool only = false;
+    bool contains(int light) const {
+        for (int j = 0; j < n; ++j)
+            if (lights[j] == light) return true;
+        return false;
+    }
+};
+
 class EquiangularScattering {
 public:
     /// Keeps a reference to `rt` (it must outlive this); reads the scene's lights now. `samples`:
@@ -114,8 +132,10 @@ public:
     /// n <= EquiangularLegs::kMax the samples' camera transmittances are left to the caller: the
     /// samples go to *legs (sorted by distance) and the return is 0; else (legs null, a
     /// homogeneous medium) the whole estimate.
+    /// With `subset`, its lights' samples are scaled (or drawn alone) as EquiangularSubset says;
+    /// without one, or with one that is not `only`, the draws are the same.
     Rgb estimate(MediumId medium, const Vec3& o, const Vec3& d, float sMax, int n, Rng& rng,
-                 EquiangularLegs* legs = nullptr) const;
+                 EquiangularLegs* legs = nullptr, const EquiangularSubset* subset = nullptr) const;
 
     /// The distances a pixel's segments get in pass `pass`: floor(N) and, for a fraction f =
     /// N - floor(N), one more in the passes k where floor((k + 1) f + phase) > floor(k f + phase),

@@ -238,7 +238,6 @@ Image GlBeamSplatter::splat(const PrimarySegments& primary, const PhotonMap& pho
         const float* row = &b.readback[size_t(h - 1 - y) * w * 4];
         for (int x = 0; x < w; ++x) out.at(x, y) = Rgb(row[4 * x], row[4 * x + 1], row[4 * x + 2]);
     }
-    applyFilmWeights(primary, out);  // the camera paths' film weights (--film-light-sampling)
     local.readbackSeconds = secondsSince(t2);
     if (stats) *stats += local;
     return out;
