@@ -50,7 +50,9 @@ private:
         std::vector<uint32_t> beams;   ///< beams within radius + reach of S0, ascending, once each
         BeamCandidates scan;           ///< those beams' data for the exact test (cpu/beam_hit_scan.h)
     };
-    static constexpr int kEntries = 8;
+    // 16, not 8: the glass sphere's diverging segments at 1080p need 10% fewer traversals
+    // (docs/performance.md, "Where a 1080p pass goes"); a miss checks every entry.
+    static constexpr int kEntries = 16;
     Entry m_entries[kEntries];
     int m_used = 0;  ///< entries filled since the reset
     int m_next = 0;  ///< the one replaced next
