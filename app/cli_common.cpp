@@ -163,6 +163,7 @@ const std::pair<const char*, const char*> kOptionKeys[] = {
     {"--film-light-sampling", "film_light_sampling"},
     {"--photon-planes", "photon_planes"},
     {"--scattered-beam-mfp", "scattered_beam_mfp"},
+    {"--medium-points", "medium_point_mfp"},
     {"--max-path-length", "max_path_length"},
     {"--region", "region"}};
 
@@ -238,6 +239,13 @@ void addDirectLightOption(CLI::App* cmd, CommonOptions& o) {
                     "its mean free paths there (at most 8 automatic radii), shrinking like every beam; 0 = the "
                     "automatic radius for every beam (docs/algorithm.md)")
         ->check(CLI::Range(0.0, RenderSettings::kMaxScatteredBeamMfp).description(""))
+        ->capture_default_str();
+    cmd->add_option("--medium-points", o.settings.mediumPointMfp,
+                    "C: in a homogeneous medium whose mean free path is short against the beam radius (C mfp at "
+                    "most 16 automatic radii at the plan's end), photon points at the scatterings instead of the "
+                    "beams after a scattering, gathered with a radius of C mean free paths at the plan's end "
+                    "(at least the automatic one); 0 = beams only (docs/algorithm.md)")
+        ->check(CLI::Range(0.0, RenderSettings::kMaxMediumPointMfp).description(""))
         ->capture_default_str();
 }
 

@@ -73,7 +73,8 @@ void rejectWithResume(const CLI::App* cmd) {
                                    "--radius-offset", "--free-flights",  "--exposure",     "--aov",
                                    "--photon-angle",  "--planned-paths", "--direct-light", "--surface-boundary",
                                    "--environment",   "--max-path-length", "--equiangular", "--photon-planes",
-                                   "--transparent",   "--equiangular-samples", "--scattered-beam-mfp"};
+                                   "--transparent",   "--equiangular-samples", "--scattered-beam-mfp",
+                                   "--medium-points"};
     for (const char* name : kFixed)
         if (given(cmd, name))
             throw Error(std::string("--resume: ") + (name[0] == '-' ? name : "the scene file") +

@@ -138,6 +138,8 @@ RenderRecord readRecord(const Checkpoint& c, const std::string& where) {
         if (!j.at("settings").contains("equiangular_samples")) r.settings.equiangularSamples = 4;
         // ... and from before --scattered-beam-mfp with every beam at the schedule's radius.
         if (!j.at("settings").contains("scattered_beam_mfp")) r.settings.scatteredBeamMfp = 0;
+        // ... and from before --medium-points with beams alone.
+        if (!j.at("settings").contains("medium_point_mfp")) r.settings.mediumPointMfp = 0;
         // ... and from before --film-light-sampling with uniform film positions.
         if (!j.at("settings").contains("film_light_sampling")) r.settings.filmLightSampling = false;
         r.output = j.at("output").get<std::string>();

@@ -80,7 +80,8 @@ struct Variant {
 /// defaults with today's (and, given `passes`, the radii planned for it).
 std::vector<Variant> variantsFor(const Scene& scene, const RenderSettings& base, uint64_t passes, bool equalTime,
                                  bool legacy, bool switches, const std::vector<double>& equiangularSamples,
-                                 const std::vector<double>& scatteredBeamMfp) {
+                                 const std::vector<double>& scatteredBeamMfp,
+                                 const std::vector<double>& mediumPointMfp) {
     std::vector<Variant> variants;
     if (legacy) variants.push_back({"LEGACY", withLegacyDefaults(base, scene)});
     RenderSettings open = base;
@@ -115,6 +116,13 @@ std::vector<Variant> variantsFor(const Scene& scene, const RenderSettings& base,
             char label[64];
             std::snprintf(label, sizeof label, "SCATTERED BEAMS %g MFP", c);
             variants.push_back({label, widened});
+        }
+        for (double c : mediumPointMfp) {
+            RenderSettings pointed = open;
+            pointed.mediumPointMfp = c;
+            char label[64];
+            std::snprintf(label, sizeof label, "MEDIUM POINTS %g MFP", c);
+            variants.push_back({label, pointed});
         }
         if (passes > 0) {
             RenderSettings planned = base;
@@ -269,7 +277,8 @@ void runQualityStudy(const RenderSettings& settings, const QualityStudyOptions& 
         if (o.pilotOnly) continue;
         Reference ref = loadOrRenderReference(scene, scene.name, base, o.referenceDir, o.referenceSpp);
         std::vector<Curve> curves;
-        for (const Variant& v : variantsFor(scene, base, passes, equalTime, o.legacy, o.switches, o.equiangularSamples, o.scatteredBeamMfp))
+        for (const Variant& v : variantsFor(scene, base, passes, equalTime, o.legacy, o.switches, o.equiangularSamples,
+                                            o.scatteredBeamMfp, o.mediumPointMfp))
             curves.push_back(studyRow(scene, v, ref, passes, o));
         panels.push_back({scene.name, std::move(curves)});
     }

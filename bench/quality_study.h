@@ -60,6 +60,9 @@ struct QualityStudyOptions {
     /// Equal time: one more row per entry, today's defaults with this many mean free paths for the
     /// beams after a scattering (RenderSettings::scatteredBeamMfp; 0 = every beam the schedule's).
     std::vector<double> scatteredBeamMfp;
+    /// Equal time: one more row per entry, today's defaults with photon points in dense media of this
+    /// many mean free paths (RenderSettings::mediumPointMfp; 0 = beams only).
+    std::vector<double> mediumPointMfp;
     /// Only print each scene's equiangular pilot (bench/equiangular_pilot.h): no references, no rows.
     bool pilotOnly = false;
 };

@@ -68,6 +68,10 @@ void addOptions(CLI::App& cli, Options& o) {
                    "With --cpu-seconds: one more row per value, the beams after a scattering at least this many mean "
                    "free paths wide at the plan's end (--scattered-beam-mfp), repeatable (default: none)")
         ->check(CLI::Range(0.0, RenderSettings::kMaxScatteredBeamMfp));
+    cli.add_option("--medium-point-rows", o.study.mediumPointMfp,
+                   "With --cpu-seconds: one more row per value, photon points in dense media with a radius of this "
+                   "many mean free paths at the plan's end (--medium-points), repeatable (default: none)")
+        ->check(CLI::Range(0.0, RenderSettings::kMaxMediumPointMfp));
     cli.add_flag("--pilot-only", o.study.pilotOnly,
                  "Only print each scene's automatic equiangular pilot (what it measured, the count it chose)");
     // --direct-light, --surface-boundary, --equiangular, --photon-planes: the rows' settings (LEGACY

@@ -24,6 +24,22 @@ struct PhotonBeam {
 };
 static_assert(sizeof(PhotonBeam) == 48, "PhotonBeam must stay three vec4 rows for the GL upload");
 
+/// A photon point in a dense medium (RenderSettings::mediumPointMfp; docs/algorithm.md, "Photon
+/// points in dense media"): a photon path's scattering at `position` inside the homogeneous medium
+/// `medium`, standing for the beam it ended (which is then not stored). `dir` is the direction the
+/// photon travelled to reach it; `power` its power just after the free flight's weight
+/// (sigma_s Tr / pdf: the light this scattering sends out, before the phase function); `segment`
+/// the index of that beam's segment on its photon path (PhotonMap::beamSegments).
+struct MediumPoint {
+    Vec3 position;
+    float radius = 0;
+    Vec3 dir;
+    uint32_t segment = 0;
+    Rgb power;
+    MediumId medium = kVacuum;
+};
+static_assert(sizeof(MediumPoint) == 48, "MediumPoint: three 16-byte rows");
+
 /// SurfacePhoton::flags bits.
 inline constexpr uint8_t kPhotonDirect = 1;     ///< no scattering vertex (surface or medium) since the light
 inline constexpr uint8_t kPhotonDeltaPath = 2;  ///< emitted by a delta light and every vertex since was a delta interaction
@@ -73,6 +89,8 @@ struct PhotonMap {
     /// RenderSettings::photonPlanes: one plane per beam in a homogeneous medium (core/photon_plane.h),
     /// in path order.
     std::vector<PhotonPlane> planes;
+    /// RenderSettings::mediumPointMfp: the photon points in dense media, in path order.
+    std::vector<MediumPoint> points;
 };
 
 }  // namespace tyndall

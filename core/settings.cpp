@@ -63,6 +63,9 @@ void RenderSettings::validate() const {
     if (!(scatteredBeamMfp >= 0 && scatteredBeamMfp <= kMaxScatteredBeamMfp))
         fail("scattered_beam_mfp", "must be a number of mean free paths in [0, 10] (0 = off; got " +
                                        std::to_string(scatteredBeamMfp) + ")");
+    if (!(mediumPointMfp >= 0 && mediumPointMfp <= kMaxMediumPointMfp))
+        fail("medium_point_mfp", "must be a number of mean free paths in [0, 10] (0 = off; got " +
+                                     std::to_string(mediumPointMfp) + ")");
     if (memoryMiB < 64 || memoryMiB > (uint64_t(1) << 30))
         fail("memory", "must be in 64..2^30 MiB (got " + std::to_string(memoryMiB) + ")");
 }
@@ -96,6 +99,7 @@ nlohmann::json RenderSettings::toJson() const {
             {"film_light_sampling", onOffText(filmLightSampling)},
             {"photon_planes", onOffText(photonPlanes)},
             {"scattered_beam_mfp", scatteredBeamMfp},
+            {"medium_point_mfp", mediumPointMfp},
             {"transparent", onOffText(transparentFilm)}};
     if (!region.whole()) j["region"] = {region.x, region.y, region.width, region.height};
     return j;
@@ -177,7 +181,7 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
                                   "surface_radius", "radius_offset", "planned_paths", "photon_angle", "seed", "threads",
                                   "max_photon_bounces", "max_camera_bounces", "free_flights", "gpu", "memory", "simd",
                                   "direct_light", "surface_boundary", "max_path_length", "region", "equiangular",
-                                  "equiangular_samples", "film_light_sampling", "photon_planes", "scattered_beam_mfp", "transparent"};
+                                  "equiangular_samples", "film_light_sampling", "photon_planes", "scattered_beam_mfp", "medium_point_mfp", "transparent"};
     for (auto it = j.begin(); it != j.end(); ++it) {
         bool known = false;
         for (const char* k : kKeys) known |= it.key() == k;
@@ -211,6 +215,7 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
     read(j, "film_light_sampling", s.filmLightSampling, where);
     read(j, "photon_planes", s.photonPlanes, where);
     read(j, "scattered_beam_mfp", s.scatteredBeamMfp, where);
+    read(j, "medium_point_mfp", s.mediumPointMfp, where);
     read(j, "transparent", s.transparentFilm, where);
     return s;
 }

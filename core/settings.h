@@ -130,6 +130,15 @@ struct RenderSettings {
     double scatteredBeamMfp = 0;
     static constexpr double kMaxScatteredBeamMfp = 10;
     static constexpr double kMaxScatteredBeamScale = 8;
+    /// Photon points in dense media (docs/algorithm.md, "Photon points in dense media"): a beam that
+    /// starts at a scattering in a homogeneous medium whose mean free path (1 / the largest channel
+    /// of sigma_t) is short against the beam radius, C mfp <= kMaxMediumPointScale x the plan's end
+    /// radius, is not stored; the photon's next scattering on it is stored instead as a point, which
+    /// the camera segments in that medium gather with a 2D kernel of the schedule's radius times
+    /// max(1, C mfp / the plan's end radius) (the beam radiance estimate). 0 = off: beams only.
+    double mediumPointMfp = 0;
+    static constexpr double kMaxMediumPointMfp = 10;
+    static constexpr double kMaxMediumPointScale = 16;
     /// Transparent film (render block "transparent", `tyndall render --transparent`): camera paths
     /// that reach the environment straight, through index-matched Interfaces alone, do not see it
     /// (it still lights the scene), and the output gets an alpha channel, the pixel's coverage: 1

@@ -15,6 +15,7 @@
 #include "cpu/surface_boundary.h"
 #include "cpu/free_flight.h"
 #include "cpu/plane_bvh.h"
+#include "cpu/point_bvh.h"
 #include "cpu/surface_scattering.h"
 
 namespace tyndall {
@@ -469,6 +470,18 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
     // homogeneous medium (cpu/plane_bvh.h).
     std::optional<PlaneBvh> planeBvh;
     if (!photons.planes.empty()) planeBvh.emplace(*m_rt.device(), photons.planes);
+    // --medium-points: this batch's photon points in dense media, gathered along every camera
+    // segment in a homogeneous medium (cpu/point_bvh.h).
+    std::optional<PointBvh> pointBvh;
+    std::vector<char> pointMedia(m_scene.media.size(), 0);  // the media that hold any
+    // Whether a mesh is a boundary between two media (gatherPoints' bounded ends).
+    auto boundsMedium = [&](int mesh) {
+        return mesh >= 0 && m_scene.meshes[size_t(mesh)].interiorMedium != m_scene.meshes[size_t(mesh)].exteriorMedium;
+    };
+    if (!photons.points.empty()) {
+        pointBvh.emplace(*m_rt.device(), photons.points);
+        for (const MediumPoint& p : photons.points) pointMedia[size_t(p.medium)] = 1;
+    }
     // The environment, where paths that leave the scene arrive (with the emission: one batch).
     const EnvironmentLight* environment = emission && m_scene.environment ? &*m_scene.environment : nullptr;
     // Camera paths that reach it straight (through Interface crossings alone) see it as the
@@ -546,7 +559,7 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                 pr.medium != kVacuum && pr.tMax > 0 && !m_scene.media[pr.medium].homogeneous();
             EquiangularLegs& legs = tls.primaryLegs;
             legs.n = 0;
-            if (((m_equiangular && emission) || planeBvh) && (maxLength == 0 || maxLength >= 2) &&
+            if (((m_equiangular && emission) || planeBvh || pointBvh) && (maxLength == 0 || maxLength >= 2) &&
                 pr.medium != kVacuum && pr.tMax > 0) {
                 if (m_equiangular && emission) {
                     const Rgb single =
@@ -562,6 +575,18 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                                                     maxLength > 0 ? maxLength - 1 : 0, tls.planes);
                     L += planes;
                     LmediaPrimary += planes;
+                }
+                // --medium-points: this batch's points along it too (the splatters draw only beams).
+                if (pointBvh && pointMedia[size_t(pr.medium)]) {
+                    // From the camera (no boundary) to a surface that may bound the medium.
+                    const Rgb points = gatherPoints(m_scene, *pointBvh, pr.medium, pr.origin, pr.dir, pr.tMax,
+                                                    maxLength > 0 ? maxLength - 1 : 0, 0.0f,
+                                                    ph.surface && boundsMedium(ph.hit.mesh)
+                                                        ? boundaryTangent(pr.dir, ph.hit.ng)
+                                                        : 0.0f,
+                                                    tls.planes);
+                    L += points;
+                    LmediaPrimary += points;
                 }
             }
             // Its own keyed stream, so every batch of the pass would get the same estimate: it is
@@ -737,6 +762,8 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                 dir = ray.d;
                 if (++depth > m_settings.maxCameraBounces) break;
 
+                // The surface the segment leaves: gatherPoints' bounded start.
+                const float tanStart = boundsMedium(hit.mesh) ? boundaryTangent(dir, hit.ng) : 0.0f;
                 bool surface = m_rt.intersect(ray, &hit);
                 tls.stats.rays++;
                 if (surface) pathLength += hit.t;
@@ -773,6 +800,12 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                                                                filmSubset);
                         if (planeBvh && med.homogeneous())
                             emitted += gatherPlanes(m_rt, *planeBvh, medium, seg.o, seg.d, seg.tMax, maxBeamSegment,
+                                                    tls.planes);
+                        if (pointBvh && pointMedia[size_t(medium)])
+                            emitted += gatherPoints(m_scene, *pointBvh, medium, seg.o, seg.d, seg.tMax, maxBeamSegment,
+                                                    tanStart,
+                                                    surface && boundsMedium(hit.mesh) ? boundaryTangent(seg.d, hit.ng)
+                                                                                      : 0.0f,
                                                     tls.planes);
                     }
                     // The segment's transmittance, and in a grid its equiangular legs' from the

@@ -33,6 +33,10 @@ RadiusSetup RadiusSetup::resolve(const RenderSettings& settings, const Scene& sc
         const double end = double(r.beamRadius) * r.schedule.beamFactor(plannedPhotonPaths(settings));
         if (end > 0) r.scatteredPerMfp = settings.scatteredBeamMfp / end;
     }
+    if (settings.mediumPointMfp > 0) {
+        const double end = double(r.beamRadius) * r.schedule.beamFactor(plannedPhotonPaths(settings));
+        if (end > 0) r.pointPerMfp = settings.mediumPointMfp / end;
+    }
     return r;
 }
 
@@ -106,23 +110,26 @@ PhotonMap PhotonTracer::trace(uint64_t pass, uint64_t firstPath, uint32_t begin,
     out.firstPath = firstPath;
     out.pathCount = count;
     out.freeFlightsPerBeam = m_anyHeterogeneous ? m_settings.freeFlightSamples : 0;
-    size_t nb = 0, ns = 0, np = 0;
+    size_t nb = 0, ns = 0, np = 0, npt = 0;
     for (const PhotonMap& p : parts) {
         nb += p.beams.size();
         ns += p.surfacePhotons.size();
         np += p.planes.size();
+        npt += p.points.size();
         out.raysTraced += p.raysTraced;
     }
     out.beams.reserve(nb);
     out.surfacePhotons.reserve(ns);
     out.freeFlights.reserve(nb * size_t(out.freeFlightsPerBeam));
     out.planes.reserve(np);
+    out.points.reserve(npt);
     for (const PhotonMap& p : parts) {
         out.beams.insert(out.beams.end(), p.beams.begin(), p.beams.end());
         out.surfacePhotons.insert(out.surfacePhotons.end(), p.surfacePhotons.begin(), p.surfacePhotons.end());
         out.freeFlights.insert(out.freeFlights.end(), p.freeFlights.begin(), p.freeFlights.end());
         out.beamSegments.insert(out.beamSegments.end(), p.beamSegments.begin(), p.beamSegments.end());
         out.planes.insert(out.planes.end(), p.planes.begin(), p.planes.end());
+        out.points.insert(out.points.end(), p.points.begin(), p.points.end());
     }
     return out;
 }
@@ -188,6 +195,10 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
     // The radius factor of the next beam: > 1 only for a beam that starts at a scattering in a
     // medium (RadiusSetup::scatteredScale), reset where a beam leaves a surface.
     float scatteredScale = 1.0f;
+    // Whether the next beam starts at a scattering in a medium (or continues one through
+    // Interfaces): in a dense homogeneous medium such a beam is not stored, its end's scattering is
+    // stored as a photon point instead (RadiusSetup::pointScale).
+    bool afterScattering = false;
     for (int bounce = 0; bounce < m_settings.maxPhotonBounces; ++bounce) {
         if (m_maxSegments >= 0 && segment > m_maxSegments) return;
         const bool covered = coveredByPlane;
@@ -219,7 +230,11 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
                 p.power = power;
                 p.segment = uint16_t(std::min(segment + 1, 65535));
             }
-            if (!(direct && equiangularLight) && !covered) {
+            // Photon points: this beam's scattering (if it has one) stands for it.
+            const float pointScale = afterScattering && !covered && !m_settings.photonPlanes && med.homogeneous()
+                                         ? m_radii.pointScale(med.sigmaT().maxComponent())
+                                         : 0.0f;
+            if (!(direct && equiangularLight) && !covered && !(pointScale > 0)) {
                 // The beam is written in place: a stack copy pushed back stalls on store forwarding.
                 PhotonBeam& beam = out.beams.emplace_back();
                 beam.origin = seg.o;
@@ -250,6 +265,15 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
             }
             FreeFlight ff = sampleFreeFlight(med, seg, seg.tMax, rng);
             power *= ff.weight;
+            if (ff.scattered && pointScale > 0) {
+                MediumPoint& point = out.points.emplace_back();
+                point.position = seg.at(ff.t);
+                point.radius = beamRadius * pointScale;
+                point.dir = d;
+                point.segment = uint32_t(segment);
+                point.power = power;
+                point.medium = medium;
+            }
             if (ff.scattered) {
                 // Russian roulette keeps path power near its start value.
                 float q = std::min(1.0f, power.maxComponent() / startMax);
@@ -265,6 +289,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
                 o = x;
                 ++segment;
                 deltaPath = direct = false;
+                afterScattering = true;
                 coveredByPlane = plane;
                 continue;
             }
@@ -335,6 +360,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
         if (!bsdf.isPassThrough()) {
             ++segment;
             scatteredScale = 1.0f;
+            afterScattering = false;
         }
     }
 }

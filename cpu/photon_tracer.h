@@ -47,6 +47,19 @@ struct RadiusSetup {
         return float(std::clamp(s, 1.0, RenderSettings::kMaxScatteredBeamScale));
     }
 
+    /// RenderSettings::mediumPointMfp over the beam radius at the plan's end (1 / scene units); 0 = off.
+    double pointPerMfp = 0;
+
+    /// Photon points (RenderSettings::mediumPointMfp): the factor on the schedule's radius for the
+    /// points in a homogeneous medium whose extinction's largest channel is `sigmaT`,
+    /// max(1, C mfp / end radius); 0 where the medium keeps its beams: points off, or its mean free
+    /// path long against the radius (C mfp over kMaxMediumPointScale end radii).
+    float pointScale(float sigmaT) const {
+        if (!(pointPerMfp > 0) || !(sigmaT > 0)) return 0.0f;
+        const double s = pointPerMfp / double(sigmaT);
+        return s > RenderSettings::kMaxMediumPointScale ? 0.0f : float(std::max(1.0, s));
+    }
+
     static RadiusSetup resolve(const RenderSettings& settings, const Scene& scene);
     float beamRadiusOf(uint64_t path) const { return float(beamRadius * schedule.beamFactor(path)); }
     float surfaceRadiusOf(uint64_t path) const { return float(surfaceRadius * schedule.surfaceFactor(path)); }
