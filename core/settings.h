@@ -139,6 +139,8 @@ struct RenderSettings {
     double mediumPointMfp = 0;
     static constexpr double kMaxMediumPointMfp = 10;
     static constexpr double kMaxMediumPointScale = 16;
+    /// Points per beam they stand for: the photon's own free flight and this many minus one more.
+    static constexpr int kMediumPointsPerBeam = 4;
     /// Transparent film (render block "transparent", `tyndall render --transparent`): camera paths
     /// that reach the environment straight, through index-matched Interfaces alone, do not see it
     /// (it still lights the scene), and the output gets an alpha channel, the pixel's coverage: 1

@@ -76,7 +76,9 @@ uint64_t photonPathBytes(const RenderSettings& s, int freeFlights) {
     const uint64_t beam = 3 * (sizeof(PhotonBeam) + ff) + kPiecesPerBeam * kBytesPerPiece +
                           32 /* footprint */ + 2 * 4 * bands /* band bins, doubled by growth */ +
                           (s.photonPlanes ? 3 * sizeof(PhotonPlane) + 64 /* its quad in the plane BVH */ : 0) +
-                          (s.mediumPointMfp > 0 ? 3 * sizeof(MediumPoint) + 64 /* its box in the point BVH */ : 0);
+                          (s.mediumPointMfp > 0 ? RenderSettings::kMediumPointsPerBeam *
+                                                      (3 * sizeof(MediumPoint) + 64 /* its box in the point BVH */)
+                                                : 0);
     const uint64_t photon = 3 * sizeof(SurfacePhoton) + 4 + 4 + 16 /* hash grid */;
     // The photon cone (cpu/beam_cone.h) adds at most kConePieces beams to a path.
     return uint64_t(std::max(s.maxPhotonBounces, 1)) * (beam + photon) + uint64_t(kConePieces) * beam;

@@ -263,16 +263,25 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
                 }
                 if (m_maxSegments >= 0) out.beamSegments.resize(out.beams.size(), uint16_t(std::min(segment, 65535)));
             }
+            const Rgb before = power;
             FreeFlight ff = sampleFreeFlight(med, seg, seg.tMax, rng);
             power *= ff.weight;
-            if (ff.scattered && pointScale > 0) {
-                MediumPoint& point = out.points.emplace_back();
-                point.position = seg.at(ff.t);
-                point.radius = beamRadius * pointScale;
-                point.dir = d;
-                point.segment = uint32_t(segment);
-                point.power = power;
-                point.medium = medium;
+            if (pointScale > 0) {
+                // The beam's points: its free flight's scattering (where the path goes on) and
+                // kPointsPerBeam - 1 more free flights on it, each an unbiased sample of the beam,
+                // with a share of its power.
+                const int n = RenderSettings::kMediumPointsPerBeam;
+                for (int k = 0; k < n; ++k) {
+                    const FreeFlight f = k == 0 ? ff : sampleFreeFlight(med, seg, seg.tMax, rng);
+                    if (!f.scattered) continue;
+                    MediumPoint& point = out.points.emplace_back();
+                    point.position = seg.at(f.t);
+                    point.radius = beamRadius * pointScale;
+                    point.dir = d;
+                    point.segment = uint32_t(segment);
+                    point.power = before * f.weight * (1.0f / float(n));
+                    point.medium = medium;
+                }
             }
             if (ff.scattered) {
                 // Russian roulette keeps path power near its start value.
