@@ -195,4 +195,17 @@ MediumId EmbreeScene::mediumAt(const Vec3& p) const {
     return m_scene.globalMedium;
 }
 
+void queryCandidates(RTCScene scene, const Vec3& o, const Vec3& d, float sMax, std::vector<uint32_t>& found) {
+    found.clear();
+    if (!(sMax > 0)) return;
+    CandidateQuery query;
+    rtcInitIntersectContext(&query.rtc);
+    query.found = &found;
+    RTCRayHit rh;
+    initRayHit(rh, o, d, 0.0f, sMax);
+    rtcIntersect1(scene, &query.rtc, &rh);
+    std::sort(found.begin(), found.end());
+    found.erase(std::unique(found.begin(), found.end()), found.end());
+}
+
 }  // namespace tyndall

@@ -17,6 +17,19 @@
 
 namespace tyndall {
 
+/// A candidate query's context: Embree's intersect context followed by the list that the queried
+/// geometry's intersect or filter callbacks append primitive ids to (of() from their
+/// args->context). For BVHs of user primitives whose estimate is evaluated after the query.
+struct CandidateQuery {
+    RTCIntersectContext rtc;
+    std::vector<uint32_t>* found = nullptr;
+    static CandidateQuery& of(RTCIntersectContext* context) { return *reinterpret_cast<CandidateQuery*>(context); }
+};
+
+/// Traces o + t d, t in [0, sMax], through `scene` with a CandidateQuery; `found` ends sorted, each
+/// id once. Empty when sMax is not positive.
+void queryCandidates(RTCScene scene, const Vec3& o, const Vec3& d, float sMax, std::vector<uint32_t>& found);
+
 /// Owns an RTCDevice; reports Embree errors by throwing Error from the failing call's thread.
 class EmbreeDevice {
 public:

@@ -6,16 +6,11 @@ namespace tyndall {
 
 namespace {
 
-// Extends Embree's context (first member) with the list the filter appends to.
-struct PlaneQueryContext {
-    RTCIntersectContext rtc;
-    std::vector<uint32_t>* found;
-};
-
+// Records each plane the ray meets in the query's list (CandidateQuery) and rejects the hit, so
+// that the ray goes on.
 void recordPlaneCandidate(const RTCFilterFunctionNArguments* args) {
     if (!args->valid[0]) return;
-    auto* ctx = reinterpret_cast<PlaneQueryContext*>(args->context);
-    ctx->found->push_back(RTCHitN_primID(args->hit, args->N, 0));
+    CandidateQuery::of(args->context).found->push_back(RTCHitN_primID(args->hit, args->N, 0));
     args->valid[0] = 0;
 }
 
@@ -52,16 +47,11 @@ PlaneBvh::PlaneBvh(const EmbreeDevice& device, const std::vector<PhotonPlane>& p
 PlaneBvh::~PlaneBvh() { rtcReleaseScene(m_scene); }
 
 void PlaneBvh::query(const Vec3& o, const Vec3& d, float sMax, std::vector<uint32_t>& found) const {
-    found.clear();
-    if (m_planes.empty() || !(sMax > 0)) return;
-    PlaneQueryContext ctx;
-    rtcInitIntersectContext(&ctx.rtc);
-    ctx.found = &found;
-    RTCRayHit rh;
-    initRayHit(rh, o, d, 0.0f, sMax);
-    rtcIntersect1(m_scene, &ctx.rtc, &rh);
-    std::sort(found.begin(), found.end());
-    found.erase(std::unique(found.begin(), found.end()), found.end());
+    if (m_planes.empty()) {
+        found.clear();
+        return;
+    }
+    queryCandidates(m_scene, o, d, sMax, found);
 }
 
 Rgb gatherPlanes(const EmbreeScene& rt, const PlaneBvh& bvh, MediumId medium, const Vec3& o, const Vec3& d, float sMax,

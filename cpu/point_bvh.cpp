@@ -9,12 +9,8 @@ namespace tyndall {
 
 namespace {
 
-// Extends Embree's context (first member) with the list the callback appends to.
-struct PointQueryContext {
-    RTCIntersectContext rtc;
-    std::vector<uint32_t>* found;
-};
-
+// A point's sphere of its radius: the ray records (CandidateQuery) each it passes within reach of,
+// reporting no hit.
 void pointBounds(const RTCBoundsFunctionArguments* args) {
     const auto* points = static_cast<const std::vector<MediumPoint>*>(args->geometryUserPtr);
     const MediumPoint& p = (*points)[args->primID];
@@ -34,7 +30,7 @@ void pointIntersect(const RTCIntersectFunctionNArguments* args) {
     if (!(s >= 0.0f && s <= ray.tfar)) return;
     const float u2 = dot(w, w) - s * s;
     if (!(u2 < p.radius * p.radius)) return;
-    reinterpret_cast<PointQueryContext*>(args->context)->found->push_back(args->primID);
+    CandidateQuery::of(args->context).found->push_back(args->primID);
 }
 
 void pointOccluded(const RTCOccludedFunctionNArguments*) {}
@@ -63,16 +59,11 @@ PointBvh::PointBvh(const EmbreeDevice& device, const std::vector<MediumPoint>& p
 PointBvh::~PointBvh() { rtcReleaseScene(m_scene); }
 
 void PointBvh::query(const Vec3& o, const Vec3& d, float sMax, std::vector<uint32_t>& found) const {
-    found.clear();
-    if (m_points.empty() || !(sMax > 0)) return;
-    PointQueryContext ctx;
-    rtcInitIntersectContext(&ctx.rtc);
-    ctx.found = &found;
-    RTCRayHit rh;
-    initRayHit(rh, o, d, 0.0f, sMax);
-    rtcIntersect1(m_scene, &ctx.rtc, &rh);
-    std::sort(found.begin(), found.end());
-    found.erase(std::unique(found.begin(), found.end()), found.end());
+    if (m_points.empty()) {
+        found.clear();
+        return;
+    }
+    queryCandidates(m_scene, o, d, sMax, found);
 }
 
 Rgb gatherPoints(const Scene& scene, const PointBvh& bvh, MediumId medium, const Vec3& o, const Vec3& d, float sMax,

@@ -23,18 +23,9 @@
 namespace tyndall {
 namespace {
 
-Medium fog(Rgb sigmaS, Rgb sigmaA, float g) {
-    Medium m;
-    m.name = "dense";
-    m.sigmaS = sigmaS;
-    m.sigmaA = sigmaA;
-    m.g = g;
-    return m;
-}
-
 TEST(MediumPoints, TheBeamsAfterAScatteringInADenseMediumBecomePointsAtTheirScatterings) {
     // sigma_t 4 (mean free path 0.25) in a unit sphere with a diffuse wall, the light at its centre.
-    const Medium dense = fog(Rgb(3.0f, 2.5f, 2.0f), Rgb(1.0f, 1.5f, 2.0f), 0.3f);
+    const Medium dense = test::homogeneousMedium(Rgb(3.0f, 2.5f, 2.0f), Rgb(1.0f, 1.5f, 2.0f), 0.3f, "dense");
     const Scene scene = test::makeMediumSphereScene(dense, 1.0f, test::pointLight(Vec3(0.0f), 1.0f),
                                                     Camera::lookAt({0, 0, 0.5f}, {0, 0, -1}, {0, 1, 0}, 1.0f), true);
     RenderSettings ps = test::constantRadiusSettings(16, 2000, 3, false, 0.05f);
@@ -74,7 +65,7 @@ TEST(MediumPoints, TheBeamsAfterAScatteringInADenseMediumBecomePointsAtTheirScat
     }
 
     // A thin fog: its mean free path is long against the radius, it keeps its beams.
-    const Medium thin = fog(Rgb(0.05f), Rgb(0.01f), 0.3f);
+    const Medium thin = test::homogeneousMedium(Rgb(0.05f), Rgb(0.01f), 0.3f, "thin");
     const Scene thinScene = test::makeMediumSphereScene(thin, 1.0f, test::pointLight(Vec3(0.0f), 1.0f),
                                                         Camera::lookAt({0, 0, 0.5f}, {0, 0, -1}, {0, 1, 0}, 1.0f), true);
     EmbreeScene thinRt(thinScene);
@@ -168,16 +159,17 @@ void expectPointsAgree(const Medium& medium, double minMultipleShare) {
 
 TEST(MediumPointsPpb, AWhiteDenseSphereCountsEveryPathOnceAgainstThePathTracerAndTheBeams) {
     // sigma_s 7, no absorption: mean free path 0.14, the sphere 7 mean free paths across.
-    expectPointsAgree(fog(Rgb(7.0f), Rgb(0.0f), 0.0f), 0.5);
+    expectPointsAgree(test::homogeneousMedium(Rgb(7.0f), Rgb(0.0f), 0.0f, "dense"), 0.5);
 }
 
 TEST(MediumPointsPpb, AColouredAbsorbingForwardScatteringSphereAgreesWithThePathTracer) {
-    expectPointsAgree(fog(Rgb(6.0f, 5.5f, 5.0f), Rgb(1.0f, 1.5f, 2.5f), 0.3f), 0.2);
+    expectPointsAgree(test::homogeneousMedium(Rgb(6.0f, 5.5f, 5.0f), Rgb(1.0f, 1.5f, 2.5f), 0.3f, "dense"), 0.2);
 }
 
 TEST(MediumPointsPpb, VarianceFallsAsOneOverPasses) {
     // The camera close enough that the sphere fills the image (no black pixel).
-    const Scene scene = denseSphere(fog(Rgb(6.0f, 5.5f, 5.0f), Rgb(1.0f, 1.5f, 2.5f), 0.3f), {0, 0, 1.2f});
+    const Scene scene =
+        denseSphere(test::homogeneousMedium(Rgb(6.0f, 5.5f, 5.0f), Rgb(1.0f, 1.5f, 2.5f), 0.3f, "dense"), {0, 0, 1.2f});
     // Points of radius 0.05 (C 0.1 mean free paths is less: the schedule's radius).
     RenderSettings ps = test::constantRadiusSettings(8, 200, 1, true, 0.05f);
     ps.radius = 0.05f;

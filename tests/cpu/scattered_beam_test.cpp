@@ -23,18 +23,9 @@
 namespace tyndall {
 namespace {
 
-Medium denseFog(Rgb sigmaS, Rgb sigmaA, float g) {
-    Medium m;
-    m.name = "dense";
-    m.sigmaS = sigmaS;
-    m.sigmaA = sigmaA;
-    m.g = g;
-    return m;
-}
-
 TEST(ScatteredBeams, OnlyTheBeamsThatStartAtAScatteringWidenAndTheyShrinkWithTheSchedule) {
     // sigma_t 4 (mean free path 0.25) in a unit sphere with a diffuse wall, the light at its centre.
-    const Medium fog = denseFog(Rgb(3.0f, 2.5f, 2.0f), Rgb(1.0f, 1.2f, 1.5f), 0.3f);
+    const Medium fog = test::homogeneousMedium(Rgb(3.0f, 2.5f, 2.0f), Rgb(1.0f, 1.2f, 1.5f), 0.3f, "dense");
     const Scene scene = test::makeMediumSphereScene(fog, 1.0f, test::pointLight(Vec3(0.0f), 1.0f),
                                                     Camera::lookAt({0, 0, 0.5f}, {0, 0, -1}, {0, 1, 0}, 1.0f), true);
     RenderSettings ps = test::constantRadiusSettings(16, 2000, 3, false, 0.05f);
@@ -83,7 +74,7 @@ TEST(ScatteredBeams, OnlyTheBeamsThatStartAtAScatteringWidenAndTheyShrinkWithThe
 /// The dense sphere: radius 0.5 at the origin, sigma_s (6, 5.5, 5), sigma_a (1, 1.5, 2.5), g 0.3, an
 /// index-matched hull in vacuum; a spot from the upper left on it, the camera in front.
 Scene denseSphere() {
-    const Medium amber = denseFog(Rgb(6.0f, 5.5f, 5.0f), Rgb(1.0f, 1.5f, 2.5f), 0.3f);
+    const Medium amber = test::homogeneousMedium(Rgb(6.0f, 5.5f, 5.0f), Rgb(1.0f, 1.5f, 2.5f), 0.3f, "dense");
     Light spot;
     spot.name = "spot";
     spot.type = LightType::Spot;
