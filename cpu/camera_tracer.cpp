@@ -183,6 +183,14 @@ Rgb gridSegmentTransmittance(const Medium& med, const Ray& seg, Rng& rng, const 
     if (t >= kTransmittanceRoulette) return Rgb(t);
     return Rgb(rng.uniform() * kTransmittanceRoulette < t ? kTransmittanceRoulette : 0.0f);
 }
+
+/// A camera segment's transmittance in `med`: the closed form where it is homogeneous (*single 0:
+/// the equiangular estimate there is whole), else gridSegmentTransmittance.
+Rgb segmentTransmittance(const Medium& med, const Ray& seg, Rng& rng, const EquiangularLegs& legs, Rgb* single) {
+    if (!med.homogeneous()) return gridSegmentTransmittance(med, seg, rng, legs, single);
+    *single = Rgb(0.0f);
+    return med.transmittance(seg.tMax);
+}
 }  // namespace
 
 CameraPassStats& CameraPassStats::operator+=(const CameraPassStats& o) {
@@ -422,14 +430,9 @@ Rgb CameraTracer::filmLightRadiance(const FilmLightRay& film, int samples, Rgb* 
             EquiangularLegs legs;
             Rgb single = m_equiangular->estimate(medium, seg.o, seg.d, seg.tMax, samples, rng,
                                                  med.homogeneous() ? nullptr : &legs, &lights);
-            Rgb transmittance;
-            if (med.homogeneous()) {
-                transmittance = med.transmittance(seg.tMax);
-            } else {
-                Rgb read;
-                transmittance = gridSegmentTransmittance(med, seg, rng, legs, &read);
-                single += read;
-            }
+            Rgb read;
+            const Rgb transmittance = segmentTransmittance(med, seg, rng, legs, &read);
+            single += read;
             L += throughput * single;
             if (segment == 1 && depth == 0) *primary = throughput * single;
             throughput *= transmittance;
@@ -810,14 +813,9 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                     }
                     // The segment's transmittance, and in a grid its equiangular legs' from the
                     // same tracker.
-                    Rgb transmittance;
-                    if (med.homogeneous()) {
-                        transmittance = med.transmittance(seg.tMax);
-                    } else {
-                        Rgb single;
-                        transmittance = gridSegmentTransmittance(med, seg, rng, legs, &single);
-                        emitted += single;
-                    }
+                    Rgb single;
+                    const Rgb transmittance = segmentTransmittance(med, seg, rng, legs, &single);
+                    emitted += single;
                     Rgb media = throughput * emitted;
                     L += media;
                     Lmedia += media;
