@@ -103,14 +103,8 @@ inline Scene wallsFogBox() {
     Scene s;
     s.name = "walls-fog-box";
     s.source = "<test>";
-    Material white;
-    white.name = "white";
-    white.albedo = Rgb(0.6f);
-    s.materials = {white};
-    Medium fog;
-    fog.name = "fog";
-    fog.sigmaS = Rgb(0.1f);
-    s.media = {fog};
+    addMaterial(s, "white", MaterialType::Diffuse, Rgb(0.6f));
+    s.media.push_back(homogeneousMedium(Rgb(0.1f), Rgb(0.0f)));
     s.globalMedium = 0;
     s.meshes.push_back(makeBox("room", Vec3(-1.25f), Vec3(1.25f), 0, true));
     Light bulb;
