@@ -673,7 +673,9 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                             static_assert(SurfaceBoundary::kNormalAgreement == kSurfaceNormalAgreement);
                             E = surfacePhotons.gatherFacing(hit.p, side.nf, [&](const SurfacePhoton& p) {
                                 if ((p.flags & skip) || !photonWithinCap(p)) return 0.0f;
-                                return (shading ? shadingCosineRatio(side, p.wi) : 1.0f) / coverage(p.radius);
+                                // Divided only where the coverage is not 1 (most photons): x / 1 is x.
+                                const float c = coverage(p.radius), ratio = shading ? shadingCosineRatio(side, p.wi) : 1.0f;
+                                return c == 1.0f ? ratio : ratio / c;
                             });
                         }
                     } else {

@@ -40,7 +40,12 @@ SurfacePhotonGrid::SurfacePhotonGrid(const std::vector<SurfacePhoton>& photons) 
     m_sorted.resize(photons.size());
     for (size_t i = 0; i < photons.size(); ++i) m_sorted[counts[bucketOf[i]]++] = photons[i];
     m_candidates.resize(photons.size());
-    for (size_t i = 0; i < m_sorted.size(); ++i) m_candidates[i] = {m_sorted[i].position, m_sorted[i].radius};
+    m_kernelScale.resize(photons.size());
+    for (size_t i = 0; i < m_sorted.size(); ++i) {
+        m_candidates[i] = {m_sorted[i].position, m_sorted[i].radius};
+        const float r2 = m_sorted[i].radius * m_sorted[i].radius;
+        m_kernelScale[i] = 2.0f / (kPi * r2);
+    }
 }
 
 uint32_t SurfacePhotonGrid::cellHash(int x, int y, int z) const {

@@ -110,6 +110,8 @@ private:
         float radius;
     };
     std::vector<Candidate> m_candidates;
+    // kernel()'s factor 2 / (pi r^2) of m_sorted[i], computed once as kernel() computes it.
+    std::vector<float> m_kernelScale;
     std::vector<uint32_t> m_cellStart;  // per hash bucket: start in m_sorted (size buckets + 1)
     float m_cellSize = 1;
     float m_maxRadius = 0;
@@ -157,14 +159,17 @@ Rgb SurfacePhotonGrid::gatherOver(const Vec3& x, const Vec3& n, const Weight& we
                                               r->index.size(), x, n, r->accepted.data(), r->acceptedD2.data());
     const Vec3 normal = n;
     for (size_t k = 0; k < found; ++k) {
-        const SurfacePhoton& p = m_sorted[r->index[r->accepted[k]]];
+        const uint32_t index = r->index[r->accepted[k]];
+        const SurfacePhoton& p = m_sorted[index];
         const float cosine = dot(p.normal, normal);
         // Either side (gather) or n's side (gatherFacing; NaN passes both tests, as it did).
         if (kFacing ? cosine < kSurfaceNormalAgreement : std::abs(cosine) < kSurfaceNormalAgreement) continue;
         const auto w = weight(p);
         // A zero weight adds +-0 (finite powers and kernels): the sum's bits stay as they are.
         if (isZeroWeight(w)) continue;
-        sum += w * p.power * kernel(r->acceptedD2[k], p.radius);
+        // kernel(d2, r) with its 2 / (pi r^2) kept per photon (the same float operations).
+        const float r2 = p.radius * p.radius, d2 = r->acceptedD2[k];
+        sum += w * p.power * (d2 < r2 ? m_kernelScale[index] * (1.0f - d2 / r2) : 0.0f);
     }
     return sum;
 }
