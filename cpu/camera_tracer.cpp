@@ -529,15 +529,17 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
             // and the environment (a light path of two segments), once per pass like the emission.
             if (emission) L = LmediaPrimary = ph.emitted;
             const int maxLength = m_settings.maxPathLength;
-            // Keyed only where --equiangular on draws from it (every use is behind m_equiangular).
-            Rng equiangularRng =
-                m_equiangular ? Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::Equiangular) : Rng();
             // The pixel's distances per segment this pass: a fractional count's extra one spread
             // evenly over its passes (EquiangularScattering::samplesInPass).
             const int equiangularSamples =
                 m_equiangular && emission
                     ? m_equiangular->samplesInPass(pass, EquiangularScattering::pixelPhase(m_settings.seed, pixel))
                     : 0;
+            // Keyed only where it is drawn from: every use is an estimate of equiangularSamples
+            // distances, which draws nothing for none (most pixels' passes at a fractional count).
+            Rng equiangularRng = equiangularSamples > 0
+                                     ? Rng::forKey(m_settings.seed, pass, pixel, StreamPurpose::Equiangular)
+                                     : Rng();
             std::optional<Rng> emissionRng;  // keyed at the first later segment in an emitting grid
             // --film-light-sampling: near a light's image, this path's share of that light's single
             // scattering (FilmLightRay::uniform) and, with the emission, the light-directed ray's.
@@ -671,12 +673,21 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                             SurfaceBoundary::AtPoint coverage(*m_boundary, hit.p, hit.ng);
                             // The photons on the path's side alone (SurfaceBoundary::kNormalAgreement).
                             static_assert(SurfaceBoundary::kNormalAgreement == kSurfaceNormalAgreement);
-                            E = surfacePhotons.gatherFacing(hit.p, side.nf, [&](const SurfacePhoton& p) {
-                                if ((p.flags & skip) || !photonWithinCap(p)) return 0.0f;
-                                // Divided only where the coverage is not 1 (most photons): x / 1 is x.
-                                const float c = coverage(p.radius), ratio = shading ? shadingCosineRatio(side, p.wi) : 1.0f;
-                                return c == 1.0f ? ratio : ratio / c;
-                            });
+                            // Farther than the largest radius from every edge, with no shading
+                            // normal, no photon skipped and no cap, every weight below is exactly
+                            // 1: the unweighted sum, bit for bit (most gather points).
+                            if (!shading && skip == 0 && maxLength == 0 &&
+                                coverage.clearUpTo(surfacePhotons.maxRadius())) {
+                                E = surfacePhotons.density(hit.p, side.nf);
+                            } else {
+                                E = surfacePhotons.gatherFacing(hit.p, side.nf, [&](const SurfacePhoton& p) {
+                                    if ((p.flags & skip) || !photonWithinCap(p)) return 0.0f;
+                                    // Divided only where the coverage is not 1: x / 1 is x.
+                                    const float c = coverage(p.radius);
+                                    const float ratio = shading ? shadingCosineRatio(side, p.wi) : 1.0f;
+                                    return c == 1.0f ? ratio : ratio / c;
+                                });
+                            }
                         }
                     } else {
                         E = !hasShadingNormal(hit) && skip == 0 && maxLength == 0

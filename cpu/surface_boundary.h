@@ -140,6 +140,9 @@ public:
     public:
         AtPoint(const SurfaceBoundary& boundary, const Vec3& x, const Vec3& ng)
             : m_b(boundary), m_x(x), m_ng(ng), m_clear(boundary.m_clearance.clearance(x)) {}
+        /// operator()(r) is exactly 1 for every r <= rMax without a half-edge looked at (its
+        /// first test: r x 1.02 <= rMax x 1.02, float multiplication being monotonic).
+        bool clearUpTo(float rMax) const { return rMax * 1.02f <= m_clear; }
         float operator()(float r) {
             // The quantised radius is at most 1/64 above r: no half-edge within it, coverage 1.
             if (r * 1.02f <= m_clear) return 1.0f;

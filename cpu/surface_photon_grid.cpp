@@ -40,11 +40,12 @@ SurfacePhotonGrid::SurfacePhotonGrid(const std::vector<SurfacePhoton>& photons) 
     m_sorted.resize(photons.size());
     for (size_t i = 0; i < photons.size(); ++i) m_sorted[counts[bucketOf[i]]++] = photons[i];
     m_candidates.resize(photons.size());
-    m_kernelScale.resize(photons.size());
+    m_shading.resize(photons.size());
     for (size_t i = 0; i < m_sorted.size(); ++i) {
-        m_candidates[i] = {m_sorted[i].position, m_sorted[i].radius};
-        const float r2 = m_sorted[i].radius * m_sorted[i].radius;
-        m_kernelScale[i] = 2.0f / (kPi * r2);
+        const SurfacePhoton& p = m_sorted[i];
+        m_candidates[i] = {p.position, p.radius};
+        const float r2 = p.radius * p.radius;
+        m_shading[i] = {p.normal, p.radius, p.power, 2.0f / (kPi * r2)};
     }
 }
 
@@ -139,11 +140,24 @@ void SurfacePhotonGrid::fillRegion(Region& r) const {
 }
 
 Rgb SurfacePhotonGrid::density(const Vec3& x, const Vec3& n) const {
+    // forEachNear's photons in its order, each as kernel() and gatherOver<true> weigh it.
     Rgb sum;
-    forEachNear(x, n, [&](const SurfacePhoton& p, float d2) {
-        if (dot(p.normal, n) < kSurfaceNormalAgreement) return;  // same side of the surface
-        sum += p.power * kernel(d2, p.radius);
-    });
+    if (m_photons.empty()) return sum;
+    Region* r = regionFor(x);
+    if (!r) return sum;
+    const size_t found = scanPhotonCandidates(r->x.data(), r->y.data(), r->z.data(), r->radius.data(),
+                                              r->index.size(), x, n, r->accepted.data(), r->acceptedD2.data());
+    const Vec3 normal = n;
+    const uint32_t* index = r->index.data();
+    const uint32_t* accepted = r->accepted.data();
+    const float* acceptedD2 = r->acceptedD2.data();
+    for (size_t k = 0; k < found; ++k) {
+        const Shading& p = m_shading[index[accepted[k]]];
+        // Same side of the surface (a NaN passes, as it does in gatherOver).
+        if (dot(p.normal, normal) < kSurfaceNormalAgreement) continue;
+        const float r2 = p.radius * p.radius, d2 = acceptedD2[k];
+        sum += p.power * (d2 < r2 ? p.kernelScale * (1.0f - d2 / r2) : 0.0f);
+    }
     return sum;
 }
 

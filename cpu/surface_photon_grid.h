@@ -32,8 +32,13 @@ public:
     explicit SurfacePhotonGrid(const std::vector<SurfacePhoton>& photons);
 
     /// sum_p Phi_p K_2D(|x - x_p|, r_p) for photons whose normal agrees with `n` (the side the
-    /// query looks from); multiply by the BRDF (rho/pi) to get outgoing radiance.
+    /// query looks from); multiply by the BRDF (rho/pi) to get outgoing radiance. Bit for bit
+    /// gatherFacing with a weight of exactly 1 for every photon (1 x Phi is Phi), from the photons'
+    /// normals, powers and kernel factors kept apart (SoA) so that the loop reads no photon record.
     Rgb density(const Vec3& x, const Vec3& n) const;
+
+    /// The largest photon radius (0 with no photons).
+    float maxRadius() const { return m_maxRadius; }
 
     /// sum_p weight(p) Phi_p K_2D(|x - x_p|, r_p) over photons near the plane through x with normal
     /// n, from either side (|n_p . n| >= kSurfaceNormalAgreement): a glossy vertex evaluates its
@@ -110,8 +115,15 @@ private:
         float radius;
     };
     std::vector<Candidate> m_candidates;
-    // kernel()'s factor 2 / (pi r^2) of m_sorted[i], computed once as kernel() computes it.
-    std::vector<float> m_kernelScale;
+    // What density() reads of m_sorted[i]: its normal, radius, power and kernel()'s factor
+    // 2 / (pi r^2), computed once as kernel() computes it.
+    struct Shading {
+        Vec3 normal;
+        float radius;
+        Rgb power;
+        float kernelScale;
+    };
+    std::vector<Shading> m_shading;
     std::vector<uint32_t> m_cellStart;  // per hash bucket: start in m_sorted (size buckets + 1)
     float m_cellSize = 1;
     float m_maxRadius = 0;
@@ -169,7 +181,7 @@ Rgb SurfacePhotonGrid::gatherOver(const Vec3& x, const Vec3& n, const Weight& we
         if (isZeroWeight(w)) continue;
         // kernel(d2, r) with its 2 / (pi r^2) kept per photon (the same float operations).
         const float r2 = p.radius * p.radius, d2 = r->acceptedD2[k];
-        sum += w * p.power * (d2 < r2 ? m_kernelScale[index] * (1.0f - d2 / r2) : 0.0f);
+        sum += w * p.power * (d2 < r2 ? m_shading[index].kernelScale * (1.0f - d2 / r2) : 0.0f);
     }
     return sum;
 }
