@@ -82,6 +82,8 @@ public:
     /// An Interface: no scattering, the path goes straight on into mediumBeyond().
     bool isPassThrough() const { return m_type == MaterialType::Interface; }
     const HitSide& side() const { return m_side; }
+    /// The direction toward the arriving path, -dIn.
+    const Vec3& wo() const { return m_wo; }
     /// The medium on the other side of the surface from the arriving path.
     MediumId mediumBeyond() const { return m_beyond; }
     /// +z of the coat's and the glossy lobes' frame: the shading normal on the arriving side, a
@@ -93,6 +95,10 @@ public:
     Rgb f(const Vec3& wi, BsdfLobes lobes = kLobesAll) const;
     /// The solid-angle density sample() draws wi with (all lobes; 0 for delta components).
     float pdf(const Vec3& wi) const;
+    /// The density sample(..., allowed) draws wi with: pdf(wi) when `allowed` has kLobeDiffuse, a
+    /// coat's specular lobe's own without it (what a camera path's continuation samples), 0 for a
+    /// component none of `allowed` covers.
+    float pdf(const Vec3& wi, BsdfLobes allowed) const;
 
     /// Samples a lobe among `allowed` (kLobesAll, or without kLobeDiffuse: a coat's specular part
     /// alone, weight f_s cos / pdf_s) and a direction, plays `roulette`, and multiplies `*beta` by
@@ -241,6 +247,24 @@ inline float Bsdf::pdf(const Vec3& wi) const {
             return component().metal.pdf(local().wo, local().frame.toLocal(wi));
         case Kind::RoughDielectric:
             return component().glass.pdf(local().wo, local().frame.toLocal(wi));
+        case Kind::Delta:
+            break;
+    }
+    return 0.0f;
+}
+
+inline float Bsdf::pdf(const Vec3& wi, BsdfLobes allowed) const {
+    switch (m_kind) {
+        case Kind::Diffuse:
+            return (allowed & kLobeDiffuse) ? pdf(wi) : 0.0f;
+        case Kind::Coated:
+            if (allowed & kLobeDiffuse) return pdf(wi);
+            return (allowed & (kLobeGlossy | kLobeSpecular))
+                       ? component().coat.pdfSpecular(local().wo, local().frame.toLocal(wi))
+                       : 0.0f;
+        case Kind::Conductor:
+        case Kind::RoughDielectric:
+            return (allowed & kLobeGlossy) ? pdf(wi) : 0.0f;
         case Kind::Delta:
             break;
     }

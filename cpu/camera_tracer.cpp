@@ -96,6 +96,8 @@ void CameraTracer::lightsChanged() {
     m_direct.reset();
     m_lights = std::make_unique<LightSampler>(m_scene);
     m_direct = std::make_unique<DirectLight>(m_rt, *m_lights);
+    // Sources beyond Scene::lights: emissive triangles or the environment.
+    m_glossyDirect = m_lights->sourceCount() > m_scene.lights.size();
 }
 
 namespace {
@@ -643,6 +645,11 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                 return maxLength == 0 || segment + int(p.segments) <= maxLength;
             };
             auto shadowRayWithinCap = [&]() { return maxLength == 0 || segment + 1 <= maxLength; };
+            // After a rough vertex whose shadow ray could also reach area lights and the
+            // environment (DirectLight::glossy): the continuation's density and where it left,
+            // for the MIS weight of the emitter or environment it reaches; 0 = weight 1.
+            float continuationPdf = 0;
+            Vec3 continuationFrom;
 
             for (int depth = 0;;) {
                 const TriangleMesh& mesh = m_scene.meshes[hit.mesh];
@@ -652,11 +659,20 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                 HitSide side = hitSide(hit, dir);
                 const SurfacePoint sp = surfaceAt(m_scene, hit, footprint);
                 if (emission && mat.isEmissive() && side.entering) {
-                    L += throughput * sp.emission;
-                    Lsurface += throughput * sp.emission;
+                    Rgb Le = throughput * sp.emission;
+                    if (continuationPdf > 0)
+                        Le *= m_direct->continuationWeight(continuationPdf, continuationFrom, hit.mesh, hit.triangle,
+                                                           hit.p);
+                    L += Le;
+                    Lsurface += Le;
                 }
                 const Bsdf bsdf = Bsdf::at(m_scene, hit, sp, dir, medium, TransportMode::Radiance, rng);
                 const BsdfLobes lobes = bsdf.lobes();
+                // A rough continuation lobe (glossy, a rough coat's specular part) lit by area
+                // lights or the environment: a shadow ray for them, MIS against the continuation
+                // (docs/algorithm.md "Glossy vertices").
+                const bool glossyDirect =
+                    m_glossyDirect && emission && (lobes & kLobeGlossy) && shadowRayWithinCap();
                 if (!(lobes & (kLobeGlossy | kLobeSpecular))) {
                     // With a shading normal each photon is weighted by its light-side cosine ratio
                     // (core/surface_hit.h, shadingCosineRatio); the same photons as density().
@@ -744,6 +760,7 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                                                    },
                                                    &receiver);
                     }
+                    if (glossyDirect) coated += throughput * m_direct->glossy(bsdf, kLobeGlossy, hit, medium, neeRng);
                     L += coated;
                     Lsurface += coated;
                 } else if (lobes & kLobeGlossy) {
@@ -752,12 +769,13 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                     // then continue by sampling it. Surfaces that also store photons for a diffuse
                     // part (partly transmissive, plastic) hold others too: the flag skips them.
                     const bool shading = hasShadingNormal(hit);
-                    const Rgb glossy =
+                    Rgb glossy =
                         throughput * surfacePhotons.gather(hit.p, hit.ng, [&](const SurfacePhoton& p) {
                             if (!(p.flags & kPhotonDeltaPath) || !photonWithinCap(p)) return Rgb(0.0f);
                             Rgb f = bsdf.f(p.wi);
                             return shading ? f * shadingOverGeometricCosine(hit, p.wi) : f;
                         });
+                    if (glossyDirect) glossy += throughput * m_direct->glossy(bsdf, kLobeGlossy, hit, medium, neeRng);
                     L += glossy;
                     Lsurface += glossy;
                 }
@@ -771,7 +789,11 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                         return (lobes & kLobeDiffuse) ? std::min(1.0f, 4.0f * w.maxComponent()) : kNoRoulette;
                     }))
                     break;
-                if (!bsdf.isPassThrough() && ++segment > maxLength && maxLength > 0) break;
+                if (!bsdf.isPassThrough()) {
+                    continuationPdf = glossyDirect && (s.lobe & kLobeGlossy) ? s.pdf : 0.0f;
+                    continuationFrom = hit.p;
+                    if (++segment > maxLength && maxLength > 0) break;
+                }
                 medium = s.medium;
                 straight = straight && bsdf.isPassThrough();
                 Ray ray{m_rt.offsetOrigin(hit.p, hit.t, hit.ng, s.wi), s.wi};
@@ -839,7 +861,9 @@ Image CameraTracer::traceSecondary(const PrimaryPass& primary, const PhotonMap& 
                     // or on a transparent film, where they leave their coverage instead).
                     if (straight) clear = throughput.average();
                     if (environment && (!straight || background) && !throughput.isBlack()) {
-                        const Rgb Le = throughput * environment->eval(dir);
+                        Rgb Le = throughput * environment->eval(dir);
+                        if (continuationPdf > 0)
+                            Le *= m_direct->continuationWeight(continuationPdf, continuationFrom, dir);
                         L += Le;
                         Lsurface += Le;
                     }

@@ -194,6 +194,9 @@ private:
     /// --direct-light on: the light sampler and shadow rays of the diffuse ends; null when off.
     std::unique_ptr<LightSampler> m_lights;
     std::unique_ptr<DirectLight> m_direct;
+    /// With m_direct, the scene has area lights or an environment: rough continuation lobes get
+    /// shadow rays for them too (DirectLight::glossy), MIS-weighted against the continuation.
+    bool m_glossyDirect = false;
     /// --surface-boundary on: the surface kernel's coverage at edges (cpu/surface_boundary.h).
     std::unique_ptr<SurfaceBoundary> m_boundary;
     /// --equiangular on (and a point, spot, area or directional light, or an environment): single

@@ -78,4 +78,29 @@ Rgb DirectLight::diffuse(const SurfaceHit& hit, const HitSide& side, MediumId me
         receiver);
 }
 
+Rgb DirectLight::glossy(const Bsdf& bsdf, BsdfLobes lobes, const SurfaceHit& hit, MediumId medium, Rng& rng) const {
+    const DirectLightSample ls = m_lights.sampleDirect(hit.p, rng);
+    if (ls.delta || !(ls.pdf > 0) || ls.incident.isBlack()) return Rgb(0.0f);
+    const Rgb f = bsdf.f(ls.wi, lobes);
+    if (f.isBlack()) return Rgb(0.0f);
+    // Through the surface or back from it, in the lobe's (shading) frame and geometrically alike:
+    // where they disagree the continuation ends (Bsdf::sample), and so does this.
+    const bool through = dot(ls.wi, bsdf.side().nf) < 0;
+    if (through != (dot(ls.wi, bsdf.normal()) * dot(bsdf.wo(), bsdf.normal()) < 0)) return Rgb(0.0f);
+    const Rgb tr = shadowTransmittance(m_rt.offsetOrigin(hit.p, hit.ng, ls.wi), ls,
+                                       through ? bsdf.mediumBeyond() : medium, rng);
+    const float mis = powerHeuristic(ls.pdf, bsdf.pdf(ls.wi, lobes));
+    return f * ls.incident * tr * (std::abs(dot(ls.wi, bsdf.normal())) * mis / ls.pdf);
+}
+
+float DirectLight::continuationWeight(float bsdfPdf, const Vec3& from, int mesh, uint32_t triangle,
+                                      const Vec3& p) const {
+    const int source = m_lights.emitterSource(mesh, triangle);
+    return source < 0 ? 1.0f : powerHeuristic(bsdfPdf, m_lights.directPdf(size_t(source), from, p));
+}
+
+float DirectLight::continuationWeight(float bsdfPdf, const Vec3& from, const Vec3& wi) const {
+    return powerHeuristic(bsdfPdf, m_lights.environmentPdf(from, wi));
+}
+
 }  // namespace tyndall

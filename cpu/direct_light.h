@@ -12,6 +12,8 @@
 //     tracking (unbiased) in density-grid media (estimateTransmittance; the reference path tracer
 //     keeps plain ratio tracking, ratioTrackingTransmittance, as an independent check).
 // Randomness comes only from the caller's keyed stream.
+#include <cmath>
+
 #include "core/light_sampler.h"
 #include "core/rng.h"
 #include "cpu/embree_scene.h"
@@ -19,10 +21,15 @@
 
 namespace tyndall {
 
-/// Multiple importance sampling, power heuristic (beta = 2) for strategy A against B.
+/// Multiple importance sampling, power heuristic (beta = 2) for strategy A against B: 0 where A
+/// cannot draw the sample, 1 where only A can. From the ratio B / A, so pdfs beyond 1.8e19 (whose
+/// squares overflow a float: a nearly smooth GGX lobe's peak) give the limit, not inf / inf.
 inline float powerHeuristic(float pdfA, float pdfB) {
-    float a = pdfA * pdfA, b = pdfB * pdfB;
-    return a + b > 0 ? a / (a + b) : 0.0f;
+    if (!(pdfA > 0)) return 0.0f;
+    if (!(pdfB > 0)) return 1.0f;
+    const double r = double(pdfB) / double(pdfA);
+    if (std::isnan(r)) return 0.5f;  // both infinite
+    return float(1.0 / (1.0 + r * r));
 }
 
 /// The diffuse base's cosine for light arriving along `wi` (docs/algorithm.md "Normal maps"):
@@ -88,6 +95,22 @@ public:
         return ls.incident * w * shadowTransmittance(m_rt.offsetOrigin(hit.p, side.nf, ls.wi), ls, medium, rng) *
                (1.0f / ls.pdf);
     }
+
+    /// One-sample estimate of the light from area lights and the environment that a rough vertex
+    /// sends back along its `lobes` (a camera path's continuation lobes: the glossy ones, a coat's
+    /// specular part): incident x Tr x f_lobes(wi) |wi . n| / pdf, weighted by the power heuristic
+    /// against bsdf.pdf(wi, lobes), the continuation's density, whose hits continuationWeight
+    /// weights with the rest. A point, spot or directional sample counts 0: at a glossy vertex their
+    /// light is the delta-path photons' (docs/algorithm.md "Glossy vertices"). A sample through the
+    /// surface (rough transmission) starts its shadow ray in bsdf.mediumBeyond(). Draws
+    /// sampleDirect's three uniforms from `rng`, then the shadow ray's where the weight is not 0.
+    Rgb glossy(const Bsdf& bsdf, BsdfLobes lobes, const SurfaceHit& hit, MediumId medium, Rng& rng) const;
+    /// The power-heuristic weight of a continuation drawn with density `bsdfPdf` at `from` (after
+    /// glossy() there) that reaches the emissive triangle (mesh, triangle) at `p`, against the
+    /// shadow ray's density of that point: glossy()'s weight and this sum to 1 for every direction.
+    float continuationWeight(float bsdfPdf, const Vec3& from, int mesh, uint32_t triangle, const Vec3& p) const;
+    /// The same for a continuation that leaves the scene along `wi` (the environment).
+    float continuationWeight(float bsdfPdf, const Vec3& from, const Vec3& wi) const;
 
     const LightSampler& lights() const { return m_lights; }
 

@@ -76,6 +76,25 @@ float directAt(const Scene& scene, float x, float z, uint64_t key = 0) {
 
 using test::pointLight;
 
+TEST(DirectLight, PowerHeuristicIsFiniteAndSumsToOneAtEveryScale) {
+    // Pdfs of 1.9e19 and more came from nearly smooth GGX glass under a sky map: their squares
+    // overflow a float, and the weight was inf / inf (NaN pixels in the path tracer's image).
+    for (float a : {1e-30f, 0.08f, 1.0f, 3e4f, 1.9e19f, 2.8e19f, 1e38f}) {
+        for (float b : {1e-30f, 0.08f, 1.0f, 3e4f, 1.9e19f, 1e38f}) {
+            const float wa = powerHeuristic(a, b), wb = powerHeuristic(b, a);
+            ASSERT_TRUE(std::isfinite(wa)) << a << " " << b;
+            EXPECT_NEAR(wa + wb, 1.0f, 1e-6f) << a << " " << b;
+            const double exact = double(a) * a / (double(a) * a + double(b) * b);
+            EXPECT_NEAR(wa, exact, 1e-6) << a << " " << b;
+        }
+    }
+    EXPECT_EQ(powerHeuristic(2e19f, 0.08f), 1.0f);
+    EXPECT_EQ(powerHeuristic(0.0f, 1.0f), 0.0f);
+    EXPECT_EQ(powerHeuristic(1.0f, 0.0f), 1.0f);
+    EXPECT_EQ(powerHeuristic(kInfinity, 1.0f), 1.0f);
+    EXPECT_EQ(powerHeuristic(1.0f, kInfinity), 0.0f);
+}
+
 TEST(DirectLight, PointLightInFogGivesICosOverDistanceSquaredTimesTransmittance) {
     const Vec3 light{0.4f, 2.0f, -0.3f};
     Scene s = floorScene(true, {pointLight(light, 3.0f)});

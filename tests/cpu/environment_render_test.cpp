@@ -340,6 +340,55 @@ TEST(EnvironmentRender, BrightSmallSunThroughAGlassBallInFogPpbAgreesWithThePath
                             });
 }
 
+/// A diffuse floor, a rough gold-like metal ball (GGX roughness `metal`) and a rough red plastic
+/// ball (coat roughness `coat`) under brightSunSky(10^4), no medium: the sun lights both rough
+/// lobes, which a camera path's continuation finds only when it happens to hit the sun's texel.
+Scene roughUnderSunScene(float metal, float coat) {
+    Scene s;
+    s.name = "env-bright-sun-rough";
+    s.source = "<test>";
+    s.materials.push_back(diffuse("floor", Rgb(0.6f)));
+    s.materials[size_t(test::addMaterial(s, "metal", MaterialType::Mirror, Rgb(0.95f, 0.75f, 0.45f)))].roughness = metal;
+    s.materials[size_t(test::addMaterial(s, "plastic", MaterialType::Plastic, Rgb(0.7f, 0.15f, 0.1f)))].roughness = coat;
+    s.meshes.push_back(makeQuad("floor", {-1.5f, 0, 1.5f}, {3, 0, 0}, {0, 0, -3}, 0));
+    s.meshes.push_back(makeSphere("metal ball", {-0.45f, 0.35f, 0.0f}, 0.35f, 4, 1));
+    s.meshes.push_back(makeSphere("plastic ball", {0.45f, 0.35f, 0.1f}, 0.35f, 4, 2));
+    s.environment = brightSunSky(1e4f);
+    s.camera = Camera::lookAt({0.2f, 1.3f, 2.6f}, {0, 0.25f, -0.1f}, {0, 1, 0}, 0.75f);
+    s.finalize();
+    s.validate();
+    return s;
+}
+
+TEST(EnvironmentRender, BrightSmallSunOnRoughMetalAndPlasticPpbAgreesWithThePathTracer) {
+    // Both rough lobes are lit by shadow rays toward the sky and by the continuation, weighted by
+    // MIS (docs/algorithm.md "Glossy vertices"); the path tracer does the same in its own code.
+    const Scene s = roughUnderSunScene(0.3f, 0.4f);
+    ASSERT_TRUE(s.materials[1].isGlossy());
+    comparePpbWithReference(s, "env_bright_sun_rough", {0, 1, 2, kMiss}, {"floor", "metal ball", "plastic ball", "sky"},
+                            8000, 32, 4096, 0.03, 1, 0.04);
+}
+
+TEST(EnvironmentRender, ShadowRaysAtRoughVerticesCutTheSunsNoiseOnRoughMetalAndPlastic) {
+    // The same balls' region means over 8 batches of 4 passes, with the rough lobes' shadow rays
+    // (--direct-light on) and without (off: the continuation alone must hit the sun's texel, about
+    // 0.007 sr, through lobes of about a steradian). Measured: standard errors metal 0.65 on
+    // against 9.2 off, plastic 0.062 against 2.3. The test asks for a third at most: without the
+    // shadow rays at rough vertices, or with the continuation's MIS weight left at 1 (metal
+    // 9.4), the off figure stays (the bias of that bug is the test above's).
+    const Scene s = roughUnderSunScene(0.3f, 0.4f);
+    const int size = 24;
+    const std::vector<int> classes = pixelClasses(s, size);
+    const std::vector<Estimate> on = test::ppbRegionMeans(s, ppbSettings(size, 4000, true), 8, 4, classes, {1, 2});
+    const std::vector<Estimate> off = test::ppbRegionMeans(s, ppbSettings(size, 4000, false), 8, 4, classes, {1, 2});
+    const char* names[] = {"metal ball", "plastic ball"};
+    for (size_t k = 0; k < on.size(); ++k) {
+        std::printf("%s: shadow rays %.5f +- %.5f, continuation alone %.5f +- %.5f\n", names[k], on[k].mean, on[k].se,
+                    off[k].mean, off[k].se);
+        EXPECT_LT(on[k].se, off[k].se / 3) << names[k];
+    }
+}
+
 // ---- 5. Thin-walled glass ----
 
 Material thinGlass(Rgb tint) {
