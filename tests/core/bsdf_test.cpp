@@ -3,6 +3,7 @@
 //     f(wi) |wi . ns| / pdf(wi) (times Veach's adjoint for importance), with a tilted shading
 //     normal; the mean weight is the directional albedo by quadrature of f (so the directions
 //     really are distributed by pdf), and pdf integrates to the share of draws that give a sample;
+//   - a camera path's continuation (every lobe but the diffuse) draws with pdf(wi, those lobes);
 //   - radiance and importance are each other's adjoint on a refractive interface:
 //     f_radiance(wo, wi) = f_importance(wi, wo), and they differ by eta^2 through it;
 //   - the random numbers each component draws (the tracers' images depend on the order).
@@ -174,6 +175,44 @@ TEST(Bsdf, SamplesAgreeWithFAndPdfAndTheMeanWeightIsTheAlbedoByQuadrature) {
                 // sample (the rest fell on the wrong side, or were a delta).
                 EXPECT_NEAR(pdfMass, double(sampled) / n, 0.01 + 5 * std::sqrt(double(sampled)) / n);
             }
+        }
+    }
+}
+
+TEST(Bsdf, TheContinuationsLobesSampleWithPdfOfThoseLobes) {
+    // A camera path's continuation samples every lobe but the diffuse (a coat's specular part
+    // alone); the glossy shadow ray's MIS weight needs that density, pdf(wi, lobes), and the two
+    // weights sum to 1 only if it is the one the sample was drawn with. The lobes' f with the
+    // sample's weight, as above.
+    const BsdfLobes continuation = BsdfLobes(kLobesAll & ~kLobeDiffuse);
+    for (const Case& c : cases()) {
+        if (!c.m.isGlossy() && !(c.m.type == MaterialType::Plastic && c.m.isRough())) continue;
+        Surface s(c.m, c.tilt);
+        for (float cosO : {0.8f, 0.35f, -0.6f}) {
+            if (cosO < 0 && c.m.type != MaterialType::Dielectric) continue;
+            const Vec3 wo = around(cosO, 0.9f);
+            SCOPED_TRACE(c.name + ", cos_o " + std::to_string(cosO));
+            Draws draws(11);
+            const Bsdf bsdf = s.at(wo, TransportMode::Radiance, draws);
+            int sampled = 0;
+            for (int k = 0; k < 20000; ++k) {
+                Rgb beta(1.0f);
+                BsdfSample smp;
+                if (!bsdf.sample(draws, &beta, &smp, continuation)) continue;
+                ASSERT_TRUE(smp.lobe & kLobeGlossy);
+                ++sampled;
+                const float pdf = bsdf.pdf(smp.wi, continuation);
+                ASSERT_NEAR(smp.pdf, pdf, 1e-3f * pdf) << "sample " << k;
+                const Rgb f = bsdf.f(smp.wi, continuation);
+                for (int ch = 0; ch < 3; ++ch)
+                    ASSERT_NEAR(smp.weight[ch], f[ch] * std::abs(dot(smp.wi, s.hit.ns)) / pdf,
+                                2e-3f * smp.weight[ch] + 1e-6f)
+                        << "sample " << k;
+            }
+            EXPECT_GT(sampled, 10000);
+            // With the diffuse lobe: a coat's mixture, as sample() draws it; 0 for a component without one.
+            const Vec3 wi = around(0.5f, 2.0f);
+            EXPECT_EQ(bsdf.pdf(wi, kLobeDiffuse), c.m.type == MaterialType::Plastic ? bsdf.pdf(wi) : 0.0f);
         }
     }
 }
