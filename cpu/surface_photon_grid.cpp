@@ -103,7 +103,6 @@ SurfacePhotonGrid::Region* SurfacePhotonGrid::regionFor(const Vec3& x) const {
 }
 
 void SurfacePhotonGrid::fillRegion(Region& r) const {
-    r.x.clear(), r.y.clear(), r.z.clear(), r.radius.clear(), r.index.clear();
     // The cells (2 r_max wide) overlapping the box grown by r_max: every photon within its radius
     // of the box lies in one of them.
     const Vec3 lo = (r.lo - Vec3(m_maxRadius) - m_origin) / m_cellSize;
@@ -112,6 +111,7 @@ void SurfacePhotonGrid::fillRegion(Region& r) const {
     const int x1 = int(std::floor(hi.x)), y1 = int(std::floor(hi.y)), z1 = int(std::floor(hi.z));
     uint32_t buckets[64];
     int count = 0;
+    size_t bound = 0;  // the buckets' photons: at most that many candidates
     for (int z = z0; z <= z1; ++z)
         for (int y = y0; y <= y1; ++y)
             for (int x = x0; x <= x1; ++x) {
@@ -119,24 +119,29 @@ void SurfacePhotonGrid::fillRegion(Region& r) const {
                 if (m_cellStart[h] == m_cellStart[h + 1]) continue;
                 if (std::find(buckets, buckets + count, h) != buckets + count) continue;
                 buckets[count++] = h;
+                bound += m_cellStart[h + 1] - m_cellStart[h];
             }
     std::sort(buckets, buckets + count);
+    // Room for every candidate and the padding the SIMD scan may read and write (never counted:
+    // the scan masks lanes past `count`, whatever an earlier fill left there).
+    const size_t room = bound + kPhotonScanPadding;
+    if (r.index.size() < room) {
+        for (std::vector<float>* v : {&r.x, &r.y, &r.z, &r.radius, &r.acceptedD2}) v->resize(room, 0.0f);
+        r.index.resize(room), r.accepted.resize(room);
+    }
+    float *px = r.x.data(), *py = r.y.data(), *pz = r.z.data(), *pr = r.radius.data();
+    uint32_t* index = r.index.data();
+    size_t n = 0;
     for (int b = 0; b < count; ++b)
         for (uint32_t k = m_cellStart[buckets[b]]; k < m_cellStart[buckets[b] + 1]; ++k) {
             const Candidate& c = m_candidates[k];
             const Vec3 out = vmax(vmax(r.lo - c.position, c.position - r.hi), Vec3(0.0f));
             // A margin over the exact box distance: the scan applies the exact test.
             if (dot(out, out) > 1.0001f * c.radius * c.radius) continue;
-            r.x.push_back(c.position.x);
-            r.y.push_back(c.position.y);
-            r.z.push_back(c.position.z);
-            r.radius.push_back(c.radius);
-            r.index.push_back(k);
+            px[n] = c.position.x, py[n] = c.position.y, pz[n] = c.position.z, pr[n] = c.radius;
+            index[n++] = k;
         }
-    // Padding the SIMD scan may read (never counted: the scan masks lanes past index.size()).
-    for (std::vector<float>* v : {&r.x, &r.y, &r.z, &r.radius}) v->resize(r.index.size() + kPhotonScanPadding, 0.0f);
-    r.accepted.resize(r.index.size() + kPhotonScanPadding);
-    r.acceptedD2.resize(r.index.size() + kPhotonScanPadding);
+    r.count = n;
 }
 
 Rgb SurfacePhotonGrid::density(const Vec3& x, const Vec3& n) const {
@@ -146,7 +151,7 @@ Rgb SurfacePhotonGrid::density(const Vec3& x, const Vec3& n) const {
     Region* r = regionFor(x);
     if (!r) return sum;
     const size_t found = scanPhotonCandidates(r->x.data(), r->y.data(), r->z.data(), r->radius.data(),
-                                              r->index.size(), x, n, r->accepted.data(), r->acceptedD2.data());
+                                              r->count, x, n, r->accepted.data(), r->acceptedD2.data());
     const Vec3 normal = n;
     const uint32_t* index = r->index.data();
     const uint32_t* accepted = r->accepted.data();

@@ -85,7 +85,8 @@ private:
     struct Region {
         Vec3 lo, hi;
         std::vector<float> x, y, z, radius;
-        std::vector<uint32_t> index;  // into m_sorted, ascending; its size is the candidate count
+        size_t count = 0;  // the candidates; the arrays are longer (kept between fills, padded)
+        std::vector<uint32_t> index;  // into m_sorted, ascending
         std::vector<uint32_t> accepted;  // positions in the arrays above (scan output)
         std::vector<float> acceptedD2;
     };
@@ -139,7 +140,7 @@ void SurfacePhotonGrid::forEachNear(const Vec3& x, const Vec3& n, const Visit& v
     Region* r = regionFor(x);
     if (!r) return;
     const size_t found = scanPhotonCandidates(r->x.data(), r->y.data(), r->z.data(), r->radius.data(),
-                                              r->index.size(), x, n, r->accepted.data(), r->acceptedD2.data());
+                                              r->count, x, n, r->accepted.data(), r->acceptedD2.data());
     for (size_t k = 0; k < found; ++k) visit(m_sorted[r->index[r->accepted[k]]], r->acceptedD2[k]);
 }
 
@@ -168,7 +169,7 @@ Rgb SurfacePhotonGrid::gatherOver(const Vec3& x, const Vec3& n, const Weight& we
     Region* r = regionFor(x);
     if (!r) return sum;
     const size_t found = scanPhotonCandidates(r->x.data(), r->y.data(), r->z.data(), r->radius.data(),
-                                              r->index.size(), x, n, r->accepted.data(), r->acceptedD2.data());
+                                              r->count, x, n, r->accepted.data(), r->acceptedD2.data());
     const Vec3 normal = n;
     for (size_t k = 0; k < found; ++k) {
         const uint32_t index = r->index[r->accepted[k]];
