@@ -164,6 +164,7 @@ const std::pair<const char*, const char*> kOptionKeys[] = {
     {"--photon-planes", "photon_planes"},
     {"--scattered-beam-mfp", "scattered_beam_mfp"},
     {"--medium-points", "medium_point_mfp"},
+    {"--indirect-photon-spread", "indirect_photon_spread"},
     {"--max-path-length", "max_path_length"},
     {"--region", "region"}};
 
@@ -246,6 +247,13 @@ void addDirectLightOption(CLI::App* cmd, CommonOptions& o) {
                     "beams after a scattering, gathered with a radius of C mean free paths at the plan's end "
                     "(at least the automatic one); 0 = beams only (docs/algorithm.md)")
         ->check(CLI::Range(0.0, RenderSettings::kMaxMediumPointMfp).description(""))
+        ->capture_default_str();
+    cmd->add_option("--indirect-photon-spread", o.settings.indirectPhotonSpread,
+                    "C: surface photons whose light scattered diffusely (at a surface or in a medium) end the plan "
+                    "with a radius of at least C times their path length from that scattering (at most 8 "
+                    "automatic radii), shrinking like every surface photon; caustic photons keep the automatic "
+                    "radius; 0 = the automatic radius for every photon (docs/algorithm.md)")
+        ->check(CLI::Range(0.0, RenderSettings::kMaxIndirectPhotonSpread).description(""))
         ->capture_default_str();
 }
 

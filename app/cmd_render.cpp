@@ -74,7 +74,7 @@ void rejectWithResume(const CLI::App* cmd) {
                                    "--photon-angle",  "--planned-paths", "--direct-light", "--surface-boundary",
                                    "--environment",   "--max-path-length", "--equiangular", "--photon-planes",
                                    "--transparent",   "--equiangular-samples", "--scattered-beam-mfp",
-                                   "--medium-points"};
+                                   "--medium-points", "--indirect-photon-spread"};
     for (const char* name : kFixed)
         if (given(cmd, name))
             throw Error(std::string("--resume: ") + (name[0] == '-' ? name : "the scene file") +

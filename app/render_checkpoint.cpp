@@ -140,6 +140,8 @@ RenderRecord readRecord(const Checkpoint& c, const std::string& where) {
         if (!j.at("settings").contains("scattered_beam_mfp")) r.settings.scatteredBeamMfp = 0;
         // ... and from before --medium-points with beams alone.
         if (!j.at("settings").contains("medium_point_mfp")) r.settings.mediumPointMfp = 0;
+        // ... and from before --indirect-photon-spread with every surface photon at the schedule's radius.
+        if (!j.at("settings").contains("indirect_photon_spread")) r.settings.indirectPhotonSpread = 0;
         // ... and from before --film-light-sampling with uniform film positions.
         if (!j.at("settings").contains("film_light_sampling")) r.settings.filmLightSampling = false;
         r.output = j.at("output").get<std::string>();

@@ -81,7 +81,8 @@ struct Variant {
 std::vector<Variant> variantsFor(const Scene& scene, const RenderSettings& base, uint64_t passes, bool equalTime,
                                  bool legacy, bool switches, const std::vector<double>& equiangularSamples,
                                  const std::vector<double>& scatteredBeamMfp,
-                                 const std::vector<double>& mediumPointMfp) {
+                                 const std::vector<double>& mediumPointMfp,
+                                 const std::vector<double>& indirectPhotonSpread) {
     std::vector<Variant> variants;
     if (legacy) variants.push_back({"LEGACY", withLegacyDefaults(base, scene)});
     RenderSettings open = base;
@@ -123,6 +124,13 @@ std::vector<Variant> variantsFor(const Scene& scene, const RenderSettings& base,
             char label[64];
             std::snprintf(label, sizeof label, "MEDIUM POINTS %g MFP", c);
             variants.push_back({label, pointed});
+        }
+        for (double c : indirectPhotonSpread) {
+            RenderSettings spread = open;
+            spread.indirectPhotonSpread = c;
+            char label[64];
+            std::snprintf(label, sizeof label, "INDIRECT PHOTONS %g", c);
+            variants.push_back({label, spread});
         }
         if (passes > 0) {
             RenderSettings planned = base;
@@ -278,7 +286,7 @@ void runQualityStudy(const RenderSettings& settings, const QualityStudyOptions& 
         Reference ref = loadOrRenderReference(scene, scene.name, base, o.referenceDir, o.referenceSpp);
         std::vector<Curve> curves;
         for (const Variant& v : variantsFor(scene, base, passes, equalTime, o.legacy, o.switches, o.equiangularSamples,
-                                            o.scatteredBeamMfp, o.mediumPointMfp))
+                                            o.scatteredBeamMfp, o.mediumPointMfp, o.indirectPhotonSpread))
             curves.push_back(studyRow(scene, v, ref, passes, o));
         panels.push_back({scene.name, std::move(curves)});
     }

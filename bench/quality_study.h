@@ -63,6 +63,10 @@ struct QualityStudyOptions {
     /// Equal time: one more row per entry, today's defaults with photon points in dense media of this
     /// many mean free paths (RenderSettings::mediumPointMfp; 0 = beams only).
     std::vector<double> mediumPointMfp;
+    /// Equal time: one more row per entry, today's defaults with the indirect surface photons at
+    /// least this many times their path length from their last diffuse scattering wide
+    /// (RenderSettings::indirectPhotonSpread; 0 = every photon the schedule's).
+    std::vector<double> indirectPhotonSpread;
     /// Only print each scene's equiangular pilot (bench/equiangular_pilot.h): no references, no rows.
     bool pilotOnly = false;
 };

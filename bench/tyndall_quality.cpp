@@ -72,6 +72,11 @@ void addOptions(CLI::App& cli, Options& o) {
                    "With --cpu-seconds: one more row per value, photon points in dense media with a radius of this "
                    "many mean free paths at the plan's end (--medium-points), repeatable (default: none)")
         ->check(CLI::Range(0.0, RenderSettings::kMaxMediumPointMfp));
+    cli.add_option("--indirect-photon-rows", o.study.indirectPhotonSpread,
+                   "With --cpu-seconds: one more row per value, the surface photons whose light scattered "
+                   "diffusely at least this many times their path length from that scattering wide at the plan's "
+                   "end (--indirect-photon-spread), repeatable (default: none)")
+        ->check(CLI::Range(0.0, RenderSettings::kMaxIndirectPhotonSpread));
     cli.add_flag("--pilot-only", o.study.pilotOnly,
                  "Only print each scene's automatic equiangular pilot (what it measured, the count it chose)");
     // --direct-light, --surface-boundary, --equiangular, --photon-planes: the rows' settings (LEGACY

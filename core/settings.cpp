@@ -66,6 +66,9 @@ void RenderSettings::validate() const {
     if (!(mediumPointMfp >= 0 && mediumPointMfp <= kMaxMediumPointMfp))
         fail("medium_point_mfp", "must be a number of mean free paths in [0, 10] (0 = off; got " +
                                      std::to_string(mediumPointMfp) + ")");
+    if (!(indirectPhotonSpread >= 0 && indirectPhotonSpread <= kMaxIndirectPhotonSpread))
+        fail("indirect_photon_spread", "must be a number in [0, 1] (0 = off; got " +
+                                           std::to_string(indirectPhotonSpread) + ")");
     if (memoryMiB < 64 || memoryMiB > (uint64_t(1) << 30))
         fail("memory", "must be in 64..2^30 MiB (got " + std::to_string(memoryMiB) + ")");
 }
@@ -100,6 +103,7 @@ nlohmann::json RenderSettings::toJson() const {
             {"photon_planes", onOffText(photonPlanes)},
             {"scattered_beam_mfp", scatteredBeamMfp},
             {"medium_point_mfp", mediumPointMfp},
+            {"indirect_photon_spread", indirectPhotonSpread},
             {"transparent", onOffText(transparentFilm)}};
     if (!region.whole()) j["region"] = {region.x, region.y, region.width, region.height};
     return j;
@@ -181,7 +185,8 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
                                   "surface_radius", "radius_offset", "planned_paths", "photon_angle", "seed", "threads",
                                   "max_photon_bounces", "max_camera_bounces", "free_flights", "gpu", "memory", "simd",
                                   "direct_light", "surface_boundary", "max_path_length", "region", "equiangular",
-                                  "equiangular_samples", "film_light_sampling", "photon_planes", "scattered_beam_mfp", "medium_point_mfp", "transparent"};
+                                  "equiangular_samples", "film_light_sampling", "photon_planes", "scattered_beam_mfp", "medium_point_mfp",
+                                  "indirect_photon_spread", "transparent"};
     for (auto it = j.begin(); it != j.end(); ++it) {
         bool known = false;
         for (const char* k : kKeys) known |= it.key() == k;
@@ -216,6 +221,7 @@ RenderSettings RenderSettings::fromJson(const nlohmann::json& j, const std::stri
     read(j, "photon_planes", s.photonPlanes, where);
     read(j, "scattered_beam_mfp", s.scatteredBeamMfp, where);
     read(j, "medium_point_mfp", s.mediumPointMfp, where);
+    read(j, "indirect_photon_spread", s.indirectPhotonSpread, where);
     read(j, "transparent", s.transparentFilm, where);
     return s;
 }

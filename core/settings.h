@@ -138,6 +138,17 @@ struct RenderSettings {
     /// max(1, C mfp / the plan's end radius) (the beam radiance estimate). 0 = off: beams only.
     double mediumPointMfp = 0;
     static constexpr double kMaxMediumPointMfp = 10;
+    /// Surface photons whose light scattered diffusely since it left the light (at a diffuse or
+    /// glossy surface, in a medium, or an emissive medium's) and came from there along a path of
+    /// length l (mirrors, glass and Interfaces on the way count in l) get a kernel radius of at
+    /// least C l at the end of the plan, and shrink by the same schedule as every surface photon, so
+    /// they stay consistent: their radius is the automatic one times clamp(C l / the plan's end
+    /// surface radius, 1, kMaxIndirectPhotonScale), rounded down to a quarter octave. Caustic
+    /// photons (a light's through mirrors and glass alone) keep the automatic radius
+    /// (docs/algorithm.md, "Indirect surface photons"). 0 = off: every photon the schedule's radius.
+    double indirectPhotonSpread = 0;
+    static constexpr double kMaxIndirectPhotonSpread = 1;
+    static constexpr double kMaxIndirectPhotonScale = 8;
     static constexpr double kMaxMediumPointScale = 16;
     /// Points per beam they stand for: the photon's own free flight and this many minus one more.
     static constexpr int kMediumPointsPerBeam = 4;

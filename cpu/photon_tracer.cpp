@@ -37,6 +37,10 @@ RadiusSetup RadiusSetup::resolve(const RenderSettings& settings, const Scene& sc
         const double end = double(r.beamRadius) * r.schedule.beamFactor(plannedPhotonPaths(settings));
         if (end > 0) r.pointPerMfp = settings.mediumPointMfp / end;
     }
+    if (settings.indirectPhotonSpread > 0) {
+        const double end = double(r.surfaceRadius) * r.schedule.surfaceFactor(plannedPhotonPaths(settings));
+        if (end > 0) r.indirectPerLength = settings.indirectPhotonSpread / end;
+    }
     return r;
 }
 
@@ -199,6 +203,10 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
     // Interfaces): in a dense homogeneous medium such a beam is not stored, its end's scattering is
     // stored as a photon point instead (RadiusSetup::pointScale).
     bool afterScattering = false;
+    // Path length since the light last scattered diffusely (a diffuse surface, a medium, an
+    // emissive medium's emission), through mirrors, glass and Interfaces; -1 while it has not
+    // (direct and caustic light): the indirect photons' radius (RadiusSetup::indirectScale).
+    double sinceDiffuse = fromMedium ? 0.0 : -1.0;
     for (int bounce = 0; bounce < m_settings.maxPhotonBounces; ++bounce) {
         if (m_maxSegments >= 0 && segment > m_maxSegments) return;
         const bool covered = coveredByPlane;
@@ -295,6 +303,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
                 }
                 d = sampleHg(d, med.g, rng.uniform(), rng.uniform());
                 travelled += double(t0) + double(ff.t);
+                sinceDiffuse = 0.0;
                 o = x;
                 ++segment;
                 deltaPath = direct = false;
@@ -308,6 +317,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
         // The hit record, only for paths that reach the surface.
         const Vec3 p = o + d * tHit;
         travelled += double(tHit);
+        if (sinceDiffuse >= 0) sinceDiffuse += double(tHit);
         // Embree's Ng is cross(v1 - v0, v2 - v0): the same orientation as Scene's CCW convention.
         const Vec3 ng = normalize(Vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
         const TriangleMesh& mesh = m_scene.meshes[rh.hit.geomID];
@@ -334,7 +344,8 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
             const Vec3 nf = dot(d, ng) < 0 ? ng : -ng;  // hitSide(hit, d).nf
             SurfacePhoton& sp = out.surfacePhotons.emplace_back();
             sp.position = p;
-            sp.radius = surfaceRadius * float(surfaceConeScale(travelled, m_radii.coneReach));
+            sp.radius = surfaceRadius * float(surfaceConeScale(travelled, m_radii.coneReach)) *
+                        m_radii.indirectScale(sinceDiffuse);
             sp.wi = -d;
             sp.normal = nf;
             sp.power = power;
@@ -360,6 +371,7 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
             return;
         if (power.isBlack()) return;
         deltaPath = deltaPath && (s.lobe & kLobeSpecular);
+        if (s.lobe & kLobeDiffuse) sinceDiffuse = 0.0;
         medium = s.medium;
         const bool diffuse = bsdf.lobes() == (kLobeReflection | kLobeDiffuse);
         Vec3 away = ng;  // by value: a pointer into the Bsdf (a ?: of lvalues) would keep it in memory

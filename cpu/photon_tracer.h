@@ -60,6 +60,22 @@ struct RadiusSetup {
         return s > RenderSettings::kMaxMediumPointScale ? 0.0f : float(std::max(1.0, s));
     }
 
+    /// RenderSettings::indirectPhotonSpread over the surface radius at the plan's end (1 / scene
+    /// units); 0 = off.
+    double indirectPerLength = 0;
+
+    /// The factor on the schedule's surface radius for a photon whose light scattered diffusely
+    /// (a diffuse surface, a medium) a path length `length` before it: C length / the plan's end
+    /// surface radius, clamped to [1, RenderSettings::kMaxIndirectPhotonScale] and rounded down to a
+    /// quarter octave (a few radii a pass: the surface kernel's edge coverage is cached per radius);
+    /// 1 when off or for length < 0 (no such scattering: a direct or caustic photon).
+    float indirectScale(double length) const {
+        if (!(indirectPerLength > 0) || !(length > 0)) return 1.0f;
+        const double s = std::min(indirectPerLength * length, RenderSettings::kMaxIndirectPhotonScale);
+        if (!(s > 1)) return 1.0f;
+        return float(std::exp2(std::floor(4.0 * std::log2(s) + 1e-9) / 4.0));
+    }
+
     static RadiusSetup resolve(const RenderSettings& settings, const Scene& scene);
     float beamRadiusOf(uint64_t path) const { return float(beamRadius * schedule.beamFactor(path)); }
     float surfaceRadiusOf(uint64_t path) const { return float(surfaceRadius * schedule.surfaceFactor(path)); }

@@ -115,7 +115,8 @@ TEST(Cli, HelpListsEveryOptionWithDefaults) {
                                           "--radius", "--surface-radius", "--radius-offset", "--planned-paths",
                                           "--photon-angle", "--free-flights", "--memory", "--simd", "--direct-light",
                                           "--surface-boundary", "--equiangular", "--equiangular-samples",
-                                          "--film-light-sampling", "--photon-planes", "--scattered-beam-mfp", "--medium-points"};
+                                          "--film-light-sampling", "--photon-planes", "--scattered-beam-mfp", "--medium-points",
+                                          "--indirect-photon-spread"};
     auto join = [](std::initializer_list<std::vector<std::string>> parts) {
         std::set<std::string> all = {"--help", "--help-all"};
         for (const auto& p : parts) all.insert(p.begin(), p.end());
@@ -128,7 +129,8 @@ TEST(Cli, HelpListsEveryOptionWithDefaults) {
         {"reference", join({scene, output, {"--spp", "--max-depth", "--max-path-length", "--no-nee", "--transparent"}})},
         {"bench", join({scene, {"--passes", "--photons", "--no-hybrid", "--radius", "--radius-offset", "--simd",
                             "--direct-light", "--surface-boundary", "--equiangular", "--equiangular-samples",
-                            "--film-light-sampling", "--photon-planes", "--scattered-beam-mfp", "--medium-points"}})},
+                            "--film-light-sampling", "--photon-planes", "--scattered-beam-mfp", "--medium-points",
+                            "--indirect-photon-spread"}})},
         {"compare", join({scene, output, ppb, {"--gpu", "--density", "--twin"}})}};
     for (const auto& [command, names] : expected) {
         CliRun r = runTyndall(command + " --help");
