@@ -236,8 +236,8 @@ void addDirectLightOption(CLI::App* cmd, CommonOptions& o) {
                    "on|off: photon planes in homogeneous media (a beam swept along its next direction, "
                    "no kernel) instead of the beams after a scattering there; off = beams only (docs/algorithm.md)");
     cmd->add_option("--scattered-beam-mfp", o.settings.scatteredBeamMfp,
-                    "C: beams that start at a scattering in a medium end the plan with a radius of at least C of "
-                    "its mean free paths there (at most 8 automatic radii), shrinking like every beam; 0 = the "
+                    "C: beams that start at a scattering in a homogeneous medium end the plan with a radius of at "
+                    "least C of its mean free paths (at most 8 automatic radii), shrinking like every beam; 0 = the "
                     "automatic radius for every beam (docs/algorithm.md)")
         ->check(CLI::Range(0.0, RenderSettings::kMaxScatteredBeamMfp).description(""))
         ->capture_default_str();

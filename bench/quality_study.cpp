@@ -29,6 +29,7 @@ RenderSettings withLegacyDefaults(RenderSettings s, const Scene& scene) {
     s.directLight = false;
     s.surfaceBoundary = false;
     s.equiangular = false;
+    s.scatteredBeamMfp = 0;
     return s;
 }
 

@@ -73,7 +73,7 @@ struct QualityStudyOptions {
 
 /// The LEGACY row's settings: `s` with the scene-relative radii (withSceneRelativeRadii), no photon
 /// cone, surfaces lit by photons alone (no shadow rays), the plain surface kernel and the media lit
-/// by beams alone (no equiangular sampling).
+/// by beams alone (no equiangular sampling), every beam of the schedule's radius.
 RenderSettings withLegacyDefaults(RenderSettings s, const Scene& scene);
 
 /// Runs the study; `base` carries size, seed, threads, photons and alpha. Prints a table.

@@ -120,14 +120,14 @@ struct RenderSettings {
     /// kernel, and the beams that start at a scattering in a homogeneous medium (which the planes
     /// stand for) are not stored (docs/algorithm.md, "Photon planes"). false = beams only.
     bool photonPlanes = false;
-    /// Beams that start at a scattering in a medium (not a light's first beams, nor those leaving a
-    /// surface, whose edges are sharp) get a kernel radius of at least this many of the medium's
-    /// mean free paths at their start (1 / the largest channel of sigma_t there) at the end of the
-    /// plan, and shrink by the same schedule as every beam, so they stay consistent: their radius
-    /// is the automatic one times max(1, C mfp / the plan's end radius), at most
-    /// kMaxScatteredBeamScale times (docs/algorithm.md, "Beams after a scattering"). 0 = off: every
-    /// beam the schedule's radius.
-    double scatteredBeamMfp = 0;
+    /// Beams that start at a scattering in a homogeneous medium (not a light's first beams, nor those
+    /// leaving a surface, whose edges are sharp, nor those after a scattering in a grid medium) get
+    /// a kernel radius of at least this many of the medium's mean free paths (1 / the largest
+    /// channel of sigma_t) at the end of the plan, and shrink by the same schedule as every beam, so
+    /// they stay consistent: their radius is the automatic one times max(1, C mfp / the plan's end
+    /// radius), at most kMaxScatteredBeamScale times (docs/algorithm.md, "Beams after a
+    /// scattering"). 0 = off: every beam the schedule's radius.
+    double scatteredBeamMfp = 0.05;
     static constexpr double kMaxScatteredBeamMfp = 10;
     static constexpr double kMaxScatteredBeamScale = 8;
     /// Photon points in dense media (docs/algorithm.md, "Photon points in dense media"): a beam that

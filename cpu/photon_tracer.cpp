@@ -297,10 +297,10 @@ void PhotonTracer::tracePath(uint64_t pass, uint64_t pathInPass, uint64_t global
                 if (!(rng.uniform() < q)) return;
                 power *= 1.0f / q;
                 Vec3 x = seg.at(ff.t);
-                if (m_radii.scatteredPerMfp > 0) {
-                    const float st = med.sigmaT().maxComponent() * (med.homogeneous() ? 1.0f : med.density->density(x));
-                    scatteredScale = m_radii.scatteredScale(st);
-                }
+                // Wider only in a homogeneous medium: in a grid every beam a camera segment overlaps
+                // costs its gather a transmittance estimate through the grid, so wide beams there
+                // cost more passes than their lower noise gains (docs/performance.md).
+                scatteredScale = med.homogeneous() ? m_radii.scatteredScale(med.sigmaT().maxComponent()) : 1.0f;
                 d = sampleHg(d, med.g, rng.uniform(), rng.uniform());
                 travelled += double(t0) + double(ff.t);
                 sinceDiffuse = 0.0;

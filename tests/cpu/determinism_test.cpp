@@ -46,6 +46,7 @@ TEST(Determinism, RadiusShrinksPerPhotonPathInTheRenderer) {
     s.alpha = 0.5;
     s.radius = 0.05f;
     s.radiusOffset = 1000;
+    s.scatteredBeamMfp = 0;  // every beam the schedule's radius (the wider beams after a scattering: ScatteredBeams.*)
     PassRenderer renderer(scene, s);
     PhotonMap first = renderer.tracePhotons(0), later = renderer.tracePhotons(200);
     ASSERT_FALSE(first.beams.empty());

@@ -16,7 +16,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <memory>
 
+#include "core/density_grid.h"
 #include "cpu/photon_tracer.h"
 #include "tests/cpu/reference_fixtures.h"
 
@@ -69,6 +71,47 @@ TEST(ScatteredBeams, OnlyTheBeamsThatStartAtAScatteringWidenAndTheyShrinkWithThe
         EXPECT_GT(fromWall, 200);
         EXPECT_GT(fromScattering, 2000);
     }
+}
+
+/// A density of 1 everywhere in the unit sphere's box: a grid medium that traces as its homogeneous twin.
+class UnitDensity : public DensityGrid {
+public:
+    float density(const Vec3& p) const override { return bounds().contains(p) ? 1.0f : 0.0f; }
+    Bounds3 bounds() const override { return Bounds3{Vec3(-1.01f), Vec3(1.01f)}; }
+    float maxDensity() const override { return 1.0f; }
+    float meanDensity() const override { return 1.0f; }
+};
+
+TEST(ScatteredBeams, BeamsAfterAScatteringInAGridMediumKeepTheScheduleRadius) {
+    // The room of the test above with its fog as a grid of density 1 (sigma_t 4 in every channel, the
+    // mean free path of the test above): the beams after a scattering are not widened there (a wide
+    // beam in a grid costs its gather a transmittance estimate through the grid for every camera
+    // segment it overlaps).
+    Medium fog = test::homogeneousMedium(Rgb(3.0f, 2.5f, 2.0f), Rgb(1.0f, 1.5f, 2.0f), 0.3f, "dense grid");
+    fog.density = std::make_shared<UnitDensity>();
+    ASSERT_FALSE(fog.homogeneous());
+    const Scene scene = test::makeMediumSphereScene(fog, 1.0f, test::pointLight(Vec3(0.0f), 1.0f),
+                                                    Camera::lookAt({0, 0, 0.5f}, {0, 0, -1}, {0, 1, 0}, 1.0f), true);
+    RenderSettings ps = test::constantRadiusSettings(16, 2000, 3, false, 0.05f);
+    ps.radiusOffset = 1000000;
+    ps.plannedPaths = 2000000;
+    ps.photonAngle = 0;
+    ps.equiangular = false;
+    ps.scatteredBeamMfp = 0.2;
+    const RadiusSetup radii = RadiusSetup::resolve(ps, scene);
+    ASSERT_GT(radii.scatteredScale(4.0f), 2.0f);  // the homogeneous twin's beams would widen
+    EmbreeScene rt(scene);
+    const PhotonMap map = PhotonTracer(rt, ps, radii).trace(0);
+    const double base = radii.beamRadiusOf(map.firstPath);
+    int fromScattering = 0;
+    for (const PhotonBeam& b : map.beams) {
+        const float d = length(b.origin);
+        if (d > 1e-4f && d < 0.99f) ++fromScattering;
+        ASSERT_NEAR(b.radius, base, 2e-3 * base)
+            << "beam from " << b.origin.x << "," << b.origin.y << "," << b.origin.z;
+    }
+    std::printf("base radius %.5f, beams from scatterings %d\n", base, fromScattering);
+    EXPECT_GT(fromScattering, 2000);
 }
 
 /// The dense sphere: radius 0.5 at the origin, sigma_s (6, 5.5, 5), sigma_a (1, 1.5, 2.5), g 0.3, an
