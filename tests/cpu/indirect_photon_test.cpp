@@ -73,37 +73,20 @@ TEST(IndirectPhotons, CausticPhotonsKeepTheScheduleAndTheOthersWidenInQuarterOct
 
 /// PPB's image mean over 8 batches of `passes` / 8 passes, constant radii, the indirect photons up to
 /// 8 times the surface radius, with its standard error from the batches' spread.
-struct MeanEstimate {
-    double mean = 0, se = 0;
-};
+using MeanEstimate = test::RegionEstimate;
 MeanEstimate ppbMean(const Scene& scene, float surfaceRadius, int passes) {
     const int size = 16;
     RenderSettings ps = test::constantRadiusSettings(size, 2000, 5, true, surfaceRadius);
     ps.photonAngle = 0;
     ps.indirectPhotonSpread = 1.0;
     PassRenderer renderer(scene, ps);
-    std::vector<double> means;
-    const int batches = 8;
-    for (int b = 0; b < batches; ++b) {
-        const Image img = test::renderPpbPasses(renderer, uint64_t(b * passes / batches), uint64_t(passes / batches));
-        means.push_back(test::regionMean(img, 0, 0, size, size));
-    }
-    const test::MeanVar mv = test::meanVar(means);
-    return {mv.mean, std::sqrt(mv.var / batches)};
+    return test::ppbImageMean(renderer, size, passes);
 }
 
 TEST(IndirectPhotonsPpb, WallsBoxAgreesWithThePathTracerAsTheRadiiShrink) {
     const Scene scene = test::wallsFogBox();
-    ReferenceSettings rs;
-    rs.width = rs.height = 16;
-    rs.samplesPerPixel = 1024;
-    rs.seed = 17;
-    EmbreeScene rt(scene);
-    const ReferenceImage ref = ReferenceTracer(rt, rs).render();
-    const double reference = test::regionMean(ref.mean, 0, 0, 16, 16);
-    double refVar = 0;
-    for (const Rgb& v : ref.varianceOfMean.pixels) refVar += v.g;
-    const double seRef = std::sqrt(refVar) / 256.0;
+    const test::RegionEstimate ref = test::referenceImageMean(scene, 16, 1024, 17);
+    const double reference = ref.mean, seRef = ref.se;
     const double radii[2] = {0.08, 0.02};
     double bias[2], se[2];
     for (int i = 0; i < 2; ++i) {

@@ -89,9 +89,7 @@ Scene denseSphere(const Medium& medium, Vec3 camera = {0, 0, 2}) {
     return test::makeMediumSphereScene(medium, 0.5f, spot, Camera::lookAt(camera, {0, 0, 0}, {0, 1, 0}, 0.6f));
 }
 
-struct MeanEstimate {
-    double mean = 0, se = 0;
-};
+using MeanEstimate = test::RegionEstimate;
 
 /// PPB's image mean (green) over 8 batches of `passes` / 8 passes, constant radii (beams 0.005),
 /// with photon points of C mean free paths (0 = beams only), with its standard error.
@@ -102,14 +100,7 @@ MeanEstimate ppbMean(const Scene& scene, double pointMfp, int passes) {
     ps.photonAngle = 0;
     ps.mediumPointMfp = pointMfp;
     PassRenderer renderer(scene, ps);
-    std::vector<double> means;
-    const int batches = 8;
-    for (int b = 0; b < batches; ++b) {
-        const Image img = test::renderPpbPasses(renderer, uint64_t(b * passes / batches), uint64_t(passes / batches));
-        means.push_back(test::regionMean(img, 0, 0, size, size));
-    }
-    const test::MeanVar mv = test::meanVar(means);
-    return {mv.mean, std::sqrt(mv.var / batches)};
+    return test::ppbImageMean(renderer, size, passes);
 }
 
 /// The sphere's image mean with points (C 0.1: radius 0.1 mean free paths, a fortieth of the
@@ -117,16 +108,8 @@ MeanEstimate ppbMean(const Scene& scene, double pointMfp, int passes) {
 /// within 4 standard errors and 1.5% (the kernels' bias at the sphere's edge).
 void expectPointsAgree(const Medium& medium, double minMultipleShare) {
     const Scene scene = denseSphere(medium);
-    ReferenceSettings rs;
-    rs.width = rs.height = 16;
-    rs.samplesPerPixel = 2048;
-    rs.seed = 17;
-    EmbreeScene rt(scene);
-    const ReferenceImage ref = ReferenceTracer(rt, rs).render();
-    const double reference = test::regionMean(ref.mean, 0, 0, 16, 16);
-    double refVar = 0;
-    for (const Rgb& v : ref.varianceOfMean.pixels) refVar += v.g;
-    const double seRef = std::sqrt(refVar) / 256.0;
+    const test::RegionEstimate ref = test::referenceImageMean(scene, 16, 2048, 17);
+    const double reference = ref.mean, seRef = ref.se;
 
     PassRenderer probe(scene, [] {
         RenderSettings ps = test::constantRadiusSettings(16, 2000, 5, true, 0.05f);
@@ -135,6 +118,7 @@ void expectPointsAgree(const Medium& medium, double minMultipleShare) {
         return ps;
     }());
     ASSERT_GT(probe.radii().pointScale(medium.sigmaT().maxComponent()), 1.0f) << "points wider than the beams";
+    const EmbreeScene rt(scene);
     const PhotonMap map = PhotonTracer(rt, probe.settings(), probe.radii()).trace(0);
     ASSERT_GT(map.points.size(), size_t(1000));
 

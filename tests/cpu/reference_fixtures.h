@@ -303,6 +303,32 @@ struct RegionEstimate {
     double mean = 0, se = 0;
 };
 
+/// PPB's whole-image mean (regionMean over the size x size image) across `batches` batches of
+/// passes / batches passes of `renderer`, with the standard error from the batches' spread.
+inline RegionEstimate ppbImageMean(const PassRenderer& renderer, int size, int passes, int batches = 8) {
+    std::vector<double> means;
+    for (int b = 0; b < batches; ++b) {
+        const Image img = renderPpbPasses(renderer, uint64_t(b * passes / batches), uint64_t(passes / batches));
+        means.push_back(regionMean(img, 0, 0, size, size));
+    }
+    const MeanVar mv = meanVar(means);
+    return {mv.mean, std::sqrt(mv.var / batches)};
+}
+
+/// The path tracer's whole-image mean of a size x size image of `scene` (`spp` samples, `seed`),
+/// with its standard error from the green channel's variance of the mean.
+inline RegionEstimate referenceImageMean(const Scene& scene, int size, uint32_t spp, uint64_t seed) {
+    ReferenceSettings rs;
+    rs.width = rs.height = size;
+    rs.samplesPerPixel = spp;
+    rs.seed = seed;
+    EmbreeScene rt(scene);
+    const ReferenceImage ref = ReferenceTracer(rt, rs).render();
+    double var = 0;
+    for (const Rgb& v : ref.varianceOfMean.pixels) var += v.g;
+    return {regionMean(ref.mean, 0, 0, size, size), std::sqrt(var) / double(size * size)};
+}
+
 /// For each class in `wanted` (`classes`: one per pixel, as pixelMeshes gives): PPB's mean over
 /// its pixels across `batches` batches of `passes` passes, with the standard error from their
 /// spread. `mean`, when given, receives the mean image.

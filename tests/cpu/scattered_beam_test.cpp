@@ -129,9 +129,7 @@ Scene denseSphere() {
     return test::makeMediumSphereScene(amber, 0.5f, spot, Camera::lookAt({0, 0, 2}, {0, 0, 0}, {0, 1, 0}, 0.6f));
 }
 
-struct MeanEstimate {
-    double mean = 0, se = 0;
-};
+using MeanEstimate = test::RegionEstimate;
 
 /// PPB's image mean over 8 batches of `passes` / 8 passes, constant radii (beam `radius`), the
 /// beams after a scattering C = 2 mean free paths (so 8 times `radius`, the most, for radii up to
@@ -144,28 +142,13 @@ MeanEstimate ppbMean(const Scene& scene, float radius, int passes) {
     ps.scatteredBeamMfp = 2.0;
     PassRenderer renderer(scene, ps);
     EXPECT_NEAR(renderer.radii().scatteredScale(7.5f), 8.0f, 1e-4f);
-    std::vector<double> means;
-    const int batches = 8;
-    for (int b = 0; b < batches; ++b) {
-        const Image img = test::renderPpbPasses(renderer, uint64_t(b * passes / batches), uint64_t(passes / batches));
-        means.push_back(test::regionMean(img, 0, 0, size, size));
-    }
-    const test::MeanVar mv = test::meanVar(means);
-    return {mv.mean, std::sqrt(mv.var / batches)};
+    return test::ppbImageMean(renderer, size, passes);
 }
 
 TEST(ScatteredBeamsPpb, DenseSphereBiasFallsAsTheRadiiShrinkAndAgreesWithThePathTracer) {
     const Scene scene = denseSphere();
-    ReferenceSettings rs;
-    rs.width = rs.height = 16;
-    rs.samplesPerPixel = 2048;
-    rs.seed = 17;
-    EmbreeScene rt(scene);
-    const ReferenceImage ref = ReferenceTracer(rt, rs).render();
-    const double reference = test::regionMean(ref.mean, 0, 0, 16, 16);
-    double refVar = 0;
-    for (const Rgb& v : ref.varianceOfMean.pixels) refVar += v.g;
-    const double seRef = std::sqrt(refVar) / 256.0;
+    const test::RegionEstimate ref = test::referenceImageMean(scene, 16, 2048, 17);
+    const double reference = ref.mean, seRef = ref.se;
 
     // Widened beams of radius 0.16 (1.2 mean free paths, a third of the sphere's radius), 0.04, 0.01.
     const double radii[3] = {0.02, 0.005, 0.00125};
