@@ -26,13 +26,8 @@ namespace {
 TEST(MediumPoints, TheBeamsAfterAScatteringInADenseMediumBecomePointsAtTheirScatterings) {
     // sigma_t 4 (mean free path 0.25) in a unit sphere with a diffuse wall, the light at its centre.
     const Medium dense = test::homogeneousMedium(Rgb(3.0f, 2.5f, 2.0f), Rgb(1.0f, 1.5f, 2.0f), 0.3f, "dense");
-    const Scene scene = test::makeMediumSphereScene(dense, 1.0f, test::pointLight(Vec3(0.0f), 1.0f),
-                                                    Camera::lookAt({0, 0, 0.5f}, {0, 0, -1}, {0, 1, 0}, 1.0f), true);
-    RenderSettings ps = test::constantRadiusSettings(16, 2000, 3, false, 0.05f);
-    ps.radiusOffset = 1000000;
-    ps.plannedPaths = 2000000;
-    ps.photonAngle = 0;
-    ps.equiangular = false;
+    const Scene scene = test::litMediumSphere(dense);
+    RenderSettings ps = test::litMediumSphereSettings();
     ps.mediumPointMfp = 0.2;
     const RadiusSetup radii = RadiusSetup::resolve(ps, scene);
     const double end = 0.02 * radii.schedule.beamFactor(ps.plannedPaths);
@@ -66,8 +61,7 @@ TEST(MediumPoints, TheBeamsAfterAScatteringInADenseMediumBecomePointsAtTheirScat
 
     // A thin fog: its mean free path is long against the radius, it keeps its beams.
     const Medium thin = test::homogeneousMedium(Rgb(0.05f), Rgb(0.01f), 0.3f, "thin");
-    const Scene thinScene = test::makeMediumSphereScene(thin, 1.0f, test::pointLight(Vec3(0.0f), 1.0f),
-                                                        Camera::lookAt({0, 0, 0.5f}, {0, 0, -1}, {0, 1, 0}, 1.0f), true);
+    const Scene thinScene = test::litMediumSphere(thin);
     EmbreeScene thinRt(thinScene);
     const RadiusSetup thinRadii = RadiusSetup::resolve(ps, thinScene);
     EXPECT_EQ(thinRadii.pointScale(0.06f), 0.0f);

@@ -303,6 +303,26 @@ struct RegionEstimate {
     double mean = 0, se = 0;
 };
 
+/// A unit sphere of `medium` with a diffuse inner wall round a point light of intensity 1 at its
+/// centre, seen from (0, 0, 0.5) down -z: the scene of the tests of what becomes of the beams after
+/// a scattering in a dense medium.
+inline Scene litMediumSphere(const Medium& medium) {
+    return makeMediumSphereScene(medium, 1.0f, pointLight(Vec3(0.0f), 1.0f),
+                                 Camera::lookAt({0, 0, 0.5f}, {0, 0, -1}, {0, 1, 0}, 1.0f), true);
+}
+
+/// Their settings: 16x16, 2000 paths a pass, seed 3, no shadow rays, no equiangular samples, no
+/// photon cone, the beams' radius 0.02 a million paths into a plan of two million (it shrinks by
+/// 0.71 over the first million), the surface radius 0.05.
+inline RenderSettings litMediumSphereSettings() {
+    RenderSettings ps = constantRadiusSettings(16, 2000, 3, false, 0.05f);
+    ps.radiusOffset = 1000000;
+    ps.plannedPaths = 2000000;
+    ps.photonAngle = 0;
+    ps.equiangular = false;
+    return ps;
+}
+
 /// PPB's whole-image mean (regionMean over the size x size image) across `batches` batches of
 /// passes / batches passes of `renderer`, with the standard error from the batches' spread.
 inline RegionEstimate ppbImageMean(const PassRenderer& renderer, int size, int passes, int batches = 8) {

@@ -28,13 +28,8 @@ namespace {
 TEST(ScatteredBeams, OnlyTheBeamsThatStartAtAScatteringWidenAndTheyShrinkWithTheSchedule) {
     // sigma_t 4 (mean free path 0.25) in a unit sphere with a diffuse wall, the light at its centre.
     const Medium fog = test::homogeneousMedium(Rgb(3.0f, 2.5f, 2.0f), Rgb(1.0f, 1.2f, 1.5f), 0.3f, "dense");
-    const Scene scene = test::makeMediumSphereScene(fog, 1.0f, test::pointLight(Vec3(0.0f), 1.0f),
-                                                    Camera::lookAt({0, 0, 0.5f}, {0, 0, -1}, {0, 1, 0}, 1.0f), true);
-    RenderSettings ps = test::constantRadiusSettings(16, 2000, 3, false, 0.05f);
-    ps.radiusOffset = 1000000;  // shrinks by 0.71 over the first million paths
-    ps.plannedPaths = 2000000;
-    ps.photonAngle = 0;
-    ps.equiangular = false;
+    const Scene scene = test::litMediumSphere(fog);
+    RenderSettings ps = test::litMediumSphereSettings();
     ps.scatteredBeamMfp = 0.2;
     const RadiusSetup radii = RadiusSetup::resolve(ps, scene);
     // The factor: C mfp over the plan's end radius, with the shortest mean free path (sigma_t's largest
@@ -90,13 +85,8 @@ TEST(ScatteredBeams, BeamsAfterAScatteringInAGridMediumKeepTheScheduleRadius) {
     Medium fog = test::homogeneousMedium(Rgb(3.0f, 2.5f, 2.0f), Rgb(1.0f, 1.5f, 2.0f), 0.3f, "dense grid");
     fog.density = std::make_shared<UnitDensity>();
     ASSERT_FALSE(fog.homogeneous());
-    const Scene scene = test::makeMediumSphereScene(fog, 1.0f, test::pointLight(Vec3(0.0f), 1.0f),
-                                                    Camera::lookAt({0, 0, 0.5f}, {0, 0, -1}, {0, 1, 0}, 1.0f), true);
-    RenderSettings ps = test::constantRadiusSettings(16, 2000, 3, false, 0.05f);
-    ps.radiusOffset = 1000000;
-    ps.plannedPaths = 2000000;
-    ps.photonAngle = 0;
-    ps.equiangular = false;
+    const Scene scene = test::litMediumSphere(fog);
+    RenderSettings ps = test::litMediumSphereSettings();
     ps.scatteredBeamMfp = 0.2;
     const RadiusSetup radii = RadiusSetup::resolve(ps, scene);
     ASSERT_GT(radii.scatteredScale(4.0f), 2.0f);  // the homogeneous twin's beams would widen
